@@ -1,0 +1,1 @@
+"""The numpy core: models, mesh, quadrature, MERL reader.  Never imports textual or rich."""

@@ -1,0 +1,47 @@
+"""Floating-point policy, in one place.
+
+Every model guards its divisions, square roots and powers where the formula breaks (each guard
+says why in a comment).  Because of that, the kernels run under a *raising* policy: a division
+by zero, an overflow or an invalid operation that slipped past a guard is a bug, and it must be
+loud (``FloatingPointError``) rather than a NaN drawn as black on the screen.  Underflow is
+benign here (``exp(-tan²θh/m²)`` of a sharp lobe legitimately flushes to 0) and is ignored.
+
+Use :func:`kernel_errstate` around any evaluation of a model; nothing else in the package calls
+``np.errstate``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: The one errstate policy of the package (see module docstring).
+ERRSTATE = {"divide": "raise", "over": "raise", "invalid": "raise", "under": "ignore"}
+
+#: Smallest cosine treated as "above the horizon" in denominators.  Only used to keep a
+#: masked-out branch of ``np.where`` finite; the masked value itself is always replaced.
+TINY = 1e-300
+
+
+def kernel_errstate() -> np.errstate:
+    """Context manager applying :data:`ERRSTATE`."""
+    return np.errstate(**ERRSTATE)
+
+
+def safe_div(num: np.ndarray, den: np.ndarray, where: np.ndarray, fill: float = 0.0) -> np.ndarray:
+    """``num / den`` where ``where`` holds, ``fill`` elsewhere, without evaluating the rest.
+
+    ``np.where(mask, a / b, 0)`` evaluates ``a / b`` everywhere and would raise under our policy;
+    this divides only the selected elements.
+    """
+    num, den, where = np.broadcast_arrays(
+        np.asarray(num, dtype=float), np.asarray(den, dtype=float), where
+    )
+    out = np.full(num.shape, fill, dtype=np.result_type(num, den))
+    np.divide(num, den, out=out, where=where)
+    return out
+
+
+def safe_sqrt(x: np.ndarray) -> np.ndarray:
+    """``sqrt(max(x, 0))``: rounding can push a quantity that is ≥ 0 in exact arithmetic
+    (``1 - cos²``, ``n² - sin²``) a few ulps below zero."""
+    return np.sqrt(np.maximum(x, 0.0))

@@ -1,0 +1,179 @@
+"""Parameter declarations: each model declares its parameters once, here is the vocabulary.
+
+Everything user-facing is generated from these declarations: CLI ``-p NAME=VALUE`` parsing and
+its error messages, the UI parameter panel and its key steps, validation in
+:func:`tuibrdf.evaluate`, and ``tuibrdf models``.
+
+Kinds of parameter:
+
+========  ================================  =========================================
+kind      value                             notes
+========  ================================  =========================================
+float     a real in ``[min, max]``          ``unit == "deg"`` is converted to radians
+                                            before it reaches a kernel
+rgb       three reals in ``[min, max]``     one panel row per channel
+choice    one of ``choices``                cycled with +/- in the UI
+path      a file path                       the MERL file
+========  ================================  =========================================
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+Value = float | tuple[float, float, float] | str
+
+
+@dataclass(frozen=True)
+class Param:
+    """One model parameter, declared once."""
+
+    name: str
+    symbol: str
+    default: Value
+    min: float = 0.0
+    max: float = 1.0
+    step: float = 0.01
+    unit: str = ""
+    doc: str = ""
+    kind: str = "float"  # float | rgb | choice | path
+    choices: tuple[str, ...] = ()
+    #: coarse step (shift + key); defaults to 10 steps
+    coarse: float | None = None
+
+    @property
+    def coarse_step(self) -> float:
+        return self.coarse if self.coarse is not None else 10 * self.step
+
+    def range_text(self) -> str:
+        """The valid values, as every error message and listing shows them."""
+        if self.kind == "choice":
+            return "one of " + ", ".join(self.choices)
+        if self.kind == "path":
+            return "a file path"
+        unit = "°" if self.unit == "deg" else (f" {self.unit}" if self.unit else "")
+        rng = f"[{_fmt(self.min)}, {_fmt(self.max)}]{unit}"
+        return f"three values in {rng} (R,G,B)" if self.kind == "rgb" else f"in {rng}"
+
+    def validate(self, value: Any, model: str = "") -> Value:
+        """Return the canonical value, or raise ``ValueError`` naming the parameter and range."""
+        where = f"{model}: " if model else ""
+        bad = f"{where}{self.name} = {value!r} is invalid: expected {self.range_text()}"
+        if self.kind == "choice":
+            if isinstance(value, str) and value.lower() in self.choices:
+                return value.lower()
+            raise ValueError(bad)
+        if self.kind == "path":
+            if isinstance(value, str | bytes) or hasattr(value, "__fspath__"):
+                return str(value)
+            raise ValueError(bad)
+        if self.kind == "rgb":
+            if isinstance(value, str):
+                value = value.split(",")
+            if isinstance(value, int | float):
+                value = (value,) * 3  # a grey
+            try:
+                vals = tuple(float(v) for v in value)
+            except (TypeError, ValueError):
+                raise ValueError(bad) from None
+            if len(vals) != 3 or not all(self._in_range(v) for v in vals):
+                raise ValueError(bad)
+            return vals
+        try:
+            v = float(value)
+        except (TypeError, ValueError):
+            raise ValueError(bad) from None
+        if not self._in_range(v):
+            raise ValueError(bad)
+        return v
+
+    def _in_range(self, v: float) -> bool:
+        return math.isfinite(v) and self.min <= v <= self.max
+
+    def to_kernel(self, value: Value) -> Any:
+        """Convert a validated user value to the kernel's unit (degrees → radians)."""
+        if self.kind == "float" and self.unit == "deg":
+            return math.radians(value)
+        return value
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """A relation between parameters, e.g. ``kd + ks ≤ 1`` (checked with a 1e-9 slack so that
+    0.3 + 0.7 passes despite rounding)."""
+
+    text: str
+    names: tuple[str, ...]
+    check: Callable[..., bool]
+
+    def holds(self, values: Mapping[str, Value]) -> bool:
+        return bool(self.check(*(values[n] for n in self.names)))
+
+
+def sum_at_most_one(*names: str) -> Constraint:
+    return Constraint(" + ".join(names) + " ≤ 1", tuple(names), lambda *v: sum(v) <= 1 + 1e-9)
+
+
+@dataclass(frozen=True)
+class Model:
+    """A registered reflectance model.
+
+    ``kernel(wi, wo, **kernel_params)`` receives unit directions of shape ``(..., 3)``
+    (broadcast against each other) and parameters in kernel units; it returns ``(...)`` for a
+    scalar model or ``(..., 3)`` for an RGB one, finite and ≥ 0 everywhere.
+    """
+
+    name: str
+    title: str
+    params: tuple[Param, ...]
+    kernel: Callable[..., Any]
+    rgb: bool = False
+    reciprocal: bool = True
+    constraints: tuple[Constraint, ...] = ()
+    summary: str = ""
+    #: what the model returns on the horizon, for docs and `tuibrdf models`
+    horizon: str = ""
+    notes: tuple[str, ...] = field(default=())
+
+    def param(self, name: str) -> Param:
+        for p in self.params:
+            if p.name == name:
+                return p
+        raise ValueError(unknown_message(f"{self.name}: unknown parameter", name,
+                                         [p.name for p in self.params]))
+
+    def defaults(self) -> dict[str, Value]:
+        return {p.name: p.default for p in self.params}
+
+    def resolve(self, params: Mapping[str, Any] | None = None) -> dict[str, Value]:
+        """Validate ``params`` (user units), fill defaults, check constraints."""
+        values = self.defaults()
+        for name, value in (params or {}).items():
+            values[name] = self.param(name).validate(value, self.name)
+        for c in self.constraints:
+            if not c.holds(values):
+                got = ", ".join(f"{n} = {_fmt(values[n])}" for n in c.names)
+                raise ValueError(f"{self.name}: constraint {c.text} violated ({got})")
+        return values
+
+    def kernel_params(self, values: Mapping[str, Value]) -> dict[str, Any]:
+        return {p.name: p.to_kernel(values[p.name]) for p in self.params}
+
+
+def unknown_message(what: str, name: str, valid: Sequence[str]) -> str:
+    """``unknown X 'nme' (did you mean 'name'?); valid: a, b, c``."""
+    close = difflib.get_close_matches(name, list(valid), n=1)
+    hint = f" (did you mean {close[0]!r}?)" if close else ""
+    return f"{what} {name!r}{hint}; valid: {', '.join(valid)}"
+
+
+def _fmt(v: Any) -> str:
+    if isinstance(v, float):
+        return f"{v:g}"
+    if isinstance(v, tuple):
+        return ",".join(_fmt(x) for x in v)
+    return str(v)
