@@ -244,15 +244,17 @@ class HalfBlockImage:
                 codes[m.row, m.col] = -(k + 1)
         out: list[list[Segment]] = [[] for _ in range(self.height)]
         cache: dict[int, tuple[str, Style]] = {}
-        for r, c, n in zip(*find_runs(codes), strict=True):
-            code = int(codes[r, c])
+        rows, starts, lengths = find_runs(codes)
+        run_codes = codes[rows, starts].tolist()
+        for r, c, n, code in zip(rows.tolist(), starts.tolist(), lengths.tolist(), run_codes,
+                                 strict=True):
             if code < 0:
                 char, style = self._mark(self.marks[-code - 1], top[r, c], bottom[r, c], system)
             else:
                 if code not in cache:
                     cache[code] = make(code)
                 char, style = cache[code]
-            out[r].append(Segment(char * int(n), style))
+            out[r].append(Segment(char * n, style))
         return out
 
     def _color_codes(self, top, bottom, system):
