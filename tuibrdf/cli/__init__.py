@@ -14,6 +14,7 @@ from . import albedo as _albedo
 from . import eval as _eval
 from . import models as _models
 from . import render as _render
+from . import view as _view
 from .common import Parser, UsageError
 
 #: (name, module, one-line help) — the order of ``tuibrdf --help``
@@ -22,6 +23,7 @@ SUBCOMMANDS = [
     ("eval", _eval, "print BRDF values for given directions"),
     ("albedo", _albedo, "print the directional albedo a(θi)"),
     ("render", _render, "print a picture of the BRDF (deterministic, for docs and tests)"),
+    ("view", _view, "open the interactive viewer (the default with no arguments)"),
 ]
 
 
@@ -39,6 +41,8 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     argv = sys.argv[1:] if argv is None else list(argv)
+    if not argv:  # plain `tuibrdf` opens the viewer
+        argv = ["view"]
     commands = [name for name, _, _ in SUBCOMMANDS]
     first = next((a for a in argv if not a.startswith("-")), None)
     if first is not None and first not in commands:  # a typo gets a close match

@@ -1,0 +1,93 @@
+"""``tuibrdf view``: open the interactive viewer (also what plain ``tuibrdf`` does).
+
+``tuibrdf view [MODEL | FILE.binary] [-p NAME=VALUE ...] [--theta-i DEG] [--preset NAME]
+[--color auto|truecolor|256|none]``.  A ``.binary`` path opens the measured MERL material
+(model ``merl`` with ``file=PATH``).  ``--preset NAME`` loads a saved preset (``s`` in the viewer
+saves one) or, when no file has that name, one of the seed's comparisons (``diffuse``,
+``specular``).  Everything is validated before Textual is imported, so bad input is one line on
+stderr and exit status 2; ``--color`` and ``NO_COLOR`` are handed to Textual through its
+environment variables (``TEXTUAL_COLOR_SYSTEM``, ``NO_COLOR``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+
+from ..core.models import MODELS
+from .common import UsageError, add_theta_i, choices_type, parse_params
+
+COLORS = ("auto", "truecolor", "256", "none")
+
+
+def add_args(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("model", nargs="?", default=None, metavar="MODEL|FILE.binary",
+                        help="model name (see 'tuibrdf models') or a MERL .binary file "
+                             "(default: lambert)")
+    parser.add_argument("-p", "--param", action="append", default=[], metavar="NAME=VALUE",
+                        help="set a parameter (repeatable); RGB as R,G,B; angles in degrees")
+    add_theta_i(parser, default=30.0)
+    parser.add_argument("--preset", metavar="NAME",
+                        help="load a saved preset, or a seed comparison: diffuse, specular")
+    parser.add_argument("--color", type=choices_type("color mode", COLORS), default="auto",
+                        metavar="|".join(COLORS),
+                        help="colours: auto (Textual detects; NO_COLOR respected), truecolor, "
+                             "256, none")
+
+
+def build_state(args: argparse.Namespace):
+    """The viewer's initial state from the arguments (no Textual); raises UsageError."""
+    from ..app.presets import PresetError, apply_loaded, list_presets, load_preset, preset_path
+    from ..app.state import COMPARE_PRESETS, Side, ViewerState
+
+    name = args.model or "lambert"
+    tokens = list(args.param)
+    if name.lower().endswith(".binary"):
+        if "merl" not in MODELS:
+            raise UsageError(f"{name}: MERL files need the 'merl' model, which this build "
+                             "does not have yet")
+        if not os.path.isfile(name):
+            raise UsageError(f"{name}: no such file")
+        tokens = [f"file={name}", *tokens]
+        name = "merl"
+    if name not in MODELS:
+        from ..core.params import unknown_message
+
+        raise UsageError(unknown_message("unknown model", name, list(MODELS)))
+    model = MODELS[name]
+    values = model.resolve(parse_params(model, tokens))
+    state = ViewerState(sides=[Side(model.name, values)], theta_i=float(args.theta_i))
+    if args.preset:
+        seed = {p.name for p in COMPARE_PRESETS}
+        try:
+            exists = preset_path(args.preset).is_file()
+        except PresetError as e:
+            raise UsageError(str(e)) from None
+        if exists or args.preset not in seed:
+            try:
+                theta, sides = load_preset(args.preset)
+            except PresetError as e:
+                if args.preset not in seed:
+                    have = ", ".join(list_presets() + sorted(seed))
+                    raise UsageError(f"{e} (available: {have})") from None
+                raise UsageError(str(e)) from None
+            apply_loaded(state, theta, sides)
+        else:
+            msg = state.apply_preset(args.preset)
+            if msg:
+                raise UsageError(msg)
+    return state
+
+
+def run(args: argparse.Namespace) -> int:
+    state = build_state(args)
+    if args.color == "none":
+        os.environ["NO_COLOR"] = "1"
+    elif args.color != "auto":
+        os.environ["TEXTUAL_COLOR_SYSTEM"] = "truecolor" if args.color == "truecolor" \
+            else "256"
+    from ..app.app import BrdfApp  # Textual only here
+
+    color = None if args.color == "auto" else args.color
+    BrdfApp(state, color=color).run()
+    return 0
