@@ -102,3 +102,18 @@ def test_nan_free_inside_every_model(name, theta_i):
     assert np.isfinite(info.peak_value)
     if m.rgb:
         assert a.shape == (24, 40, 3)
+
+
+def test_mesh_method_reproduces_constant_and_converges():
+    # barycentric interpolation reproduces a constant exactly (weights sum to 1)
+    m = MODELS["lambert"]
+    a, info = map_values(m, m.resolve({"kd": 0.5}), 30, 40, 30, method="mesh")
+    assert a[geometry(40, 30).inside] == pytest.approx(0.5 / np.pi)
+    assert info.level is not None
+    # a smooth lobe: the mesh map approaches the exact one as the level grows
+    m = MODELS["phong"]
+    v = m.resolve({"kd": 0.0, "ks": 0.5, "n": 10})
+    exact, _ = map_values(m, v, 30, 60, 40)
+    errs = [np.nanmax(np.abs(map_values(m, v, 30, 60, 40, method="mesh", level=lv)[0] - exact))
+            for lv in (2, 4)]
+    assert errs[1] < errs[0] / 4  # linear interpolation: error ∝ h², h halves per level

@@ -20,9 +20,8 @@ Two ways to fill it (``method``):
            ``evaluate_resolved`` call.
 ``mesh``   evaluate at the vertices of ``tuibrdf.core.mesh.hemisphere(level)`` (the level
            chosen from the pixel count, :func:`mesh_level_for`) and interpolate linearly inside
-           the projected triangles (barycentric weights per pixel computed once per size and
-           level and cached); pixels between a horizon chord and the circle take the nearest
-           vertex.
+           its triangles (``tuibrdf.core.mesh.locate``: triangle and barycentric weights per
+           pixel, computed once per size and level and cached).
 
 ``docs/render.md`` gives the measured speed and error of both; ``exact`` is the default.
 """
@@ -142,55 +141,15 @@ def mesh_level_for(n_pixels: int) -> int:
 
 @lru_cache(maxsize=8)
 def _mesh_weights(px_w: int, px_h: int, level: int) -> tuple[np.ndarray, np.ndarray, Any]:
-    """Per inside pixel: 3 vertex indices and barycentric weights in the projected mesh."""
-    from ..core.mesh import hemisphere
+    """Per inside pixel: the 3 vertex ids of its mesh triangle and barycentric weights
+    (``tuibrdf.core.mesh.locate``), computed once per size and level."""
+    from ..core.mesh import hemisphere, locate
 
     mesh = hemisphere(level)
-    g = geometry(px_w, px_h)
-    vuv = dir_to_uv(mesh.vertices)
-    tri = vuv[mesh.faces]  # (F, 3, 2)
-    k = g.diameter / 2.0 / SQRT2
-    # triangle bounding boxes in pixel-centre index space
-    xs = g.cx + tri[..., 0] * k - 0.5
-    ys = g.cy - tri[..., 1] * k - 0.5
-    x0, y0 = np.ceil(xs.min(1)).astype(int), np.ceil(ys.min(1)).astype(int)
-    bw = int((np.floor(xs.max(1)) - x0).max()) + 1
-    bh = int((np.floor(ys.max(1)) - y0).max()) + 1
-    dx, dy = np.meshgrid(np.arange(max(bw, 1)), np.arange(max(bh, 1)))
-    cols = (x0[:, None] + dx.ravel()).ravel()
-    rows = (y0[:, None] + dy.ravel()).ravel()
-    face = np.repeat(np.arange(len(tri)), dx.size)
-    ok = (cols >= 0) & (cols < px_w) & (rows >= 0) & (rows < px_h)
-    cols, rows, face = cols[ok], rows[ok], face[ok]
-    ok = g.inside[rows, cols]
-    cols, rows, face = cols[ok], rows[ok], face[ok]
-    p = g.to_uv(cols + 0.5, rows + 0.5)
-    a, b, c = tri[face, 0], tri[face, 1], tri[face, 2]
-    e1, e2, ep = b - a, c - a, p - a
-    det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]  # projected triangles are never degenerate
-    l1 = (ep[:, 0] * e2[:, 1] - ep[:, 1] * e2[:, 0]) / det
-    l2 = (e1[:, 0] * ep[:, 1] - e1[:, 1] * ep[:, 0]) / det
-    lam = np.stack([1.0 - l1 - l2, l1, l2], axis=1)
-    hit = (lam >= -1e-12).all(axis=1)
-    # first containing face per pixel (pixel index into the row-major inside list)
-    pix_id = np.full((px_h, px_w), -1)
-    pix_id[g.inside] = np.arange(g.dirs.shape[0])
-    pid = pix_id[rows[hit], cols[hit]]
-    first, where = np.unique(pid, return_index=True)
-    n = g.dirs.shape[0]
-    idx = np.zeros((n, 3), dtype=np.int64)
-    wts = np.zeros((n, 3))
-    idx[first] = mesh.faces[face[hit][where]]
-    wts[first] = lam[hit][where]
-    # uncovered pixels (between a horizon chord and the circle): nearest vertex
-    miss = np.setdiff1d(np.arange(n), first)
-    if miss.size:
-        d = ((g.uv[miss, None, :] - vuv[None, :, :]) ** 2).sum(-1)
-        idx[miss, 0] = np.argmin(d, axis=1)
-        wts[miss, 0] = 1.0
-    for arr in (idx, wts):
+    ids, bary, _ = locate(mesh, geometry(px_w, px_h).dirs)  # every pixel is above the horizon
+    for arr in (ids, bary):
         arr.setflags(write=False)
-    return idx, wts, mesh
+    return ids, bary, mesh
 
 
 # ---------------------------------------------------------------------------------------------
