@@ -339,7 +339,9 @@ def refine_adaptive(
     nverts = len(base.vertices)
     rgb = vals[0].ndim == 2
     vmax = float(_magnitude(vals[0], rgb).max(initial=0.0))
-    edge_ids: dict[int, int] = {}  # edge key → midpoint vertex id, for sharing
+    # sorted edge keys (a·2³² + b, a < b) → midpoint vertex id: neighbours share midpoints
+    edge_keys = np.empty(0, dtype=np.int64)
+    edge_vids = np.empty(0, dtype=np.int64)
     key_scale = np.int64(1) << 32
     active = np.array(base.faces, dtype=np.int64)
     done: list[np.ndarray] = []
@@ -354,14 +356,20 @@ def refine_adaptive(
         e = _face_edges(active)
         keys = (e[..., 0] * key_scale + e[..., 1]).ravel()
         uniq, inv = np.unique(keys, return_inverse=True)
-        known = np.array([edge_ids.get(int(k), -1) for k in uniq], dtype=np.int64)
-        new = known < 0
+        pos = np.searchsorted(edge_keys, uniq)
+        found = pos < len(edge_keys)
+        found[found] = edge_keys[pos[found]] == uniq[found]
+        known = np.full(len(uniq), -1, dtype=np.int64)
+        known[found] = edge_vids[pos[found]]
+        new = ~found
         a_id, b_id = uniq[new] // key_scale, uniq[new] % key_scale
         mids = _midpoints(allv, np.stack([a_id, b_id], axis=1))
         new_vals = np.asarray(f(mids), dtype=float)
         known[new] = nverts + np.arange(int(new.sum()))
-        for k, i in zip(uniq[new].tolist(), known[new].tolist(), strict=True):
-            edge_ids[k] = i
+        edge_keys = np.concatenate([edge_keys, uniq[new]])
+        edge_vids = np.concatenate([edge_vids, known[new]])
+        order = np.argsort(edge_keys, kind="stable")
+        edge_keys, edge_vids = edge_keys[order], edge_vids[order]
         nverts += len(mids)
         verts.append(mids)
         vals.append(new_vals)
