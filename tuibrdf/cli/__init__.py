@@ -9,21 +9,26 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..core.params import unknown_message
+from . import albedo as _albedo
+from . import eval as _eval
 from . import models as _models
+from . import render as _render
+from .common import Parser, UsageError
 
 #: (name, module, one-line help) — the order of ``tuibrdf --help``
 SUBCOMMANDS = [
     ("models", _models, "list the models and their parameters"),
+    ("eval", _eval, "print BRDF values for given directions"),
+    ("albedo", _albedo, "print the directional albedo a(θi)"),
+    ("render", _render, "print a picture of the BRDF (deterministic, for docs and tests)"),
 ]
 
 
-class UsageError(Exception):
-    """Bad input from the user: printed as one line, exit status 2."""
-
-
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="tuibrdf", description="A terminal BRDF viewer.")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    parser = Parser(prog="tuibrdf", description="A terminal BRDF viewer.")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND",
+                                parser_class=Parser)
     for name, module, help_text in SUBCOMMANDS:
         p = sub.add_parser(name, help=help_text, description=help_text)
         module.add_args(p)
@@ -33,7 +38,17 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
-    args = parser.parse_args(argv)
+    argv = sys.argv[1:] if argv is None else list(argv)
+    commands = [name for name, _, _ in SUBCOMMANDS]
+    first = next((a for a in argv if not a.startswith("-")), None)
+    if first is not None and first not in commands:  # a typo gets a close match
+        print(f"tuibrdf: error: {unknown_message('unknown command', first, commands)}",
+              file=sys.stderr)
+        return 2
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as e:  # --help (0) or a one-line argparse error (2)
+        return e.code if isinstance(e.code, int) else 2
     if args.command is None:
         parser.print_help()
         return 0

@@ -104,3 +104,27 @@ def phi_of(w: np.ndarray) -> np.ndarray:
     """Azimuth in radians in (-π, π]."""
     w = np.asarray(w)
     return np.arctan2(w[..., 1], w[..., 0])
+
+
+class Geometry:
+    """The angular quantities every model needs, computed once per evaluation.
+
+    Attributes (arrays broadcast over the leading axes of ``wi``/``wo``): ``cos_i``, ``cos_o``,
+    ``sin2_i``, ``sin2_o``; the half vector ``h`` and where it is defined (``h_valid``);
+    ``cos_h``, ``sin2_h`` (of θh) and ``cos_d`` = H·wi = H·wo (cos ψ, cos θd; 0 where H is
+    undefined, the limit as wo → −wi); ``above``: both directions in the closed upper hemisphere.
+    """
+
+    __slots__ = ("cos_i", "cos_o", "sin2_i", "sin2_o", "h", "h_valid", "cos_h", "sin2_h",
+                 "cos_d", "above")
+
+    def __init__(self, wi: np.ndarray, wo: np.ndarray):
+        self.cos_i = cos_theta(wi)
+        self.cos_o = cos_theta(wo)
+        self.sin2_i = sin2_theta(wi)
+        self.sin2_o = sin2_theta(wo)
+        self.above = (self.cos_i >= 0.0) & (self.cos_o >= 0.0)
+        self.h, self.h_valid = half_vector(wi, wo)
+        self.cos_h = cos_theta(self.h)
+        self.sin2_h = sin2_theta(self.h)
+        self.cos_d = np.where(self.h_valid, np.clip(np.sum(self.h * wi, axis=-1), 0.0, 1.0), 0.0)

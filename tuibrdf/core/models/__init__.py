@@ -6,7 +6,7 @@ One module per model family; each opens with its formula, its source and a param
 from __future__ import annotations
 
 from ..params import Model, unknown_message
-from . import diffuse, phong
+from . import diffuse, microfacet_models, phong
 
 MODELS: dict[str, Model] = {}
 
@@ -16,7 +16,18 @@ def register(*models: Model) -> None:
         MODELS[m.name] = m
 
 
-register(diffuse.LAMBERT, phong.PHONG, phong.BLINN_PHONG)
+register(
+    diffuse.LAMBERT,
+    phong.PHONG,
+    phong.BLINN_PHONG,
+    microfacet_models.COOK_TORRANCE,
+    diffuse.OREN_NAYAR,
+    diffuse.OREN_NAYAR_SIMPLE,
+    microfacet_models.GGX,
+    microfacet_models.GLTF,
+    diffuse.DISNEY_DIFFUSE,
+    microfacet_models.UE4,
+)
 
 
 def get_model(name: str | Model) -> Model:

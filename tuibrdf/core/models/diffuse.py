@@ -1,23 +1,62 @@
-"""Diffuse models: Lambert.
+"""Diffuse models: Lambert, Oren-Nayar (full and simplified), Disney diffuse.
 
-Lambert (J.H. Lambert, *Photometria*, 1760)::
+**lambert** (J.H. Lambert, *Photometria*, 1760)::
 
-    f(wi, wo) = kd / π
+    f = kd / π
 
-====  ======  =======  ======  ==============================
-name  symbol  default  range   meaning
-====  ======  =======  ======  ==============================
-kd    Kd      0.8      [0, 1]  diffuse reflectance (= albedo)
-====  ======  =======  ======  ==============================
+**oren-nayar** — the qualitative model of Oren & Nayar (1994), as the seed writes it but with
+the paper's C3 (the seed doc writes B there; the paper, Mitsuba 0.6 and BRDF Explorer use
+σ²/(σ² + 0.09))::
+
+    α = max(θi, θo), β = min(θi, θo), A = 1 − 0.5 σ²/(σ² + 0.33), B = 0.45 σ²/(σ² + 0.09)
+    C1 = A
+    C2 = B sin α                    if cos Δφ ≥ 0
+         B (sin α − (2β/π)³)        otherwise
+    C3 = 0.125 σ²/(σ² + 0.09) (4αβ/π²)²
+    f  = kd/π (C1 + C2 cosΔφ tan β + C3 (1 − |cosΔφ|) tan((α + β)/2))
+       + 0.17 kd²/π σ²/(σ² + 0.13) (1 − cosΔφ (2β/π)²)
+
+σ (the slope standard deviation) is set in degrees and enters in radians.  At θ = 0, Δφ is
+undefined: cos Δφ = 0.  For σ ≳ 1 rad the single-scattering term goes negative near grazing
+back-scatter (C2 < 0 with cos Δφ < 0): the result is clamped to 0.
+
+**oren-nayar-simple** — the approximation renderers use::
+
+    f = kd/π (A + B max(0, cos Δφ) sin α tan β)
+
+**disney-diffuse** (Burley 2012, "Physically-Based Shading at Disney")::
+
+    f = base/π (1 + (FD90 − 1)(1 − cos θi)⁵)(1 + (FD90 − 1)(1 − cos θo)⁵)
+    FD90 = 0.5 + 2 roughness cos²θd,  θd = angle(wi, H)
+
+Horizon: Lambert and Disney are finite there.  Oren-Nayar's tan β and tan((α+β)/2) are finite
+unless *both* directions are on the horizon, where no limit exists: the value there is 0.
+All are reciprocal (every term is symmetric in θi, θo and in Δφ).
+
+=========  ======  ===============  ==========  =====================================
+name       symbol  default          range       meaning
+=========  ======  ===============  ==========  =====================================
+kd         Kd      0.8              [0, 1]      diffuse reflectance / facet albedo
+sigma      σ       20°              [0°, 90°]   facet slope standard deviation
+base_color base    (0.8, 0.8, 0.8)  [0, 1]³     (disney-diffuse) base colour
+roughness  rough   0.5              [0, 1]      (disney-diffuse) retro-reflection
+=========  ======  ===============  ==========  =====================================
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from ..frame import Geometry, cos_dphi, theta_of
 from ..params import Model, Param
 
 KD = Param("kd", "Kd", 0.8, 0.0, 1.0, 0.01, doc="diffuse reflectance")
+SIGMA = Param("sigma", "σ", 20.0, 0.0, 90.0, 1.0, unit="deg",
+              doc="facet slope standard deviation (roughness)")
+BASE = Param("base_color", "base", (0.8, 0.8, 0.8), 0.0, 1.0, 0.01, kind="rgb",
+             doc="base colour (linear RGB)")
+ROUGHNESS = Param("roughness", "rough", 0.5, 0.0, 1.0, 0.01,
+                  doc="roughness: raises grazing retro-reflection")
 
 
 def above(wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
@@ -29,11 +68,78 @@ def lambert(wi: np.ndarray, wo: np.ndarray, kd: float) -> np.ndarray:
     return np.where(above(wi, wo), kd / np.pi, 0.0)
 
 
+def oren_nayar_ab(sigma: float) -> tuple[float, float]:
+    """A and B of the Oren-Nayar model for σ in radians."""
+    s2 = sigma * sigma
+    return 1.0 - 0.5 * s2 / (s2 + 0.33), 0.45 * s2 / (s2 + 0.09)
+
+
+class _AlphaBeta:
+    """α = max(θi, θo), β = min(θi, θo), cos Δφ, and where tan β is finite."""
+
+    def __init__(self, wi: np.ndarray, wo: np.ndarray):
+        ti, to = theta_of(wi), theta_of(wo)
+        self.alpha = np.maximum(ti, to)
+        self.beta = np.minimum(ti, to)
+        self.cos_dphi = cos_dphi(wi, wo)
+        # both on the horizon: β = 90°, tan β and tan((α+β)/2) have no limit → value 0
+        self.ok = above(wi, wo) & (self.beta < np.pi / 2)
+        beta = np.where(self.ok, self.beta, 0.0)  # keep the masked-out tan finite
+        self.tan_beta = np.tan(beta)
+        self.tan_mean = np.tan(0.5 * (np.where(self.ok, self.alpha, 0.0) + beta))
+
+
+def oren_nayar(wi: np.ndarray, wo: np.ndarray, kd: float, sigma: float) -> np.ndarray:
+    ab = _AlphaBeta(wi, wo)
+    a, b = oren_nayar_ab(sigma)
+    s2 = sigma * sigma
+    cphi = ab.cos_dphi
+    two_beta_pi = 2.0 * ab.beta / np.pi
+    sin_alpha = np.sin(ab.alpha)
+    c2 = np.where(cphi >= 0.0, b * sin_alpha, b * (sin_alpha - two_beta_pi**3))
+    c3 = 0.125 * s2 / (s2 + 0.09) * (4.0 * ab.alpha * ab.beta / np.pi**2) ** 2
+    single = kd / np.pi * (a + c2 * cphi * ab.tan_beta + c3 * (1.0 - np.abs(cphi)) * ab.tan_mean)
+    inter = 0.17 * kd * kd / np.pi * s2 / (s2 + 0.13) * (1.0 - cphi * two_beta_pi**2)
+    # the qualitative model goes negative near grazing back-scatter for σ ≳ 1 rad: clamp
+    return np.where(ab.ok, np.maximum(single + inter, 0.0), 0.0)
+
+
+def oren_nayar_simple(wi: np.ndarray, wo: np.ndarray, kd: float, sigma: float) -> np.ndarray:
+    ab = _AlphaBeta(wi, wo)
+    a, b = oren_nayar_ab(sigma)
+    f = kd / np.pi * (a + b * np.maximum(0.0, ab.cos_dphi) * np.sin(ab.alpha) * ab.tan_beta)
+    return np.where(ab.ok, f, 0.0)
+
+
+def disney_diffuse(wi: np.ndarray, wo: np.ndarray, base_color, roughness: float) -> np.ndarray:
+    g = Geometry(wi, wo)
+    fd90 = 0.5 + 2.0 * roughness * g.cos_d**2
+    ci = np.clip(g.cos_i, 0.0, 1.0)
+    co = np.clip(g.cos_o, 0.0, 1.0)
+    shape = (1.0 + (fd90 - 1.0) * (1.0 - ci) ** 5) * (1.0 + (fd90 - 1.0) * (1.0 - co) ** 5)
+    out = np.asarray(base_color, dtype=float) / np.pi * shape[..., None]
+    return np.where(g.above[..., None], out, 0.0)
+
+
 LAMBERT = Model(
-    "lambert",
-    "Lambert",
-    (KD,),
-    lambert,
+    "lambert", "Lambert", (KD,), lambert,
     summary="constant BRDF kd/π: an ideal matte surface",
     horizon="kd/π (no cosine in the formula)",
+)
+OREN_NAYAR = Model(
+    "oren-nayar", "Oren-Nayar (full qualitative)", (KD, SIGMA), oren_nayar,
+    summary="rough Lambertian facets, V-cavities, with interreflection (paper's C3)",
+    horizon="the formula's value; 0 where both θi and θo are 90° (no limit)",
+    notes=("C3 uses σ²/(σ²+0.09) as the 1994 paper (the seed doc writes B)",
+           "clamped to 0 where the formula goes negative (σ ≳ 1 rad, grazing back-scatter)"),
+)
+OREN_NAYAR_SIMPLE = Model(
+    "oren-nayar-simple", "Oren-Nayar (simplified)", (KD, SIGMA), oren_nayar_simple,
+    summary="kd/π (A + B max(0, cosΔφ) sinα tanβ)",
+    horizon="the formula's value; 0 where both θi and θo are 90° (no limit)",
+)
+DISNEY_DIFFUSE = Model(
+    "disney-diffuse", "Disney diffuse", (BASE, ROUGHNESS), disney_diffuse, rgb=True,
+    summary="Burley 2012 diffuse with grazing retro-reflection FD90",
+    horizon="the formula's value (no division by a cosine)",
 )

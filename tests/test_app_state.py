@@ -1,0 +1,179 @@
+"""The viewer's state transitions and presets, without Textual.
+
+Expected values come from the parameter declarations (steps, ranges, constraints as written in
+the model modules and SPEC §2) and from the seed's comparison presets (BRDF Viewer doc §8).
+"""
+
+import pytest
+
+from tuibrdf.app import presets
+from tuibrdf.app.state import VIEWS, Side, ViewerState, panel_rows
+from tuibrdf.core.models import MODELS
+
+
+def phong_state(**params):
+    return ViewerState(sides=[Side.of("phong", params)])
+
+
+def test_theta_steps_and_bounds():
+    s = ViewerState(theta_i=30.0)
+    assert s.step_theta(1) is None and s.theta_i == 31.0
+    assert s.step_theta(-10) is None and s.theta_i == 21.0
+    s.theta_i = 85.0
+    assert s.step_theta(10) is None and s.theta_i == 90.0  # clamped to the bound
+    msg = s.step_theta(1)
+    assert msg and "90" in msg and s.theta_i == 90.0  # refused at the bound
+    s.theta_i = 0.0
+    assert s.step_theta(-1) and s.theta_i == 0.0
+    assert s.set_theta(float("nan")) and s.theta_i == 0.0
+
+
+def test_param_step_uses_declared_step_and_coarse_step():
+    s = phong_state()  # kd 0.2 (step 0.01), ks 0.5, n 20 (step 1, coarse 10)
+    assert s.step_param(+1) is None
+    assert s.side.values["kd"] == 0.21  # 0.2 + 0.01, exactly: float noise rounded away
+    s.select(2)
+    assert s.row.param.name == "n"
+    assert s.step_param(+1, coarse=True) is None and s.side.values["n"] == 30.0
+    assert s.step_param(-1) is None and s.side.values["n"] == 29.0
+
+
+def test_constraint_refused_with_message_and_value_kept():
+    s = phong_state(kd=0.5, ks=0.5)  # kd + ks = 1, the edge of the constraint
+    msg = s.step_param(+1)
+    assert msg and "kd + ks ≤ 1" in msg
+    assert s.side.values["kd"] == 0.5
+
+
+def test_range_bound_refused():
+    s = phong_state(kd=0.0)
+    msg = s.step_param(-1)
+    assert msg and "minimum" in msg and s.side.values["kd"] == 0.0
+    s.select(2)
+    s.side.values["n"] = 10000.0
+    assert s.step_param(+1) and s.side.values["n"] == 10000.0
+
+
+def test_reset_restores_default_and_select_wraps():
+    s = phong_state(n=70.0)
+    s.select(-1)  # wraps to the last row: n
+    assert s.row.param.name == "n"
+    assert s.reset_param() is None and s.side.values["n"] == 20.0
+
+
+def test_model_cycle_keeps_theta_and_remembers_values():
+    s = phong_state()
+    s.theta_i = 47.0
+    s.step_param(+1)
+    names = list(MODELS)
+    s.cycle_model(+1)
+    assert s.side.model == names[(names.index("phong") + 1) % len(names)]
+    assert s.theta_i == 47.0
+    s.cycle_model(-1)
+    assert s.side.model == "phong" and s.side.values["kd"] == 0.21
+
+
+def test_every_model_panel_has_rows_and_rgb_gives_three():
+    for m in MODELS.values():
+        rows = panel_rows(m)
+        n_rgb = sum(p.kind == "rgb" for p in m.params)
+        assert len(rows) == len(m.params) + 2 * n_rgb
+
+
+def test_views_cycle_and_toggles():
+    s = ViewerState()
+    seen = [s.view]
+    for _ in VIEWS:
+        s.cycle_view()
+        seen.append(s.view)
+    assert seen[0] == seen[-1] and set(seen) == set(VIEWS)
+    s.toggle_log()
+    s.toggle_cosine()
+    assert s.log and s.cosine
+
+
+def test_compare_and_tab():
+    s = phong_state()
+    assert s.switch_side()  # refused outside compare mode
+    s.toggle_compare()
+    assert s.compare and s.active == 1
+    s.step_param(+1)
+    assert s.sides[1].values["kd"] == 0.21 and s.sides[0].values["kd"] == 0.2
+    s.switch_side()
+    assert s.active == 0
+    s.toggle_compare()
+    assert not s.compare
+
+
+def test_seed_presets():
+    s = ViewerState()
+    s.theta_i = 60.0
+    msg = s.apply_preset("specular")
+    if "cook-torrance" not in MODELS:
+        assert msg and "cook-torrance" in msg
+        return
+    assert msg is None and s.theta_i == 60.0
+    a, b = s.sides
+    assert (a.model, a.values["kd"], a.values["ks"], a.values["n"]) == ("phong", 0, 0.08, 70)
+    assert (b.model, b.values["kd"], b.values["f0"], b.values["m"]) == \
+        ("cook-torrance", 0, 0.04, 0.07)
+
+
+def test_rotate_clamps_elevation():
+    s = ViewerState(elevation=85.0)
+    assert s.rotate(0, 10) is None and s.elevation == 90.0
+    assert s.rotate(0, 10) and s.elevation == 90.0
+    s.rotate(200, 0)
+    assert -180 <= s.azimuth < 180
+
+
+@pytest.fixture
+def config(tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path))
+    return tmp_path
+
+
+def test_preset_round_trip_restores_every_value(config):
+    s = phong_state(kd=0.13, ks=0.07, n=123.0)
+    s.theta_i = 61.0
+    s.toggle_compare()
+    s.cycle_model(+1)
+    path = presets.save_preset(s, "mine")
+    assert path == config / "tuibrdf" / "presets" / "mine.toml"
+    assert [p.name for p in path.parent.iterdir()] == ["mine.toml"]  # no temporary left
+    theta, sides = presets.load_preset("mine")
+    assert theta == 61.0
+    assert [(x.model, x.values) for x in sides] == [(x.model, x.values) for x in s.sides]
+
+
+def test_preset_round_trip_every_model(config):
+    for name, m in MODELS.items():
+        if any(p.kind == "path" for p in m.params):
+            continue
+        s = ViewerState(sides=[Side(name, m.resolve({}))])
+        presets.save_preset(s, name)
+        assert presets.load_preset(name)[1][0].values == s.sides[0].values
+
+
+@pytest.mark.parametrize("text, words", [
+    ("theta_i = [", "not valid TOML"),
+    ("theta_i = 120.0\n[[sides]]\nmodel='lambert'", "theta_i"),
+    ("theta_i = 10.0", "[[sides]]"),
+    ("[[sides]]\nmodel='nope'", "unknown model"),
+    ("[[sides]]\nmodel='lambert'\nparams={kd=3.0}", "kd"),
+    ("[[sides]]\nmodel='phong'\nparams={kd=0.9, ks=0.9}", "kd + ks"),
+])
+def test_malformed_preset_is_a_message(config, text, words):
+    d = presets.preset_dir()
+    d.mkdir(parents=True)
+    (d / "bad.toml").write_text(text)
+    with pytest.raises(presets.PresetError, match=None) as e:
+        presets.load_preset("bad")
+    assert words in str(e.value) and "\n" not in str(e.value)
+
+
+def test_missing_and_badly_named_preset(config):
+    with pytest.raises(presets.PresetError, match="no preset"):
+        presets.load_preset("absent")
+    with pytest.raises(presets.PresetError, match="invalid"):
+        presets.preset_path("../evil")

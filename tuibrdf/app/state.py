@@ -1,0 +1,303 @@
+"""The viewer's state and every transition on it, as plain Python (no Textual).
+
+The app is a thin layer: a key calls one method here, which either changes the state and
+returns ``None`` or refuses and returns a short message for the status line.  Parameter values
+are validated with :meth:`Model.resolve`, so a key can never push a value out of its range or
+break a declared constraint (``kd + ks ≤ 1``).
+
+====================  =====================================================
+method                what it does
+====================  =====================================================
+``step_theta``        θi by ± degrees, clamped to [0°, 90°]
+``select``            move the parameter cursor (wraps)
+``step_param``        the selected parameter ± its step (or coarse step)
+``reset_param``       the selected parameter back to its default
+``cycle_model``       next / previous model of the active side, θi kept
+``cycle_view``        map → 3D solid → albedo curve
+``toggle_compare``    one side ↔ two sides (B starts as a copy of A)
+``switch_side``       which side the parameter keys act on (compare mode)
+``apply_preset``      one of :data:`COMPARE_PRESETS` (the seed's comparisons)
+``rotate``            azimuth / elevation of the 3D solid
+====================  =====================================================
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..core.models import MODELS, get_model
+from ..core.params import Model, Param, Value, _fmt
+
+VIEWS = ("map", "solid", "albedo")
+VIEW_TITLES = {"map": "equal-area map", "solid": "3D photometric solid", "albedo": "albedo a(θi)"}
+#: fallback when the renderer does not list its colour maps
+DEFAULT_CMAPS = ("grey", "viridis", "inferno")
+
+THETA_MIN, THETA_MAX = 0.0, 90.0
+ELEVATION_MIN, ELEVATION_MAX = -10.0, 90.0
+
+
+@dataclass(frozen=True)
+class ComparePreset:
+    """Two (model, parameters) pairs compared at the same θi."""
+
+    name: str
+    title: str
+    a: tuple[str, dict[str, Any]]
+    b: tuple[str, dict[str, Any]]
+
+
+#: The seed's "Exemples de comparaison entre modèles" (BRDF Viewer doc, section 8).
+COMPARE_PRESETS = (
+    ComparePreset("diffuse", "diffuse: Lambert vs Oren-Nayar",
+                  ("lambert", {}), ("oren-nayar", {})),
+    ComparePreset("specular", "specular: Phong vs Cook-Torrance",
+                  ("phong", {"kd": 0.0, "ks": 0.08, "n": 70.0}),
+                  ("cook-torrance", {"kd": 0.0, "f0": 0.04, "m": 0.07})),
+)
+
+
+@dataclass(frozen=True)
+class Row:
+    """One line of the parameter panel: a parameter, or one channel of an RGB parameter."""
+
+    param: Param
+    channel: int | None = None  # 0, 1, 2 for r, g, b
+
+    @property
+    def label(self) -> str:
+        if self.channel is None:
+            return self.param.symbol
+        return f"{self.param.symbol}.{'rgb'[self.channel]}"
+
+
+def panel_rows(model: Model) -> list[Row]:
+    """The panel's rows, generated from the model's declarations (RGB → three rows)."""
+    rows: list[Row] = []
+    for p in model.params:
+        if p.kind == "rgb":
+            rows.extend(Row(p, c) for c in range(3))
+        else:
+            rows.append(Row(p))
+    return rows
+
+
+def _round(v: float) -> float:
+    """Forget the float noise of repeated steps (0.2 + 0.01 = 0.21000000000000002)."""
+    return float(round(v, 10))
+
+
+@dataclass
+class Side:
+    """One model with its resolved parameter values (user units) and the panel cursor."""
+
+    model: str
+    values: dict[str, Value]
+    selected: int = 0
+
+    @classmethod
+    def of(cls, model: str, params: dict[str, Any] | None = None) -> Side:
+        m = get_model(model)
+        return cls(m.name, m.resolve(params or {}))
+
+    @property
+    def spec(self) -> Model:
+        return get_model(self.model)
+
+    def rows(self) -> list[Row]:
+        return panel_rows(self.spec)
+
+    def key(self) -> tuple:
+        """Hashable identity of what this side computes (for caches)."""
+        return (self.model, tuple(sorted(self.values.items())))
+
+
+def usable(model: Model, values: dict[str, Value] | None = None) -> bool:
+    """A model the viewer can cycle to: every path parameter (a MERL file) has a value."""
+    vals = values if values is not None else model.defaults()
+    return all(vals.get(p.name) not in ("", None) for p in model.params if p.kind == "path")
+
+
+@dataclass
+class ViewerState:
+    """Everything the viewer shows, with pure transitions (no Textual, no I/O)."""
+
+    sides: list[Side] = field(default_factory=lambda: [Side.of("lambert")])
+    active: int = 0
+    theta_i: float = 30.0
+    view: str = "map"
+    log: bool = False
+    cmap: str = DEFAULT_CMAPS[0]
+    cmaps: tuple[str, ...] = DEFAULT_CMAPS
+    cosine: bool = False
+    azimuth: float = -60.0
+    elevation: float = 25.0
+    preset: str = ""  # name of the compare preset last applied, if any
+    #: values last used for each model, so cycling away and back keeps them
+    memory: dict[str, dict[str, Value]] = field(default_factory=dict)
+
+    # -- reading -------------------------------------------------------------------------
+    @property
+    def compare(self) -> bool:
+        return len(self.sides) == 2
+
+    @property
+    def side(self) -> Side:
+        return self.sides[self.active]
+
+    @property
+    def row(self) -> Row:
+        rows = self.side.rows()
+        return rows[min(self.side.selected, len(rows) - 1)]
+
+    def row_value(self, row: Row, side: Side | None = None) -> Value:
+        v = (side or self.side).values[row.param.name]
+        return v[row.channel] if row.channel is not None else v
+
+    # -- θi ---------------------------------------------------------------------------------
+    def step_theta(self, delta: float) -> str | None:
+        new = min(THETA_MAX, max(THETA_MIN, _round(self.theta_i + delta)))
+        if new == self.theta_i:
+            edge = "90° (grazing)" if delta > 0 else "0° (normal incidence)"
+            return f"θi is already {edge}; range 0–90°"
+        self.theta_i = new
+        return None
+
+    def set_theta(self, deg: float) -> str | None:
+        if not THETA_MIN <= deg <= THETA_MAX:  # also refuses NaN
+            return f"θi = {deg:g}° is out of range 0–90°"
+        self.theta_i = float(deg)
+        return None
+
+    # -- parameters -------------------------------------------------------------------------
+    def select(self, delta: int) -> str | None:
+        n = len(self.side.rows())
+        self.side.selected = (self.side.selected + delta) % n
+        return None
+
+    def _commit(self, name: str, value: Value) -> str | None:
+        """Validate the side's values with ``name = value``; apply them or return why not."""
+        side = self.side
+        try:
+            side.values = side.spec.resolve({**side.values, name: value})
+        except ValueError as e:
+            return str(e)
+        self.memory[side.model] = dict(side.values)
+        return None
+
+    def step_param(self, direction: int, coarse: bool = False) -> str | None:
+        """The selected parameter by ± one step; a choice cycles.  At a bound the value is
+        clamped to it; already there, or against a constraint, the key is refused."""
+        row = self.row
+        p = row.param
+        if p.kind == "path":
+            return f"{p.name} is a file: set it on the command line (-p {p.name}=PATH)"
+        if p.kind == "choice":
+            i = p.choices.index(self.side.values[p.name])
+            return self._commit(p.name, p.choices[(i + direction) % len(p.choices)])
+        old = float(self.row_value(row))
+        step = p.coarse_step if coarse else p.step
+        new = min(p.max, max(p.min, _round(old + direction * step)))
+        if new == old:
+            return f"{row.label} is already at its {'maximum' if direction > 0 else 'minimum'}" \
+                   f" ({p.range_text()})"
+        return self._commit(p.name, self._with_channel(row, new))
+
+    def _with_channel(self, row: Row, new: float) -> Value:
+        if row.channel is None:
+            return new
+        rgb = list(self.side.values[row.param.name])
+        rgb[row.channel] = new
+        return tuple(rgb)
+
+    def reset_param(self) -> str | None:
+        row = self.row
+        default = row.param.default
+        if row.channel is not None:
+            return self._commit(row.param.name, self._with_channel(row, default[row.channel]))
+        return self._commit(row.param.name, default)
+
+    def set_param(self, name: str, value: Any) -> str | None:
+        return self._commit(name, value)
+
+    # -- models, views, toggles ----------------------------------------------------------------
+    def cycle_model(self, delta: int) -> str | None:
+        """Next / previous registered model on the active side; θi and the view stay."""
+        names = [n for n, m in MODELS.items() if usable(m, self.memory.get(n))]
+        if self.side.model in names:
+            i = names.index(self.side.model)
+        else:
+            i = -1 if delta > 0 else 0
+        name = names[(i + delta) % len(names)]
+        self.memory[self.side.model] = dict(self.side.values)
+        self.sides[self.active] = Side(name, dict(self.memory.get(name) or
+                                                  MODELS[name].defaults()))
+        self.preset = ""
+        return None
+
+    def cycle_view(self, delta: int = 1) -> str | None:
+        self.view = VIEWS[(VIEWS.index(self.view) + delta) % len(VIEWS)]
+        return None
+
+    def toggle_log(self) -> str | None:
+        self.log = not self.log
+        return None
+
+    def cycle_cmap(self, delta: int = 1) -> str | None:
+        i = self.cmaps.index(self.cmap) if self.cmap in self.cmaps else -1
+        self.cmap = self.cmaps[(i + delta) % len(self.cmaps)]
+        return None
+
+    def toggle_cosine(self) -> str | None:
+        self.cosine = not self.cosine
+        return None
+
+    def toggle_compare(self) -> str | None:
+        if self.compare:
+            self.sides = [self.side]
+            self.active = 0
+            self.preset = ""
+        else:
+            self.sides = [self.side, copy.deepcopy(self.side)]
+            self.active = 1
+        return None
+
+    def switch_side(self) -> str | None:
+        if not self.compare:
+            return "tab switches sides in compare mode (press c)"
+        self.active = 1 - self.active
+        return None
+
+    def apply_preset(self, name: str) -> str | None:
+        """Load a seed comparison: both sides, compare mode on, θi kept."""
+        preset = next((p for p in COMPARE_PRESETS if p.name == name), None)
+        if preset is None:
+            return f"unknown preset {name!r}"
+        try:
+            sides = [Side.of(m, params) for m, params in (preset.a, preset.b)]
+        except ValueError as e:
+            return f"preset {name}: {e}"
+        self.sides, self.active, self.preset = sides, 0, name
+        return None
+
+    def next_preset(self) -> str | None:
+        names = [p.name for p in COMPARE_PRESETS]
+        i = names.index(self.preset) if self.preset in names else -1
+        return self.apply_preset(names[(i + 1) % len(names)])
+
+    def rotate(self, d_azimuth: float, d_elevation: float) -> str | None:
+        self.azimuth = (self.azimuth + d_azimuth + 180.0) % 360.0 - 180.0
+        el = min(ELEVATION_MAX, max(ELEVATION_MIN, self.elevation + d_elevation))
+        if d_elevation and el == self.elevation:
+            return f"elevation is already {el:g}° (range {ELEVATION_MIN:g}–{ELEVATION_MAX:g}°)"
+        self.elevation = el
+        return None
+
+    # -- text ---------------------------------------------------------------------------------
+    def describe(self, side: Side | None = None) -> str:
+        """``phong kd=0.2 ks=0.5 n=20`` — for titles and messages."""
+        side = side or self.side
+        vals = " ".join(f"{k}={_fmt(v)}" for k, v in side.values.items())
+        return f"{side.model} {vals}".strip()

@@ -1,0 +1,199 @@
+"""Options shared by the subcommands, and the one-line error policy.
+
+Everything here is generated from the model declarations (:mod:`tuibrdf.core.params`): the
+parameter names ``-p`` accepts, their ranges, the close match offered for a typo.  Bad input
+raises :class:`UsageError` (or argparse's own error) and ends as one line on stderr, exit 2.
+
+``-p NAME=VALUE`` syntax, per parameter kind:
+
+========  ===========================  ==============================================
+kind      VALUE                        examples
+========  ===========================  ==============================================
+float     a finite real in the range   ``-p kd=0.5``, ``-p sigma=20`` (degrees)
+rgb       ``R,G,B`` or one grey value  ``-p color=0.9,0.6,0.2``, ``-p color=0.5``
+choice    one of the names             ``-p distribution=ggx`` (case-insensitive)
+path      an existing file             ``-p file=gold-metallic-paint.binary``
+========  ===========================  ==============================================
+
+The same name given twice: the last one wins (as for most command-line options).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from typing import Any
+
+from ..core.models import get_model
+from ..core.params import Model, Param, unknown_message
+
+
+class UsageError(Exception):
+    """Bad input from the user: printed as one line, exit status 2."""
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse with one-line errors: ``tuibrdf eval: error: ... (see 'tuibrdf eval --help')``
+    instead of a usage block, so a log keeps one line per mistake."""
+
+    def error(self, message: str):  # noqa: D401 — argparse's hook
+        print(f"{self.prog}: error: {message} (see '{self.prog} --help')", file=sys.stderr)
+        raise SystemExit(2)
+
+
+# --------------------------------------------------------------------------- formatting
+
+
+def fmt(v: Any) -> str:
+    """A number as every table prints it (``%.6g``); tuples joined by commas."""
+    if isinstance(v, tuple | list):
+        return ",".join(fmt(x) for x in v)
+    if isinstance(v, float | int):
+        return f"{v:.6g}"
+    return str(v)
+
+
+def fmt_params(values: Mapping[str, Any]) -> str:
+    """``kd=0.5 ks=0.3 n=20`` — the resolved parameters on one line."""
+    return " ".join(f"{k}={fmt(v)}" for k, v in values.items())
+
+
+def json_params(values: Mapping[str, Any]) -> dict[str, Any]:
+    """Resolved parameters for JSON (tuples become lists)."""
+    return {k: list(v) if isinstance(v, tuple) else v for k, v in values.items()}
+
+
+# --------------------------------------------------------------------------- argparse types
+
+
+def bounded(name: str, lo: float, hi: float, unit: str = "°") -> Callable[[str], float]:
+    """An argparse ``type`` for a finite real in ``[lo, hi]``, with the range in its error."""
+    rng = f"[{lo:g}, {hi:g}]{unit}"
+
+    def parse(text: str) -> float:
+        try:
+            v = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{name} = {text!r} is not a number: expected a value in {rng}"
+            ) from None
+        if not (math.isfinite(v) and lo <= v <= hi):
+            raise argparse.ArgumentTypeError(f"{name} = {text} is out of range: expected {rng}")
+        return v
+
+    parse.__name__ = name
+    return parse
+
+
+def at_least(name: str, minimum: int) -> Callable[[str], int]:
+    """An argparse ``type`` for an integer size ``>= minimum``."""
+
+    def parse(text: str) -> int:
+        try:
+            v = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{name} = {text!r} is not an integer: expected at least {minimum}"
+            ) from None
+        if v < minimum:
+            raise argparse.ArgumentTypeError(f"{name} = {v} is too small: expected at least "
+                                             f"{minimum}")
+        return v
+
+    parse.__name__ = name
+    return parse
+
+
+#: θr of a viewing direction in the upper hemisphere, in degrees
+theta_r_deg = bounded("theta_r", 0.0, 90.0)
+#: φr of a viewing direction in degrees (the kernels are periodic; one turn either way)
+phi_r_deg = bounded("phi_r", -360.0, 360.0)
+
+
+# --------------------------------------------------------------------------- shared options
+
+
+def add_model_args(parser: argparse.ArgumentParser) -> None:
+    """``MODEL`` and ``-p/--param NAME=VALUE`` (repeatable)."""
+    parser.add_argument("model", metavar="MODEL", help="model name (see 'tuibrdf models')")
+    parser.add_argument(
+        "-p", "--param", action="append", default=[], metavar="NAME=VALUE",
+        help="set a parameter (repeatable); RGB as R,G,B or one grey value; "
+             "angles in degrees; unset parameters take their defaults",
+    )
+
+
+def resolve(args: argparse.Namespace) -> tuple[Model, dict[str, Any]]:
+    """The model named by ``args.model`` and its validated parameters (defaults filled)."""
+    model = get_model(args.model)
+    return model, model.resolve(parse_params(model, args.param))
+
+
+def parse_params(model: Model, tokens: Iterable[str]) -> dict[str, Any]:
+    """``["kd=0.5", "color=1,0,0"]`` → ``{"kd": 0.5, "color": (1.0, 0.0, 0.0)}``, each value
+    validated against its declaration; :class:`UsageError` names the parameter and its range."""
+    names = [p.name for p in model.params]
+    out: dict[str, Any] = {}
+    for token in tokens:
+        name, sep, raw = token.partition("=")
+        name = name.strip()
+        if not name:
+            raise UsageError(f"-p {token!r}: missing parameter name before '='; "
+                             f"{model.name} has: {', '.join(names) or '(no parameters)'}")
+        if name not in names:
+            raise UsageError(unknown_message(f"{model.name}: unknown parameter", name, names))
+        p = model.param(name)
+        if not sep:
+            raise UsageError(f"-p {token!r}: missing value, expected -p {name}=VALUE with "
+                             f"VALUE {p.range_text()}")
+        out[name] = parse_value(model, p, raw.strip())
+    return out
+
+
+def parse_value(model: Model, p: Param, raw: str) -> Any:
+    """One ``-p`` value, validated: raises :class:`UsageError`."""
+    if p.kind == "choice" and raw.lower() not in p.choices:
+        raise UsageError(unknown_message(f"{model.name}: {p.name}: unknown choice", raw,
+                                         list(p.choices)))
+    if p.kind == "path" and not os.path.isfile(raw):
+        raise UsageError(f"{model.name}: {p.name} = {raw!r}: no such file")
+    value: Any = raw
+    if p.kind == "rgb" and "," not in raw:
+        try:  # one grey value: validate() repeats a number over R, G, B
+            value = float(raw)
+        except ValueError:
+            pass  # keep the text so the error shows what was typed
+    try:
+        return p.validate(value, model.name)
+    except ValueError as e:
+        grey = " or one grey value" if p.kind == "rgb" else ""
+        raise UsageError(f"{e}{grey}") from None
+
+
+def add_theta_i(parser: argparse.ArgumentParser, *, many: bool = False,
+                default: Any = None) -> None:
+    """``--theta-i DEG`` (or ``DEG [DEG ...]`` with ``many``), in [0, 90]°."""
+    kw: dict[str, Any] = {"nargs": "+"} if many else {}
+    if default is None:
+        kw["required"] = True
+    else:
+        kw["default"] = default
+    parser.add_argument("--theta-i", type=bounded("theta_i", 0.0, 90.0), metavar="DEG",
+                        help="incidence angle(s) θi in degrees, in [0, 90]"
+                             + (f" (default: {fmt(default)})" if default is not None else ""),
+                        **kw)
+
+
+def choices_type(name: str, valid: Sequence[str]) -> Callable[[str], str]:
+    """An argparse ``type`` for one of ``valid``, with a close match for a typo."""
+
+    def parse(text: str) -> str:
+        if text in valid:
+            return text
+        raise argparse.ArgumentTypeError(unknown_message(f"unknown {name}", text, list(valid)))
+
+    parse.__name__ = name
+    return parse

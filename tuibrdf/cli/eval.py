@@ -1,0 +1,85 @@
+"""``tuibrdf eval``: BRDF values for given directions, as a table or JSON.
+
+The light is at ``(θi, φi = 180°)`` (SPEC §1), so the mirror direction is ``(θr = θi, φr = 0)``.
+Several ``--theta-r`` and ``--phi-r`` values give their **outer product**, θr varying slowest:
+``--theta-r 0 30 --phi-r 0 180`` prints the four rows (0, 0), (0, 180), (30, 0), (30, 180).
+Values are in sr⁻¹ (no cosine factor; ``--cosine`` multiplies by cos θr), printed with
+``%.6g`` in the table and at full precision in JSON.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+import numpy as np
+
+from ..core.evaluate import evaluate_resolved
+from ..core.frame import from_degrees, incident
+from .common import (
+    add_model_args,
+    add_theta_i,
+    fmt,
+    fmt_params,
+    json_params,
+    phi_r_deg,
+    resolve,
+    theta_r_deg,
+)
+
+
+def add_args(parser: argparse.ArgumentParser) -> None:
+    add_model_args(parser)
+    add_theta_i(parser)
+    parser.add_argument("--theta-r", type=theta_r_deg, nargs="+", required=True, metavar="DEG",
+                        help="viewing polar angle(s) θr in degrees, in [0, 90]")
+    parser.add_argument("--phi-r", type=phi_r_deg, nargs="+", required=True, metavar="DEG",
+                        help="viewing azimuth(s) φr in degrees, in [-360, 360]; 0 is the "
+                             "mirror side, 180 the light's side")
+    parser.add_argument("--cosine", action="store_true",
+                        help="print f·cos θr (reflected intensity) instead of f")
+    parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
+
+
+def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False) -> np.ndarray:
+    """f(θi; θr, φr) over the outer product θr × φr: shape ``(len θr, len φr)`` (+ ``(3,)``
+    for an RGB model)."""
+    wi = incident(theta_i)
+    wo = from_degrees(np.asarray(theta_r, dtype=float)[:, None],
+                      np.asarray(phi_r, dtype=float)[None, :])
+    f = np.asarray(evaluate_resolved(model, params, np.broadcast_to(wi, wo.shape), wo))
+    if cosine:
+        cos = wo[..., 2]
+        f = f * (cos[..., None] if model.rgb else cos)
+    return f
+
+
+def run(args: argparse.Namespace) -> int:
+    model, params = resolve(args)
+    f = values(model, params, args.theta_i, args.theta_r, args.phi_r, args.cosine)
+    rows = [(tr, pr, f[a, b]) for a, tr in enumerate(args.theta_r)
+            for b, pr in enumerate(args.phi_r)]
+    quantity = "f*cos(theta_r)" if args.cosine else "f"
+    if args.json:
+        doc = {
+            "model": model.name,
+            "params": json_params(params),
+            "theta_i": args.theta_i,
+            "quantity": quantity,
+            "unit": "1/sr",
+            "rgb": model.rgb,
+            "values": [{"theta_r": tr, "phi_r": pr, "f": v.tolist() if model.rgb else float(v)}
+                       for tr, pr, v in rows],
+        }
+        print(json.dumps(doc, indent=2, allow_nan=False))
+        return 0
+    print(f"# {model.name}  {fmt_params(params)}  theta_i={fmt(args.theta_i)}")
+    cols = ["f_R", "f_G", "f_B"] if model.rgb else ["f"]
+    if args.cosine:
+        cols = [c + "*cos" for c in cols]
+    print(" ".join([f"{'theta_r':>8}", f"{'phi_r':>8}"] + [f"{c:>12}" for c in cols])
+          + "  [1/sr]")
+    for tr, pr, v in rows:
+        vals = v.tolist() if model.rgb else [float(v)]
+        print(" ".join([f"{fmt(tr):>8}", f"{fmt(pr):>8}"] + [f"{fmt(x):>12}" for x in vals]))
+    return 0

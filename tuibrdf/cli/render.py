@@ -1,0 +1,13 @@
+"""``tuibrdf render`` (placeholder until tuibrdf/render lands)."""
+
+from __future__ import annotations
+
+import argparse
+
+
+def add_args(parser: argparse.ArgumentParser) -> None:
+    pass
+
+
+def run(args: argparse.Namespace) -> int:
+    return 0

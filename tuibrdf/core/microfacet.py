@@ -1,0 +1,113 @@
+"""Microfacet distributions and shadowing-masking, composed by the specular models.
+
+All functions take squared sines/cosines of polar angles measured from the normal: a sharp lobe
+near the horizon needs ``sin²θ = x² + y²`` rather than ``1 − cos²θ`` (cancellation), and the
+horizon (cos θ = 0, tan θ = ∞) needs explicit limits rather than ``tan²``.
+
+Beckmann (Cook-Torrance's D)::
+
+    D(h) = exp(−tan²θh / m²) / (π m² cos⁴θh)
+
+GGX / Trowbridge-Reitz (Heitz 2014, eq. 71), and Smith's Λ for it (eq. 72)::
+
+    D(h) = α² / (π (cos²θh (α² − 1) + 1)²) = α² / (π (α² cos²θh + sin²θh)²)
+    Λ(w) = (−1 + √(1 + α² tan²θ)) / 2
+
+Both D are normalised: ∫ D(h) cos θh dω = 1 (tested).  Height-correlated Smith
+``G2 = 1/(1 + Λ(wi) + Λ(wo))`` (eq. 99).  V-cavity G (Cook & Torrance 1981)::
+
+    G = max(0, min(1, 2 cosθh cosθi / cosψ, 2 cosθh cosθo / cosψ))
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .numerics import safe_div, safe_sqrt
+
+#: Smallest distribution width; a roughness of 0 (a perfect mirror, a Dirac lobe that no
+#: mesh or pixel can show) is clamped to this, as pbrt-v4 and Mitsuba 3 clamp theirs.
+ALPHA_MIN = 1e-3
+
+
+def alpha_from_roughness(roughness) -> float:
+    """The glTF / UE4 / Disney mapping ``α = roughness²``, floored at :data:`ALPHA_MIN`."""
+    return max(float(roughness) ** 2, ALPHA_MIN)
+
+
+def beckmann_d(cos2_h: np.ndarray, sin2_h: np.ndarray, m: float) -> np.ndarray:
+    m2 = m * m
+    ok = cos2_h > 0.0
+    # tan²θh/m² = sin²/(m² cos²): infinite on the horizon, where D's limit is 0 (exp wins)
+    x = safe_div(sin2_h, m2 * cos2_h, ok, fill=np.inf)
+    # exp(-x) underflows harmlessly to 0 for a sharp lobe; 1/cos⁴ only where exp(-x) > 0,
+    # because cos⁴ underflows to 0 (divide by zero) well before x = sin²/(m²cos²) is large
+    # enough to flush exp(-x): cos² < 1e-154 → x > 1e148 for m ≤ 1.
+    e = np.exp(-x)
+    return safe_div(e, np.pi * m2 * cos2_h * cos2_h, e > 0.0)
+
+
+def ggx_d(cos2_h: np.ndarray, sin2_h: np.ndarray, alpha: float) -> np.ndarray:
+    a2 = alpha * alpha
+    t = a2 * cos2_h + sin2_h  # ≥ min(α², 1)·(cos² + sin²) > 0: never zero for α > 0
+    return a2 / (np.pi * t * t)
+
+
+def ggx_lambda_cos(cos_t: np.ndarray, sin2_t: np.ndarray, alpha: float) -> np.ndarray:
+    """``cos θ · Λ(θ)``, finite on the horizon (limit α·sinθ/2 as cos θ → 0).
+
+    ``cos Λ = (√(cos² + α² sin²) − cos)/2``, written without cancellation as
+    ``α² sin² / (2(cos + √(cos² + α² sin²)))``.  At the normal (sin = 0) it is exactly 0.
+    """
+    a2s2 = alpha * alpha * sin2_t
+    root = safe_sqrt(cos_t * cos_t + a2s2)
+    den = 2.0 * (cos_t + root)
+    return safe_div(a2s2, den, den > 0.0)  # den = 0 only if sin = cos = 0: not a direction
+
+
+def ggx_lambda(cos_t: np.ndarray, sin2_t: np.ndarray, alpha: float) -> np.ndarray:
+    """Smith Λ for GGX; +inf on the horizon (G1 = 0 there)."""
+    lc = ggx_lambda_cos(cos_t, sin2_t, alpha)
+    return safe_div(lc, cos_t, cos_t > 0.0, fill=np.inf)
+
+
+def ggx_g1(cos_t: np.ndarray, sin2_t: np.ndarray, alpha: float) -> np.ndarray:
+    """``G1 = 1/(1 + Λ) = cos/(cos + cosΛ)``; 0 on the horizon."""
+    den = cos_t + ggx_lambda_cos(cos_t, sin2_t, alpha)
+    return safe_div(cos_t, den, den > 0.0)
+
+
+def ggx_g2_over_cos(
+    cos_i: np.ndarray, sin2_i: np.ndarray, cos_o: np.ndarray, sin2_o: np.ndarray, alpha: float
+) -> np.ndarray:
+    """Height-correlated ``G2 / (4 cos θi cos θo)``, with its limit on the horizon.
+
+    ``(1 + Λi + Λo) ci co = ci co + co·(ci Λi) + ci·(co Λo)`` stays finite; where one direction
+    is on the horizon the limit is finite (1 / (4·α sinθ/2·cos of the other)); where both are,
+    the denominator is 0 and the value is 0 (no limit exists: documented).
+    """
+    den = cos_i * cos_o + cos_o * ggx_lambda_cos(cos_i, sin2_i, alpha) + cos_i * ggx_lambda_cos(
+        cos_o, sin2_o, alpha
+    )
+    return safe_div(0.25, den, den > 0.0)
+
+
+def vcavity_g(cos_h: np.ndarray, cos_i: np.ndarray, cos_o: np.ndarray, cos_psi: np.ndarray):
+    """Cook-Torrance's V-cavity shadowing/masking (cos ψ = H·wi = H·wo)."""
+    inv = safe_div(2.0 * cos_h, cos_psi, cos_psi > 0.0, fill=np.inf)
+    return np.clip(np.minimum(cos_i * inv, cos_o * inv), 0.0, 1.0)
+
+
+def vcavity_g_over_cos(cos_h, cos_i, cos_o, cos_psi):
+    """``G / (4 cos θi cos θo)`` with its limit on the horizon.
+
+    ``G/(ci co) = min(1/(ci co), 2ch/(cψ co), 2ch/(cψ ci))``: where one cosine is 0 the other
+    terms stay finite (the limit); where both are 0 every term is infinite and the value is 0.
+    """
+    ci_co = cos_i * cos_o
+    a = safe_div(1.0, ci_co, ci_co > 0.0, fill=np.inf)
+    two_h = 2.0 * cos_h
+    b = safe_div(two_h, cos_psi * cos_o, (cos_psi * cos_o) > 0.0, fill=np.inf)
+    c = safe_div(two_h, cos_psi * cos_i, (cos_psi * cos_i) > 0.0, fill=np.inf)
+    g = np.minimum(np.minimum(a, b), c)
+    return np.where(np.isfinite(g), 0.25 * g, 0.0)

@@ -1,0 +1,150 @@
+"""Specular microfacet models: Cook-Torrance, GGX/Smith, glTF metal-roughness, UE4.
+
+All share ``f = diffuse + F·D·G / (4 cos θi cos θo)`` and differ in D, G, F and the diffuse
+term; the pieces live in :mod:`tuibrdf.core.microfacet` and :mod:`tuibrdf.core.fresnel`.
+
+**cook-torrance** (Cook & Torrance 1981; the seed's form)::
+
+    f = kd/π + F(ψ)·D_Beckmann(θh; m)·G_Vcavity / (4 cos θi cos θo)
+
+=======  ======  =======  ===============  ==============================================
+name     symbol  default  range            meaning
+=======  ======  =======  ===============  ==============================================
+kd       Kd      0        [0, 1]           diffuse reflectance
+f0       F0      0.04     [0, 1]           Fresnel reflectance at normal incidence
+m        m       0.2      [0.001, 1]       Beckmann RMS slope (roughness)
+fresnel          exact    exact | schlick  exact unpolarised dielectric, or Schlick
+=======  ======  =======  ===============  ==============================================
+
+**ggx** (Walter et al. 2007; Heitz 2014 eqs. 71, 72, 99)::
+
+    f = kd/π + F(ψ)·D_GGX(θh; α)·G2(wi, wo) / (4 cos θi cos θo),   G2 height-correlated Smith
+
+Parameters as cook-torrance with ``alpha`` ∈ [0.001, 1] (0.2) instead of ``m``.
+
+**gltf** (glTF 2.0 spec appendix B, metal-roughness, the pre-2024 form the seed uses)::
+
+    α = roughness², F0 = mix(0.04, base, metallic), c_diff = mix(base, 0, metallic)
+    f = (1 − F)·c_diff/π + F·D_GGX·G2 / (4 |N·wi| |N·wo|),  F = Schlick per channel
+
+Later glTF revisions mix a dielectric and a metal lobe (``mix(dielectric_brdf, metal_brdf,
+metallic)``); the two agree at metallic ∈ {0, 1} and differ in between.
+
+**ue4** (Karis 2013, "Real Shading in Unreal Engine 4")::
+
+    f = c_diff/π + F·D_GGX·G / (4 cos θi cos θo),   c_diff = (1 − metallic)·base
+    G = G1(wi)·G1(wo), G1(c) = c / (c(1 − k) + k), k = (roughness + 1)²/8 (Schlick-GGX)
+
+For gltf and ue4, ``base_color`` is RGB (0.8, 0.8, 0.8), ``metallic`` ∈ [0, 1] (0) and
+``roughness`` ∈ [0, 1] (0.5).  A roughness of 0 would make α = 0, a Dirac mirror: α is floored at
+``ALPHA_MIN = 0.001`` (roughness ≈ 0.032), as pbrt-v4 and Mitsuba 3 floor theirs.
+
+Horizon: the specular term divides by cos θi cos θo.  Where exactly one of them is 0 the limit
+exists and is returned (V-cavity: G ≤ 2cosθh cosθ/cosψ; Smith: cosθ·Λ(θ) → α sinθ/2); where both
+are 0 there is no limit and the specular term is 0.  All four are reciprocal.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..frame import Geometry
+from ..fresnel import fresnel as fresnel_term
+from ..fresnel import fresnel_schlick
+from ..microfacet import (
+    ALPHA_MIN,
+    alpha_from_roughness,
+    beckmann_d,
+    ggx_d,
+    ggx_g2_over_cos,
+    vcavity_g_over_cos,
+)
+from ..numerics import safe_div
+from ..params import Model, Param
+
+KD0 = Param("kd", "Kd", 0.0, 0.0, 1.0, 0.01, doc="diffuse reflectance")
+F0 = Param("f0", "F0", 0.04, 0.0, 1.0, 0.01, doc="Fresnel reflectance at normal incidence")
+M = Param("m", "m", 0.2, 0.001, 1.0, 0.005, coarse=0.05, doc="Beckmann RMS slope (roughness)")
+ALPHA = Param("alpha", "α", 0.2, ALPHA_MIN, 1.0, 0.005, coarse=0.05,
+              doc="GGX width (roughness²)")
+FRESNEL = Param("fresnel", "F", "exact", kind="choice", choices=("exact", "schlick"),
+                doc="Fresnel: exact unpolarised dielectric or Schlick")
+BASE = Param("base_color", "base", (0.8, 0.8, 0.8), 0.0, 1.0, 0.01, kind="rgb",
+             doc="base colour (linear RGB)")
+METALLIC = Param("metallic", "metal", 0.0, 0.0, 1.0, 0.01, doc="0 dielectric, 1 metal")
+ROUGHNESS = Param("roughness", "rough", 0.5, 0.0, 1.0, 0.01,
+                  doc=f"perceptual roughness; α = roughness², floored at {ALPHA_MIN}")
+
+
+def _specular(g: Geometry, d: np.ndarray, g_over_cos: np.ndarray) -> np.ndarray:
+    """``D·G/(4 ci co)`` restricted to where it exists (upper hemisphere, H defined)."""
+    return np.where(g.above & g.h_valid, d * g_over_cos, 0.0)
+
+
+def cook_torrance(wi, wo, kd: float, f0: float, m: float, fresnel: str):
+    g = Geometry(wi, wo)
+    spec = _specular(g, beckmann_d(g.cos_h**2, g.sin2_h, m),
+                     vcavity_g_over_cos(g.cos_h, g.cos_i, g.cos_o, g.cos_d))
+    return np.where(g.above, kd / np.pi + fresnel_term(g.cos_d, f0, fresnel) * spec, 0.0)
+
+
+def ggx(wi, wo, kd: float, f0: float, alpha: float, fresnel: str):
+    g = Geometry(wi, wo)
+    spec = _specular(g, ggx_d(g.cos_h**2, g.sin2_h, alpha),
+                     ggx_g2_over_cos(g.cos_i, g.sin2_i, g.cos_o, g.sin2_o, alpha))
+    return np.where(g.above, kd / np.pi + fresnel_term(g.cos_d, f0, fresnel) * spec, 0.0)
+
+
+def _metal_rough(base, metallic: float):
+    base = np.asarray(base, dtype=float)
+    return base * (1.0 - metallic), 0.04 * (1.0 - metallic) + base * metallic
+
+
+def gltf(wi, wo, base_color, metallic: float, roughness: float):
+    g = Geometry(wi, wo)
+    alpha = alpha_from_roughness(roughness)
+    c_diff, spec_f0 = _metal_rough(base_color, metallic)
+    f = fresnel_schlick(g.cos_d, spec_f0)  # (..., 3)
+    spec = _specular(g, ggx_d(g.cos_h**2, g.sin2_h, alpha),
+                     ggx_g2_over_cos(g.cos_i, g.sin2_i, g.cos_o, g.sin2_o, alpha))
+    out = (1.0 - f) * c_diff / np.pi + f * spec[..., None]
+    return np.where(g.above[..., None], out, 0.0)
+
+
+def ue4(wi, wo, base_color, metallic: float, roughness: float):
+    g = Geometry(wi, wo)
+    alpha = alpha_from_roughness(roughness)
+    k = (roughness + 1.0) ** 2 / 8.0
+    c_diff, spec_f0 = _metal_rough(base_color, metallic)
+    f = fresnel_schlick(g.cos_d, spec_f0)
+    # G1(c)/c = 1/(c(1-k)+k): k ≥ 1/8, so the denominators are ≥ 1/8 even on the horizon
+    g_over_cos = safe_div(
+        0.25, (g.cos_i * (1.0 - k) + k) * (g.cos_o * (1.0 - k) + k), g.above, fill=0.0
+    )
+    spec = _specular(g, ggx_d(g.cos_h**2, g.sin2_h, alpha), g_over_cos)
+    out = c_diff / np.pi + f * spec[..., None]
+    return np.where(g.above[..., None], out, 0.0)
+
+
+COOK_TORRANCE = Model(
+    "cook-torrance", "Cook-Torrance", (KD0, F0, M, FRESNEL), cook_torrance,
+    summary="kd/π + F·D·G/(4 cosθi cosθo), Beckmann D, V-cavity G, exact or Schlick F",
+    horizon="limit where one of θi, θo is 90°; specular 0 where both are",
+)
+GGX = Model(
+    "ggx", "GGX / Smith", (KD0, F0, ALPHA, FRESNEL), ggx,
+    summary="kd/π + F·D·G2/(4 cosθi cosθo), GGX D, height-correlated Smith G2",
+    horizon="limit where one of θi, θo is 90°; specular 0 where both are",
+)
+GLTF = Model(
+    "gltf", "glTF metal-roughness", (BASE, METALLIC, ROUGHNESS), gltf, rgb=True,
+    summary="glTF 2.0 appendix B: (1−F)c_diff/π + F·D·G2/(4|N·wi||N·wo|), Schlick F",
+    horizon="limit where one of θi, θo is 90°; specular 0 where both are",
+    notes=(f"roughness 0 is clamped to α = {ALPHA_MIN} (a perfect mirror cannot be drawn)",),
+)
+UE4 = Model(
+    "ue4", "Unreal Engine 4", (BASE, METALLIC, ROUGHNESS), ue4, rgb=True,
+    summary="Karis 2013: c_diff/π + F·D·G/(4 cosθi cosθo), Schlick-GGX G, k=(r+1)²/8",
+    horizon="the formula's value (Schlick-GGX G/cos stays finite)",
+    notes=(f"roughness 0 is clamped to α = {ALPHA_MIN} (a perfect mirror cannot be drawn)",),
+)

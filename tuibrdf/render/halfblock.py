@@ -1,0 +1,332 @@
+"""Half-block images: two pixels per terminal cell.
+
+Each cell shows ``'▀'`` with the foreground colour = top pixel and the background colour = bottom
+pixel, so a ``W × H`` cell area holds ``W × 2H`` pixels; terminal cells are about 1:2, which makes
+these pixels roughly square.
+
+Input is a *level-index image* (``H_px × W_px`` ints) plus a palette (``L × 3`` uint8); the index
+``-1`` (:data:`TRANSPARENT`) leaves the terminal background visible.  An RGB image goes through
+:meth:`HalfBlockImage.from_rgb`, which builds the palette from the image's distinct colours.
+
+Fast by construction (measured in ``../shared/notes/textual.md``: ≈ 111 ms per 160×48 frame with
+one ``Style`` per cell, ≈ 1.5 ms like this):
+
+1. per cell, ``code = (top + 1) · (P + 1) + (bottom + 1)`` over the palette actually drawn;
+2. runs of equal codes along a row are found with numpy and become **one** ``Segment`` each;
+3. one ``Style`` per (foreground, background) pair, cached across frames;
+4. a run whose top and bottom colours are equal is drawn as spaces on a background colour.
+
+Colour systems (``rows(system)``):
+
+===========  ================================================================================
+truecolor    24-bit colours, as given
+256          the palette is first mapped to the xterm colours 16–255 (nearest, squared RGB
+             distance), *then* runs are found, so neighbours landing on one index merge
+none         plain text: one character per cell from :data:`ASCII_RAMP`, by the mean Rec.709
+             luma of its two pixels, so the picture stays readable in a log file
+===========  ================================================================================
+
+Every segment has a non-None ``Style`` (Textual 8.2's ``NO_COLOR`` filter crashes on ``None``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Literal
+
+import numpy as np
+from rich.color import Color
+from rich.console import Console, ConsoleOptions, RenderResult
+from rich.measure import Measurement
+from rich.segment import Segment
+from rich.style import Style
+
+ColorSystem = Literal["truecolor", "256", "none"]
+COLOR_SYSTEMS: tuple[str, ...] = ("truecolor", "256", "none")
+
+UPPER_HALF = "▀"
+LOWER_HALF = "▄"
+#: density ramp of the plain-text fallback, dark → bright
+ASCII_RAMP = " .:-=+*#%@"
+#: index of a pixel that shows the terminal's own background
+TRANSPARENT = -1
+
+#: Rec.709 luma weights (applied to the 8-bit values: a luma, not a linear luminance)
+REC709 = np.array([0.2126, 0.7152, 0.0722])
+
+
+@dataclass(frozen=True)
+class Mark:
+    """A glyph drawn over one cell (e.g. the mirror direction): ``glyph`` in ``rgb`` on the
+    cell's mean colour; ``ascii`` replaces it in the plain-text fallback."""
+
+    row: int  # cell row
+    col: int  # cell column
+    glyph: str = "×"
+    ascii: str = "X"
+    rgb: tuple[int, int, int] = (255, 0, 0)
+
+
+# ---------------------------------------------------------------------------------------------
+# xterm 256-colour palette
+
+
+def xterm_palette() -> np.ndarray:
+    """The 256 xterm colours as ``(256, 3)`` uint8.
+
+    0–15 are the terminal's themable system colours (values here are xterm's defaults, never
+    chosen by :func:`to_xterm`); 16–231 the 6×6×6 cube on levels 0, 95, 135, 175, 215, 255;
+    232–255 the grey ramp 8, 18, …, 238.
+    """
+    system = [
+        (0, 0, 0), (205, 0, 0), (0, 205, 0), (205, 205, 0),
+        (0, 0, 238), (205, 0, 205), (0, 205, 205), (229, 229, 229),
+        (127, 127, 127), (255, 0, 0), (0, 255, 0), (255, 255, 0),
+        (92, 92, 255), (255, 0, 255), (0, 255, 255), (255, 255, 255),
+    ]  # fmt: skip
+    levels = np.array([0, 95, 135, 175, 215, 255])
+    r, g, b = np.meshgrid(levels, levels, levels, indexing="ij")
+    cube = np.stack([r.ravel(), g.ravel(), b.ravel()], axis=1)
+    grey = np.repeat((8 + 10 * np.arange(24))[:, None], 3, axis=1)
+    return np.concatenate([np.array(system), cube, grey]).astype(np.uint8)
+
+
+XTERM = xterm_palette()
+
+
+def to_xterm(rgb: np.ndarray) -> np.ndarray:
+    """Nearest xterm colour index in 16–255 (squared RGB distance, ties to the lower index) for
+    ``rgb`` of shape ``(..., 3)``; the themable system colours 0–15 are never used."""
+    rgb = np.asarray(rgb, dtype=np.int64)
+    cand = XTERM[16:].astype(np.int64)
+    d = ((rgb[..., None, :] - cand) ** 2).sum(axis=-1)
+    return (16 + np.argmin(d, axis=-1)).astype(np.int64)
+
+
+def luma(rgb: np.ndarray) -> np.ndarray:
+    """Rec.709 luma in [0, 1] of 8-bit colours ``(..., 3)``."""
+    return np.asarray(rgb, dtype=float) @ REC709 / 255.0
+
+
+# ---------------------------------------------------------------------------------------------
+# styles, cached across frames
+
+
+@lru_cache(maxsize=1 << 16)
+def cell_style(fg: int | tuple[int, int, int] | None, bg: int | tuple[int, int, int] | None):
+    """The ``Style`` for a foreground/background pair: an int is an xterm index, a tuple an RGB
+    colour, ``None`` the terminal default.  Never returns ``None`` (see module docstring)."""
+    return Style(color=_color(fg), bgcolor=_color(bg))
+
+
+def _color(c: int | tuple[int, int, int] | None) -> Color | None:
+    if c is None:
+        return None
+    if isinstance(c, tuple):
+        return Color.from_rgb(*c)
+    return Color.from_ansi(c)
+
+
+NULL_STYLE = Style()
+
+
+# ---------------------------------------------------------------------------------------------
+# run detection
+
+
+def find_runs(codes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Runs of equal values along each row of a 2-D int array.
+
+    Returns ``(row, start, length)`` arrays, in reading order; each row's runs cover it exactly.
+    """
+    h, w = codes.shape
+    change = np.ones((h, w), dtype=bool)
+    np.not_equal(codes[:, 1:], codes[:, :-1], out=change[:, 1:])
+    rows, starts = np.nonzero(change)
+    flat = rows * w + starts
+    # change[:, 0] is always set, so a row's last run ends where the next row's first begins
+    lengths = np.diff(np.append(flat, h * w))
+    return rows, starts, lengths
+
+
+def split_halves(index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(top, bottom)`` pixel rows of each cell row; an odd last row gets a transparent
+    bottom."""
+    if index.shape[0] % 2:
+        pad = np.full((1, index.shape[1]), TRANSPARENT, dtype=index.dtype)
+        index = np.concatenate([index, pad])
+    return index[0::2], index[1::2]
+
+
+# ---------------------------------------------------------------------------------------------
+# the renderable
+
+
+class HalfBlockImage:
+    """A level-index image drawn with half blocks.
+
+    ``index``: ``(H_px, W_px)`` ints in ``[-1, L)``; ``palette``: ``(L, 3)`` values in 0–255;
+    ``marks``: glyphs drawn over cells.  ``color_system`` fixes the output; ``None`` follows the
+    console it is printed to.  :meth:`rows` gives the per-row segment lists, each exactly
+    :attr:`width` cells long (a Textual widget wraps them in ``Strip`` objects).
+    """
+
+    def __init__(
+        self,
+        index: np.ndarray,
+        palette: np.ndarray,
+        marks: Sequence[Mark] = (),
+        color_system: ColorSystem | None = None,
+    ) -> None:
+        index = np.asarray(index)
+        palette = np.asarray(palette)
+        if index.ndim != 2 or not np.issubdtype(index.dtype, np.integer):
+            raise ValueError(f"index must be a 2-D integer array, got {index.dtype} {index.shape}")
+        if palette.ndim != 2 or palette.shape[1] != 3:
+            raise ValueError(f"palette must have shape (L, 3), got {palette.shape}")
+        if palette.size and (palette.min() < 0 or palette.max() > 255):
+            raise ValueError("palette values must lie in 0..255")
+        if index.size and (index.min() < TRANSPARENT or index.max() >= len(palette)):
+            raise ValueError(f"index values must lie in [-1, {len(palette)})")
+        if color_system is not None and color_system not in COLOR_SYSTEMS:
+            raise ValueError(f"color system {color_system!r}: expected one of {COLOR_SYSTEMS}")
+        self.index = index.astype(np.int64)
+        self.palette = palette.astype(np.uint8)
+        self.marks = tuple(marks)
+        self.color_system = color_system
+        self.width = int(index.shape[1])
+        self.height = (int(index.shape[0]) + 1) // 2
+        self._rows: dict[str, list[list[Segment]]] = {}
+
+    @classmethod
+    def from_rgb(
+        cls,
+        rgb: np.ndarray,
+        mask: np.ndarray | None = None,
+        marks: Sequence[Mark] = (),
+        color_system: ColorSystem | None = None,
+    ) -> HalfBlockImage:
+        """From an ``(H_px, W_px, 3)`` RGB image (0–255); pixels where ``mask`` is False are
+        transparent.  The palette is the sorted set of distinct colours."""
+        rgb = np.asarray(rgb)
+        if rgb.ndim != 3 or rgb.shape[2] != 3:
+            raise ValueError(f"rgb must have shape (H, W, 3), got {rgb.shape}")
+        packed = (rgb[..., 0].astype(np.int64) << 16) | (rgb[..., 1].astype(np.int64) << 8)
+        packed |= rgb[..., 2].astype(np.int64)
+        colors, inverse = np.unique(packed, return_inverse=True)
+        index = inverse.reshape(packed.shape)
+        if mask is not None:
+            index = np.where(mask, index, TRANSPARENT)
+        palette = np.stack([colors >> 16, (colors >> 8) & 255, colors & 255], axis=1)
+        return cls(index, palette, marks, color_system)
+
+    # -- segments ------------------------------------------------------------------------------
+
+    def rows(self, system: ColorSystem = "truecolor") -> list[list[Segment]]:
+        """One list of segments per cell row (cached per colour system)."""
+        if system not in COLOR_SYSTEMS:
+            raise ValueError(f"color system {system!r}: expected one of {COLOR_SYSTEMS}")
+        if system not in self._rows:
+            self._rows[system] = self._build(system)
+        return self._rows[system]
+
+    def _build(self, system: str) -> list[list[Segment]]:
+        top, bottom = split_halves(self.index)
+        if system == "none":
+            codes, make = self._plain_codes(top, bottom)
+        else:
+            codes, make = self._color_codes(top, bottom, system)
+        # marks get codes of their own (negative), so they split runs and never merge
+        for k, m in enumerate(self.marks):
+            if 0 <= m.row < self.height and 0 <= m.col < self.width:
+                codes[m.row, m.col] = -(k + 1)
+        out: list[list[Segment]] = [[] for _ in range(self.height)]
+        cache: dict[int, tuple[str, Style]] = {}
+        rows, starts, lengths = find_runs(codes)
+        run_codes = codes[rows, starts].tolist()
+        for r, c, n, code in zip(rows.tolist(), starts.tolist(), lengths.tolist(), run_codes,
+                                 strict=True):
+            if code < 0:
+                char, style = self._mark(self.marks[-code - 1], top[r, c], bottom[r, c], system)
+            else:
+                if code not in cache:
+                    cache[code] = make(code)
+                char, style = cache[code]
+            out[r].append(Segment(char * n, style))
+        return out
+
+    def _color_codes(self, top, bottom, system):
+        if system == "256":
+            xi = np.append(to_xterm(self.palette), -1)  # index -1 picks the appended -1
+            top, bottom = xi[top], xi[bottom]
+            colors: list = list(range(256))
+        else:
+            colors = [tuple(int(v) for v in c) for c in self.palette]
+        base = len(colors) + 1
+
+        def make(code: int) -> tuple[str, Style]:
+            t, b = divmod(code, base)
+            t, b = t - 1, b - 1
+            ct = colors[t] if t >= 0 else None
+            cb = colors[b] if b >= 0 else None
+            if t == b:
+                return " ", cell_style(None, cb) if cb is not None else NULL_STYLE
+            if b < 0:
+                return UPPER_HALF, cell_style(ct, None)
+            if t < 0:
+                return LOWER_HALF, cell_style(cb, None)
+            return UPPER_HALF, cell_style(ct, cb)
+
+        return (top + 1) * base + (bottom + 1), make
+
+    def _plain_codes(self, top, bottom):
+        y = np.append(luma(self.palette), 0.0)  # transparent reads as dark
+        level = np.rint((y[top] + y[bottom]) / 2 * (len(ASCII_RAMP) - 1)).astype(np.int64)
+
+        def make(code: int) -> tuple[str, Style]:
+            return ASCII_RAMP[code], NULL_STYLE
+
+        return level, make
+
+    def _mark(self, m: Mark, t: int, b: int, system: str) -> tuple[str, Style]:
+        if system == "none":
+            return m.ascii, NULL_STYLE
+        under = [self.palette[i].astype(float) for i in (t, b) if i >= 0]
+        bg = tuple(int(v) for v in np.rint(np.mean(under, axis=0))) if under else None
+        fg = m.rgb
+        if system == "256":
+            fg = int(to_xterm(np.array(fg)))
+            bg = int(to_xterm(np.array(bg))) if bg is not None else None
+        return m.glyph, cell_style(fg, bg)
+
+    def plain(self) -> str:
+        """The plain-text fallback as a string (one line per cell row)."""
+        return "\n".join("".join(s.text for s in row) for row in self.rows("none"))
+
+    # -- Rich protocol -------------------------------------------------------------------------
+
+    def __rich_console__(self, console: Console, options: ConsoleOptions) -> RenderResult:
+        system = self.color_system or console_system(console)
+        new_line = Segment.line()
+        for row in self.rows(system):
+            yield from row
+            yield new_line
+
+    def __rich_measure__(self, console: Console, options: ConsoleOptions) -> Measurement:
+        return Measurement(self.width, self.width)
+
+
+def console_system(console: Console) -> ColorSystem:
+    """Map a Rich console's colour system onto ours (16-colour consoles get the 256 palette,
+    which Rich downgrades itself)."""
+    cs = console.color_system
+    if cs is None:
+        return "none"
+    return "truecolor" if cs == "truecolor" else "256"
+
+
+def segments_text(rows: Iterable[Iterable[Segment]]) -> list[str]:
+    """The characters of each row (for tests and plain output)."""
+    return ["".join(s.text for s in row) for row in rows]
