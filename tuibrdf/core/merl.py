@@ -26,7 +26,7 @@ Sample ``i`` of an axis sits at bin coordinate ``t = i`` (the bin's lower edge: 
 * ``trilinear``: linear in each of ``tθh, tθd, tφd`` between samples ``⌊t⌋`` and ``⌊t⌋+1``;
   beyond the last sample of θh or θd the value is held constant (clamped); φd is periodic
   (sample 180 is sample 0, since φd ≡ φd + π), so bins 179 and 0 interpolate with each other.
-  Both lookups agree exactly on the samples.
+  Both lookups agree on the samples (up to the rounding of t near an integer).
 
 Reciprocity.  Swapping ``wi`` and ``wo`` keeps H and maps ``d → (-dx, -dy, dz)``, i.e.
 ``φd → φd + π``: that is the folding.  Here ``d``'s horizontal part is computed from ``wi - wo``
@@ -47,12 +47,15 @@ horizon, H undefined).  On the horizon itself the clamped bins give the data's v
 from __future__ import annotations
 
 import os
+import threading
 from collections import OrderedDict
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
-from .numerics import safe_div, safe_sqrt
+from .numerics import safe_div
+from .params import Model, Param
 
 N_THETA_H = 90
 N_THETA_D = 90
@@ -66,7 +69,7 @@ SCALES = (1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0)
 LOOKUPS = ("nearest", "trilinear")
 
 
-class MerlFormatError(ValueError):
+class MerlError(ValueError):
     """A file that is not a valid MERL ``.binary``; the message names the file and the problem."""
 
 
@@ -87,19 +90,31 @@ class MerlData:
         return evaluate(self, wi, wo, lookup)
 
 
-def read_merl(path: str | os.PathLike) -> MerlData:
+#: bytes read per ``readinto`` call: 1/32 of the data, so a progress bar moves smoothly
+CHUNK_BYTES = 3 * N_SAMPLES * 8 // 32
+
+
+def load(path: str | os.PathLike,
+         progress: Callable[[float], None] | None = None) -> MerlData:
     """Read and validate a MERL ``.binary`` file.
 
-    Raises :class:`MerlFormatError` (a ``ValueError``) naming the file and the problem for a
-    missing or unreadable file, a wrong header, a wrong size (truncated or trailing bytes) and
-    NaN or infinite values.  Memory: one float64 array of 3·1 458 000 values (35 MB), scaled and
-    filled in place; temporaries are per channel and at most 1/8 of it.
+    Raises :class:`MerlError` (a ``ValueError``) naming the file and the problem for a missing
+    or unreadable file, a wrong header, a wrong size (truncated or trailing bytes) and NaN or
+    infinite values.  ``progress(fraction)`` is called with fractions rising from 0 to 1 (reading
+    is 0 → 0.9, checking, scaling and filling 0.9 → 1), for a progress bar in the app.
+
+    Memory: the file is read straight into one preallocated float64 array of 3·1 458 000 values
+    (35 MB) with ``readinto``; it is checked, scaled and filled in place, one channel at a time,
+    and becomes :attr:`MerlData.table` without a copy.  Temporaries are per channel (masks of
+    1.5 MB); see docs/merl.md for the measured peak.
     """
     name = os.fspath(path)
+    report = progress or (lambda fraction: None)
 
-    def bad(problem: str) -> MerlFormatError:
-        return MerlFormatError(f"{name}: not a MERL .binary file: {problem}")
+    def bad(problem: str) -> MerlError:
+        return MerlError(f"{name}: not a MERL .binary file: {problem}")
 
+    report(0.0)
     try:
         size = os.path.getsize(name)
         with open(name, "rb") as f:
@@ -114,12 +129,21 @@ def read_merl(path: str | os.PathLike) -> MerlData:
             if size > FILE_BYTES:
                 raise bad(f"wrong size ({size:,} bytes, expected {FILE_BYTES:,}: "
                           f"{size - FILE_BYTES:,} trailing bytes)")
-            data = np.fromfile(f, dtype="<f8", count=3 * N_SAMPLES)
+            data = np.empty(3 * N_SAMPLES, dtype="<f8")  # the one copy
+            raw = memoryview(data).cast("B")
+            done = 0
+            while done < raw.nbytes:
+                n = f.readinto(raw[done:done + CHUNK_BYTES])
+                if not n:  # the file shrank between stat and read
+                    raise bad(f"truncated data ({HEADER_BYTES + done:,} bytes, expected "
+                              f"{FILE_BYTES:,})")
+                done += n
+                report(0.9 * done / raw.nbytes)
+            del raw
     except OSError as e:
-        raise MerlFormatError(f"{name}: cannot read: {e.strerror or e}") from None
-    if data.size != 3 * N_SAMPLES:  # the file shrank between stat and read
-        raise bad(f"truncated data ({data.size:,} of {3 * N_SAMPLES:,} values)")
-    data = data.astype(np.float64, copy=False)  # native byte order (a no-op on little-endian)
+        raise MerlError(f"{name}: cannot read: {e.strerror or e}") from None
+    if data.dtype != np.float64:  # big-endian host: one conversion (a no-op on little-endian)
+        data = data.astype(np.float64)
     planes = data.reshape(3, N_SAMPLES)
     n_invalid = []
     for c, scale in enumerate(SCALES):
@@ -135,6 +159,7 @@ def read_merl(path: str | os.PathLike) -> MerlData:
         del finite
         plane *= scale
         n_invalid.append(_fill_invalid(plane.reshape(N_THETA_H, N_THETA_D, N_PHI_D)))
+        report(0.9 + 0.1 * (c + 1) / 3)
     table = data.reshape(3, N_THETA_H, N_THETA_D, N_PHI_D)
     table.flags.writeable = False
     return MerlData(name, table, tuple(n_invalid))
@@ -274,33 +299,77 @@ def _linear_weights(t: np.ndarray, n: int, periodic: bool):
     return (i0, i1), (1.0 - w, w)
 
 
+def from_half_diff(theta_h, theta_d, phi_d, phi_h=0.0):
+    """``(wi, wo)`` for half/difference angles (radians): the inverse of :func:`half_diff`.
+
+    ``wi = Rot_z(φh)·Rot_y(θh)·d`` with ``d = dir(θd, φd)``, and ``wo`` the same with ``d``
+    turned by π about the pole (``(-dx, -dy, dz)``).  Directions may lie below the horizon.
+    """
+    theta_h, theta_d, phi_d, phi_h = np.broadcast_arrays(
+        *(np.asarray(a, dtype=float) for a in (theta_h, theta_d, phi_d, phi_h)))
+    st, ct = np.sin(theta_d), np.cos(theta_d)
+    dx, dy = st * np.cos(phi_d), st * np.sin(phi_d)
+    sh, ch = np.sin(theta_h), np.cos(theta_h)
+    sp, cp = np.sin(phi_h), np.cos(phi_h)
+
+    def turn(x, y, z):  # Rot_z(φh)·Rot_y(θh)
+        x1, z1 = ch * x + sh * z, -sh * x + ch * z
+        return np.stack([cp * x1 - sp * y, sp * x1 + cp * y, z1], axis=-1)
+
+    return turn(dx, dy, ct), turn(-dx, -dy, ct)
+
+
+def _kernel(wi, wo, file: str, lookup: str):
+    return evaluate(load_cached(file), wi, wo, lookup)
+
+
+FILE = Param("file", "file", "", kind="path", doc="MERL .binary file (90×90×180, RGB)")
+LOOKUP = Param("lookup", "lookup", "trilinear", kind="choice", choices=LOOKUPS,
+               doc="nearest bin (as BRDFRead.cpp) or trilinear in bin coordinates")
+
+MERL = Model(
+    "merl", "MERL measured", (FILE, LOOKUP), _kernel, rgb=True, reciprocal=True,
+    summary="measured isotropic BRDF (Matusik et al. 2003), 90×90×180 bins in (θh, θd, φd)",
+    horizon="the data's value at the clamped last bins; 0 below the horizon",
+    notes=("unmeasured (negative) bins are filled from the nearest valid θd bin, else 0",),
+)
+
+
 # -- cache -------------------------------------------------------------------------------------
 
 _CACHE: OrderedDict[tuple, MerlData] = OrderedDict()
 #: how many loaded files stay in memory (35 MB each): the measured one and one being compared
 CACHE_SIZE = 2
+_CACHE_LOCK = threading.Lock()  # the app loads in a worker thread
 
 
-def load_cached(path: str | os.PathLike) -> MerlData:
-    """:func:`read_merl` through a small LRU keyed by (real path, mtime, size): a model kernel
+def load_cached(path: str | os.PathLike,
+                progress: Callable[[float], None] | None = None) -> MerlData:
+    """:func:`load` through a small LRU keyed by (real path, mtime, size): the model kernel
     receives its file as a parameter on every evaluation and must not re-read it; a file that
-    changed on disk is read again."""
+    changed on disk is read again.  The app calls this (with ``progress``) in a worker thread,
+    so the kernel's later calls are cache hits."""
     name = os.fspath(path)
     if not name:
-        raise MerlFormatError("merl: no file given: pass -p file=PATH.binary")
+        raise MerlError("merl: no file given: pass -p file=PATH.binary")
     try:
         st = os.stat(name)
     except OSError as e:
-        raise MerlFormatError(f"{name}: cannot read: {e.strerror or e}") from None
+        raise MerlError(f"{name}: cannot read: {e.strerror or e}") from None
     key = (os.path.realpath(name), st.st_mtime_ns, st.st_size)
-    hit = _CACHE.get(key)
+    with _CACHE_LOCK:
+        hit = _CACHE.get(key)
+        if hit is not None:
+            _CACHE.move_to_end(key)
     if hit is not None:
-        _CACHE.move_to_end(key)
+        if progress is not None:
+            progress(1.0)
         return hit
-    data = read_merl(name)
-    _CACHE[key] = data
-    while len(_CACHE) > CACHE_SIZE:
-        _CACHE.popitem(last=False)
+    data = load(name, progress)
+    with _CACHE_LOCK:
+        _CACHE[key] = data
+        while len(_CACHE) > CACHE_SIZE:
+            _CACHE.popitem(last=False)
     return data
 
 
@@ -308,6 +377,6 @@ def clear_cache() -> None:
     _CACHE.clear()
 
 
-__all__ = ["FILE_BYTES", "LOOKUPS", "MerlData", "MerlFormatError", "SCALES", "bin_coordinates",
-           "bin_index", "clear_cache", "evaluate", "flat_index", "half_diff", "load_cached",
-           "read_merl", "safe_sqrt"]
+__all__ = ["FILE_BYTES", "LOOKUPS", "MERL", "MerlData", "MerlError", "SCALES",
+           "bin_coordinates", "bin_index", "clear_cache", "evaluate", "flat_index",
+           "from_half_diff", "half_diff", "load", "load_cached"]
