@@ -12,6 +12,7 @@ import sys
 from ..core.params import unknown_message
 from . import albedo as _albedo
 from . import eval as _eval
+from . import fit as _fit
 from . import models as _models
 from . import render as _render
 from .common import Parser, UsageError
@@ -22,6 +23,7 @@ SUBCOMMANDS = [
     ("eval", _eval, "print BRDF values for given directions"),
     ("albedo", _albedo, "print the directional albedo a(θi)"),
     ("render", _render, "print a picture of the BRDF (deterministic, for docs and tests)"),
+    ("fit", _fit, "fit an analytic model to a measured MERL file"),
 ]
 
 
