@@ -165,28 +165,39 @@ def load(path: str | os.PathLike,
     return MerlData(name, table, tuple(n_invalid))
 
 
+#: θh rows filled at a time: keeps the fill's temporaries to ~1/6 of a channel
+FILL_ROWS = 15
+
+
 def _fill_invalid(t: np.ndarray) -> int:
     """Fill negative bins of one channel ``(θh, θd, φd)`` in place from the nearest valid bin
-    along θd (ties: the smaller θd); columns without any valid bin become 0.  Returns the count."""
+    along θd (ties: the smaller θd); columns without any valid bin become 0.  Returns the count.
+
+    The rule works within one θh row, so rows are filled in slabs of :data:`FILL_ROWS`."""
+    return sum(_fill_slab(t[r:r + FILL_ROWS]) for r in range(0, t.shape[0], FILL_ROWS))
+
+
+def _fill_slab(t: np.ndarray) -> int:
     invalid = t < 0.0
-    count = int(invalid.sum())
+    count = int(np.count_nonzero(invalid))
     if count == 0:
         return 0
-    valid = ~invalid
-    j = np.arange(N_THETA_D, dtype=np.int8)[None, :, None]
-    # index of the last valid bin at or below j (-1 if none) and of the first at or above (90)
-    below = np.maximum.accumulate(np.where(valid, j, np.int8(-1)), axis=1)
-    above = np.minimum.accumulate(np.where(valid, j, np.int8(N_THETA_D))[:, ::-1], axis=1)
-    above = above[:, ::-1]
-    # distance ties go below; a side that has no valid bin is never chosen
-    use_above = (below < 0) | ((above < N_THETA_D) & (above - j < j - below))
-    src = np.where(use_above, above, below).astype(np.intp)
-    del below, above, use_above
-    has_src = (src >= 0) & (src < N_THETA_D)
+    n = t.shape[1]
+    j = np.arange(n, dtype=np.int8)[None, :, None]
+    # index of the last valid bin at or before each θd (-1: none), and of the first at or
+    # after it (n: none), as int8 running max / min along θd
+    below = np.maximum.accumulate(np.where(invalid, np.int8(-1), j), axis=1)
+    above = np.minimum.accumulate(np.where(invalid, np.int8(n), j)[:, ::-1], axis=1)[:, ::-1]
     ih, jd, kp = np.nonzero(invalid)
-    s = src[ih, jd, kp]
-    ok = has_src[ih, jd, kp]
-    t[ih, jd, kp] = np.where(ok, t[ih, np.where(ok, s, 0), kp], 0.0)
+    del invalid
+    b = below[ih, jd, kp].astype(np.intp)
+    a = above[ih, jd, kp].astype(np.intp)
+    del below, above
+    # the nearer side; distance ties go below; a side without a valid bin is never chosen
+    use_above = (b < 0) | ((a < n) & (a - jd < jd - b))
+    src = np.where(use_above, a, b)
+    ok = (src >= 0) & (src < n)
+    t[ih, jd, kp] = np.where(ok, t[ih, np.where(ok, src, 0), kp], 0.0)
     return count
 
 
