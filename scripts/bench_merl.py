@@ -33,13 +33,18 @@ GGX = [{"alpha": 0.2, "f0": 0.9, "kd": 0.1}, {"alpha": 0.2, "f0": 0.6, "kd": 0.2
 CT = [{"m": 0.3, "f0": f0, "kd": 0.3} for f0 in (0.9, 0.6, 0.3)]
 
 
+# VmHWM (peak RSS of this process image) rather than ru_maxrss, which Linux carries over
+# from the parent across fork + exec
 RSS_CHILD = """
-import resource, sys
+import sys
 from tuibrdf.core import merl
-r0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+def hwm():
+    for line in open("/proc/self/status"):
+        if line.startswith("VmHWM:"):
+            return int(line.split()[1])  # kB
+h0 = hwm()
 data = merl.load(sys.argv[1])
-r1 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-print(f"{(r1 - r0) / 1e3:.1f}")  # kB on Linux
+print(f"{(hwm() - h0) / 1e3:.1f}")
 """
 
 
@@ -76,7 +81,7 @@ def main() -> None:
         print(f"table                {data.table.nbytes / 1e6:.1f} MB, invalid bins "
               f"{data.n_invalid}")
         print(f"load peak (numpy)    {peak / 1e6:.1f} MB traced by tracemalloc")
-        print(f"load peak RSS growth {child.stdout.strip()} MB (ru_maxrss, fresh process)")
+        print(f"load peak RSS growth {child.stdout.strip()} MB (VmHWM, fresh process)")
         print(f"load time            {best_of(5, lambda: merl.load(ggx_path)) * 1e3:.0f} ms "
               "(best of 5, warm page cache)")
         merl.clear_cache()
