@@ -7,6 +7,7 @@ One module per subcommand, each exposing ``add_args(parser)`` and ``run(args) ->
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
 from ..core.params import unknown_message
@@ -59,3 +60,13 @@ def main(argv: list[str] | None = None) -> int:
     except (UsageError, ValueError) as e:
         print(f"tuibrdf: error: {e}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # `tuibrdf models | head`: the reader left; no traceback
+        return _broken_pipe()
+
+
+def _broken_pipe() -> int:
+    # Python flushes stdout again at exit and would print a second BrokenPipeError: point
+    # stdout at /dev/null first (the recipe in the `signal` module's documentation)
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    return 141  # 128 + SIGPIPE, what a C tool killed by the signal reports
