@@ -10,7 +10,7 @@ from tuibrdf.core.models import MODELS
 from tuibrdf.render.views import CMAPS, VIEWS, render_view
 
 MODELS_NO_FILE = [n for n, m in MODELS.items() if all(p.kind != "path" for p in m.params)]
-DONE_VIEWS = [v for v in VIEWS if v in ("map", "incidence", "perpendicular")]
+DONE_VIEWS = VIEWS
 
 
 def to_text(renderable, system=None, width=200) -> str:
