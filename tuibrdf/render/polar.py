@@ -129,7 +129,7 @@ def polar_plot(
     span = rmax * 1.08
     k = max(2 * span / width, span / (CELL_ASPECT * height))
     xr, y0 = k * width / 2, -0.03 * rmax
-    ring = np.radians(np.linspace(-90.0, 90.0, 2 * width + 1))
+    ring = np.radians(np.linspace(-90.0, 90.0, 61))  # 3° chords: round enough, cheap
     with PLOT_LOCK:
         plt.clf()
         plt.theme("clear")
