@@ -129,6 +129,8 @@ def polar_plot(
     span = rmax * 1.08
     k = max(2 * span / width, span / (CELL_ASPECT * height))
     xr, y0 = k * width / 2, -0.03 * rmax
+    # without colours the guides use a dot marker, so they never read as a curve
+    guide_marker = "·" if color == "none" else "braille"
     ring = np.radians(np.linspace(-90.0, 90.0, 61))  # 3° chords: round enough, cheap
     with PLOT_LOCK:
         plt.clf()
@@ -141,8 +143,8 @@ def polar_plot(
         plt.ylim(y0, y0 + k * CELL_ASPECT * height)
         for g in guides:
             plt.plot((g * np.sin(ring)).tolist(), (g * np.cos(ring)).tolist(),
-                     marker="braille", color=GUIDE_COLOR)
-        plt.plot([-rmax, rmax], [0.0, 0.0], marker="braille", color=GUIDE_COLOR)
+                     marker=guide_marker, color=GUIDE_COLOR)
+        plt.plot([-rmax, rmax], [0.0, 0.0], marker=guide_marker, color=GUIDE_COLOR)
         if theta_i_deg is not None:
             s, c = sincos_deg(float(theta_i_deg))
             plt.plot([0.0, -float(s) * rmax], [0.0, float(c) * rmax], marker="braille",
@@ -178,8 +180,8 @@ def section_view(
     text, caption = polar_plot(curves, width, height - 1, log=log, color=color,
                                theta_i_deg=theta_i_deg if plane == "incidence" else None)
     what = "f·cosθr" if cosine else "f"
-    sides = "φ=180°|0°" if plane == "incidence" else "φ=270°|90°"
-    title = f"{model.name}  θi={theta_i_deg:g}°  {plane} plane {sides}  {what}: {caption}"
+    sides = "φ 180°|0°" if plane == "incidence" else "φ 270°|90°"
+    title = f"{model.name}  θi={theta_i_deg:g}°  {plane} ({sides})  {what}  {caption}"
     body = Text(text) if color == "none" else Text.from_ansi(text)
     body.no_wrap = True
     return Group(Text(title[:width], no_wrap=True), body)
