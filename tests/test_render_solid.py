@@ -52,3 +52,13 @@ def test_deterministic():
     a = solid_image(m, v, 60, 50, 40)[0]
     b = solid_image(m, v, 60, 50, 40)[0]
     assert (a == b).all()
+
+
+def test_log_of_constant_brdf_is_the_same_hemisphere():
+    # a constant f sits at the top decade (radius 1) in log mode, and the picture is fitted to
+    # its radius in both modes: the two pictures coincide
+    m = MODELS["lambert"]
+    v = m.resolve({"kd": 0.3})
+    lin = solid_image(m, v, 20, 40, 30)[0]
+    log = solid_image(m, v, 20, 40, 30, log=True)[0]
+    assert (lin == log).all()

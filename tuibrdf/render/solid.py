@@ -9,6 +9,8 @@
 - Z-buffer: the nearest sample per pixel wins (ties broken by sample order: deterministic).
 - Shading: Lambert-like, ``0.2 + 0.8·|n·l|`` with ``n`` the triangle normal of the *deformed*
   surface and ``l`` a light over the camera's left shoulder, quantised through the colour map.
+- Log (``log=True``): the radius is the decade position ``1 + log10(f / max) / 3`` clipped at 0,
+  as in the polar plots.
 - Axes hint: the surface's outline (circle of radius ``max|p|`` in z = 0) and the normal N in
   blue-grey, the incident direction in cyan, also depth-tested.
 """
@@ -24,8 +26,9 @@ from rich.console import Group
 from ..core.evaluate import evaluate_resolved
 from ..core.frame import incident
 from ..core.params import Model
-from .colormap import fmt_value, luminance, palette, quantise
+from .colormap import LOG_DECADES, fmt_value, luminance, palette, quantise
 from .halfblock import TRANSPARENT, HalfBlockImage
+from .polar import radius
 from .views import RING_RGB, title_line
 
 LEVEL = 4
@@ -71,6 +74,7 @@ def solid_image(
     *,
     cmap: str = "grey",
     cosine: bool = False,
+    log: bool = False,
     azimuth_deg: float = -60.0,
     elevation_deg: float = 25.0,
 ) -> tuple[np.ndarray, np.ndarray, float]:
@@ -82,15 +86,20 @@ def solid_image(
         f = luminance(f)
     if cosine:
         f = f * dirs[:, 2]
-    pts = f[:, None] * dirs
     rmax = float(np.max(f))
-    scale_r = rmax if rmax > 0 else 1.0  # an all-zero BRDF is drawn as the guides alone
+    if log:  # radius = decade position in [0, 1], as in the polar plots
+        f = radius(f, rmax if rmax > 0 else 1.0, True, LOG_DECADES)
+    pts = f[:, None] * dirs
+    # an all-zero BRDF is drawn as the guides alone; log radii lie in [0, 1]
+    scale_r = 1.0 if (log or rmax <= 0) else rmax
     # triangle normals of the deformed surface, from the samples at the face corners
     fv = np.asarray(evaluate_resolved(model, values, wi, corner_dirs), dtype=float)
     if fv.ndim == 3:
         fv = luminance(fv)
     if cosine:
         fv = fv * corner_dirs[..., 2]
+    if log:
+        fv = radius(fv, rmax if rmax > 0 else 1.0, True, LOG_DECADES)
     corners = corner_dirs * fv[..., None]
     n = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     nn = np.linalg.norm(n, axis=1)
@@ -140,14 +149,17 @@ def solid_view(
     color: str = "truecolor",
     cmap: str = "grey",
     cosine: bool = False,
+    log: bool = False,
     azimuth_deg: float = -60.0,
     elevation_deg: float = 25.0,
 ) -> Group:
     """Title line and the solid as half blocks (``height − 1`` rows)."""
     index, pal, rmax = solid_image(model, values, theta_i_deg, width, 2 * (height - 1),
-                                   cmap=cmap, cosine=cosine, azimuth_deg=azimuth_deg,
+                                   cmap=cmap, cosine=cosine, log=log, azimuth_deg=azimuth_deg,
                                    elevation_deg=elevation_deg)
     what = "f·cosθr·wo" if cosine else "f·wo"
+    if log:
+        what += f" (log, {LOG_DECADES:g} decades)"
     title = title_line(model, theta_i_deg, f"solid {what}, max {fmt_value(rmax)}  "
                        f"az {azimuth_deg:g}° el {elevation_deg:g}°", width)
     return Group(title, HalfBlockImage(index, pal, color_system=color))

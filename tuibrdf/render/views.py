@@ -98,7 +98,8 @@ def render_view(
         from .solid import solid_view
 
         return solid_view(model, values, theta_i, width, height, color=color, cmap=cmap,
-                          cosine=cosine, azimuth_deg=azimuth_deg, elevation_deg=elevation_deg)
+                          cosine=cosine, log=log, azimuth_deg=azimuth_deg,
+                          elevation_deg=elevation_deg)
     from .albedo_plot import albedo_view
 
     return albedo_view(model, values, theta_i, width, height, color=color)
