@@ -20,7 +20,15 @@ from rich.text import Text
 from ..core.params import Model
 from ..core.quadrature import albedo_curve_resolved, albedo_resolved
 from .colormap import fmt_value
-from .polar import GUIDE_COLOR, INCIDENT_COLOR, PLOT_LOCK, curve_color
+from .polar import (
+    GUIDE_COLOR,
+    INCIDENT_COLOR,
+    PLOT_LOCK,
+    channel_curves,
+    curve_color,
+    finish_plot,
+    plot_body,
+)
 
 LEVEL = 5  # ≈ 1 ms per incidence angle; level 6 costs 8× more for < 1 % change on smooth lobes
 STEP_DEG = 3.0
@@ -70,11 +78,7 @@ def albedo_plot(
         for j, (label, a) in enumerate(curves):
             plt.plot(thetas.tolist(), np.asarray(a, dtype=float).tolist(), marker="braille",
                      color=curve_color(label, j), label=label if len(curves) > 1 else None)
-        text = plt.build()
-        plt.clf()
-    if text.endswith("\n"):  # plotext ends its last line with a newline
-        text = text[:-1]
-    return plt.uncolorize(text) if color == "none" else text
+        return finish_plot(color)
 
 
 def albedo_view(
@@ -89,16 +93,11 @@ def albedo_view(
     """Title (a at the current θi, flagged when > 1) and the a(θi) plot."""
     thetas, a = albedo_curve(model, values)
     now = np.atleast_1d(np.asarray(albedo_resolved(model, values, theta_i_deg, level=LEVEL)))
-    if a.ndim == 2:
-        curves = [(ch, a[:, k]) for k, ch in enumerate("RGB")]
-    else:
-        curves = [(model.name, a)]
+    curves = channel_curves(model.name, a)
     over = bool(np.max(a) > 1.0 + ENERGY_TOL)
     flag = f"  a>1 (max {fmt_value(float(np.max(a)))}): not energy-conserving" if over else ""
     now_s = ",".join(fmt_value(float(x)) for x in now)
     title = f"{model.name}  a(θi={theta_i_deg:g}°) = {now_s}{flag}"
     text = albedo_plot(thetas, curves, width, height - 1, theta_i_deg=theta_i_deg, color=color)
-    body = Text(text) if color == "none" else Text.from_ansi(text)
-    body.no_wrap = True
     head = Text(title[:width], no_wrap=True, style="bold red" if over and color != "none" else "")
-    return Group(head, body)
+    return Group(head, plot_body(text, color))
