@@ -132,3 +132,32 @@ def test_off_specular_peak_refined_below_pixel_size():
     assert info.peak_value == pytest.approx(ref.value, rel=1e-5)
     assert info.peak_theta_deg == pytest.approx(ref.theta_deg, abs=0.05)
     assert info.peak_theta_deg > 61  # off-specular: beyond the mirror direction
+
+
+@pytest.mark.parametrize("n_pixels", [1201, 5957, 13485])
+def test_mesh_level_not_finer_than_the_picture(n_pixels):
+    # about one vertex per 4 pixels: the chosen level has enough vertices, the one below not
+    from tuibrdf.core.mesh import hemisphere
+    from tuibrdf.render.hemimap import mesh_level_for
+
+    lv = mesh_level_for(n_pixels)
+    assert len(hemisphere(lv).vertices) >= n_pixels / 4
+    assert len(hemisphere(lv - 1).vertices) < n_pixels / 4
+
+
+def test_horizon_ring_outside_and_touching_the_disc():
+    from tuibrdf.render.views import ring_mask
+
+    g = geometry(50, 40)
+    ring = ring_mask(50, 40)
+    assert not (ring & g.inside).any()
+    rows, cols = np.nonzero(ring)
+    # every ring pixel has an inside pixel among its 8 neighbours
+    pad = np.pad(g.inside, 1)
+    near = np.zeros_like(ring)
+    for dy in (-1, 0, 1):
+        for dx in (-1, 0, 1):
+            near |= pad[1 + dy : 41 + dy, 1 + dx : 51 + dx]
+    assert near[rows, cols].all()
+    # and it closes the disc: every outside pixel touching the disc is a ring pixel
+    assert (ring == (near & ~g.inside)).all()
