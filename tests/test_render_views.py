@@ -10,7 +10,7 @@ from tuibrdf.core.models import MODELS
 from tuibrdf.render.views import CMAPS, VIEWS, render_view
 
 MODELS_NO_FILE = [n for n, m in MODELS.items() if all(p.kind != "path" for p in m.params)]
-DONE_VIEWS = [v for v in VIEWS if v in ("map", "incidence", "perpendicular")]
+DONE_VIEWS = VIEWS
 
 
 def to_text(renderable, system=None, width=200) -> str:
@@ -95,3 +95,15 @@ def test_cosine_title():
     out = to_text(render_view("map", m, m.resolve({}), 10, 60, 14, color="none", cosine=True))
     assert "f·cosθr" in out.split("\n")[0]
     assert np.isclose(float(re.search(r"peak ([0-9.]+)", out).group(1)), 0.8 / np.pi, rtol=1e-2)
+
+
+@pytest.mark.parametrize("size", [(12, 6), (300, 100)])
+@pytest.mark.parametrize("view", VIEWS)
+def test_output_fits_the_requested_cells(view, size):
+    from rich.text import Text
+
+    w, h = size
+    out = to_text(render_view(view, "gltf", MODELS["gltf"].resolve({}), 45, w, h, color="256"),
+                  "256", width=w)
+    lines = Text.from_ansi(out).plain.rstrip("\n").split("\n")
+    assert len(lines) <= h and max(len(s) for s in lines) <= w

@@ -71,9 +71,7 @@ def section_curves(
     f = np.asarray(evaluate_resolved(model, values, incident(theta_i_deg), wo), dtype=float)
     if cosine:
         f = f * (wo[:, 2][:, None] if f.ndim == 2 else wo[:, 2])
-    if f.ndim == 2:
-        return [(ch, thetas, f[:, k]) for k, ch in enumerate("RGB")]
-    return [(model.name, thetas, f)]
+    return [(label, thetas, v) for label, v in channel_curves(model.name, f)]
 
 
 def curve_color(label: str, j: int) -> str:
@@ -129,7 +127,9 @@ def polar_plot(
     span = rmax * 1.08
     k = max(2 * span / width, span / (CELL_ASPECT * height))
     xr, y0 = k * width / 2, -0.03 * rmax
-    ring = np.radians(np.linspace(-90.0, 90.0, 2 * width + 1))
+    # without colours the guides use a dot marker, so they never read as a curve
+    guide_marker = "·" if color == "none" else "braille"
+    ring = np.radians(np.linspace(-90.0, 90.0, 61))  # 3° chords: round enough, cheap
     with PLOT_LOCK:
         plt.clf()
         plt.theme("clear")
@@ -141,8 +141,8 @@ def polar_plot(
         plt.ylim(y0, y0 + k * CELL_ASPECT * height)
         for g in guides:
             plt.plot((g * np.sin(ring)).tolist(), (g * np.cos(ring)).tolist(),
-                     marker="braille", color=GUIDE_COLOR)
-        plt.plot([-rmax, rmax], [0.0, 0.0], marker="braille", color=GUIDE_COLOR)
+                     marker=guide_marker, color=GUIDE_COLOR)
+        plt.plot([-rmax, rmax], [0.0, 0.0], marker=guide_marker, color=GUIDE_COLOR)
         if theta_i_deg is not None:
             s, c = sincos_deg(float(theta_i_deg))
             plt.plot([0.0, -float(s) * rmax], [0.0, float(c) * rmax], marker="braille",
@@ -152,13 +152,32 @@ def polar_plot(
             s, c = sincos_deg(np.asarray(thetas, dtype=float))
             plt.plot((r * s).tolist(), (r * c).tolist(), marker="braille",
                      color=curve_color(label, j), label=label if len(curves) > 1 else None)
-        text = plt.build()
-        plt.clf()
+        text = finish_plot(color)
+    return text, caption
+
+
+def finish_plot(color: str) -> str:
+    """``plt.build()`` then ``plt.clf()`` (call under :data:`PLOT_LOCK`): the figure's text
+    without plotext's final newline, without colours when ``color == "none"``."""
+    text = plt.build()
+    plt.clf()
     if text.endswith("\n"):  # plotext ends its last line with a newline
         text = text[:-1]
-    if color == "none":
-        text = plt.uncolorize(text)
-    return text, caption
+    return plt.uncolorize(text) if color == "none" else text
+
+
+def plot_body(text: str, color: str) -> Text:
+    """A built plot as a non-wrapping Rich ``Text`` (ANSI colours parsed unless plain)."""
+    body = Text(text) if color == "none" else Text.from_ansi(text)
+    body.no_wrap = True
+    return body
+
+
+def channel_curves(label: str, values: np.ndarray) -> list[tuple[str, np.ndarray]]:
+    """``[(label, v)]`` for ``(n,)`` values, ``[("R", r), ("G", g), ("B", b)]`` for ``(n, 3)``."""
+    if values.ndim == 2:
+        return [(ch, values[:, k]) for k, ch in enumerate("RGB")]
+    return [(label, values)]
 
 
 def section_view(
@@ -178,8 +197,6 @@ def section_view(
     text, caption = polar_plot(curves, width, height - 1, log=log, color=color,
                                theta_i_deg=theta_i_deg if plane == "incidence" else None)
     what = "f·cosθr" if cosine else "f"
-    sides = "φ=180°|0°" if plane == "incidence" else "φ=270°|90°"
-    title = f"{model.name}  θi={theta_i_deg:g}°  {plane} plane {sides}  {what}: {caption}"
-    body = Text(text) if color == "none" else Text.from_ansi(text)
-    body.no_wrap = True
-    return Group(Text(title[:width], no_wrap=True), body)
+    sides = "φ 180°|0°" if plane == "incidence" else "φ 270°|90°"
+    title = f"{model.name}  θi={theta_i_deg:g}°  {plane} ({sides})  {what}  {caption}"
+    return Group(Text(title[:width], no_wrap=True), plot_body(text, color))

@@ -30,6 +30,7 @@ import numpy as np
 from rich.console import Group, RenderableType
 from rich.text import Text
 
+from ..core.models import get_model
 from ..core.params import Model
 from .colormap import CMAPS, DEFAULT_LEVELS, check_cmap, colorbar, colorize, fmt_value
 from .halfblock import COLOR_SYSTEMS, HalfBlockImage, Mark
@@ -60,7 +61,7 @@ def check_common(view: str, width: int, height: int, color: str, cmap: str) -> N
 
 def render_view(
     view: str,
-    model: Model,
+    model: Model | str,
     values: dict[str, Any],
     theta_i_deg: float,
     width: int,
@@ -81,6 +82,7 @@ def render_view(
     ``values`` are resolved (``model.resolve``); ``theta_i_deg`` in [0, 90].  Raises
     ``ValueError`` for an unknown view, colour system or map, or a size below 12×6.
     """
+    model = get_model(model)  # a registry name is accepted too
     width, height = int(width), int(height)
     check_common(view, width, height, color, cmap)
     theta_i = float(theta_i_deg)
@@ -98,7 +100,8 @@ def render_view(
         from .solid import solid_view
 
         return solid_view(model, values, theta_i, width, height, color=color, cmap=cmap,
-                          cosine=cosine, azimuth_deg=azimuth_deg, elevation_deg=elevation_deg)
+                          cosine=cosine, log=log, azimuth_deg=azimuth_deg,
+                          elevation_deg=elevation_deg)
     from .albedo_plot import albedo_view
 
     return albedo_view(model, values, theta_i, width, height, color=color)

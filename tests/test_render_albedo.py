@@ -1,0 +1,46 @@
+"""Albedo curve view (tuibrdf/render/albedo_plot.py)."""
+
+import numpy as np
+import pytest
+from rich.console import Console
+
+from tuibrdf.core.models import MODELS
+from tuibrdf.render import albedo_plot
+from tuibrdf.render.albedo_plot import albedo_curve, albedo_view
+
+
+def text_of(r) -> str:
+    con = Console(width=120, color_system=None)
+    with con.capture() as cap:
+        con.print(r)
+    return cap.get()
+
+
+def test_lambert_curve_is_kd():
+    # ∫ kd/π cos θ dω = kd at every incidence (closed form); mesh quadrature to 1e-3
+    thetas, a = albedo_curve(MODELS["lambert"], MODELS["lambert"].resolve({"kd": 0.6}))
+    assert thetas[0] == 0 and thetas[-1] == 90
+    assert a == pytest.approx(0.6, rel=1e-3)
+
+
+def test_view_title_and_no_flag_for_lambert():
+    m = MODELS["lambert"]
+    out = text_of(albedo_view(m, m.resolve({"kd": 0.6}), 30, 60, 12, color="none"))
+    first = out.split("\n")[0]
+    assert first.startswith("lambert  a(θi=30°) = 0.6") and "a>1" not in first
+    assert "\x1b" not in out and len(out.rstrip("\n").split("\n")) == 12
+
+
+def test_flag_when_above_one(monkeypatch):
+    # a hand-made curve crossing 1 must be flagged with its maximum
+    m = MODELS["lambert"]
+    fake = (np.array([0.0, 45.0, 90.0]), np.array([0.9, 1.0, 1.2]))
+    monkeypatch.setattr(albedo_plot, "albedo_curve", lambda model, values: fake)
+    out = text_of(albedo_view(m, m.resolve({}), 10, 70, 10, color="none"))
+    assert "a>1 (max 1.2): not energy-conserving" in out.split("\n")[0]
+
+
+def test_rgb_curves():
+    m = MODELS["gltf"]
+    thetas, a = albedo_curve(m, m.resolve({}))
+    assert a.shape == (len(thetas), 3)
