@@ -39,8 +39,6 @@ ADAPTIVE_MAX_LEVEL = 10
 #: second order, so the error is then about a third of it.
 RESOLVED_RTOL = 3e-3
 METHODS = ("auto", "uniform", "adaptive")
-#: "auto" tries this many finer uniform levels before it goes adaptive.
-AUTO_EXTRA_LEVELS = 1
 #: Level of the all-pairs reciprocity check (341 directions, 116,281 pairs).
 RECIPROCITY_LEVEL = 3
 
@@ -85,23 +83,25 @@ def _scalar(x: np.ndarray) -> float | np.ndarray:
 # albedo
 
 
-def _uniform(model: Model, values, wi: np.ndarray, level: int) -> tuple[np.ndarray, bool]:
-    """Vertex rule at ``level`` and whether the integrand looks resolved there.
+def _uniform(model: Model, values, wi: np.ndarray, level: int) -> tuple[np.ndarray, float]:
+    """Vertex rule at ``level`` and how far from resolved the integrand looks there.
 
-    Resolved means: the level below (its vertices are a prefix, so its values are already
-    computed) agrees within :data:`RESOLVED_RTOL`, and no vertex misses the lobe's top by more
-    than 2× (``f·cos`` at the mirror direction, where a sharp lobe can hide between vertices).
+    The second value is ``|a_L − a_(L−1)| / (RESOLVED_RTOL·|a_L|)`` (the level below is a prefix
+    of this one, so its values are already computed): ≤ 1 means resolved; since the rule is
+    second order, one more level divides it by about 4.  It is ``inf`` when a vertex misses the
+    lobe's top by more than 2× (``f·cos`` at the mirror direction, where a sharp lobe can hide
+    between vertices while both levels agree on missing it).
     """
     mesh = hemisphere(level)
     g = _radiance(model, values, wi, mesh.vertices)
     a = mesh.integrate(g)
     coarse = hemisphere(level - 1)
     a0 = coarse.integrate(g[: len(coarse.vertices)])
-    ok = bool(np.all(np.abs(a - a0) <= RESOLVED_RTOL * np.abs(a) + 1e-12))
-    s = mirror(wi)[None, :]
-    top = _radiance(model, values, wi, s)[0]
-    ok &= bool(np.all(top <= 2.0 * g.max(axis=0)))
-    return a, ok
+    bad = float(np.max(np.abs(a - a0) / (RESOLVED_RTOL * np.abs(a) + 1e-12)))
+    top = _radiance(model, values, wi, mirror(wi)[None, :])[0]
+    if np.any(top > 2.0 * g.max(axis=0)):
+        bad = np.inf
+    return a, bad
 
 
 def albedo_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
@@ -113,7 +113,8 @@ def albedo_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float,
     ``method="uniform"``: the vertex rule of ``hemisphere(level)``.  ``"adaptive"``:
     :func:`refine_adaptive` at ``tol`` from level 2 down to :data:`ADAPTIVE_MAX_LEVEL`,
     focused on the mirror direction.  ``"auto"`` (default): uniform at ``level``, or one level
-    finer, if the lobe is resolved there (see :func:`_uniform`), else adaptive
+    finer when that should suffice, if the lobe is resolved there (see :func:`_uniform`), else
+    adaptive
     (``docs/accuracy.md`` has the measurements behind this).
     """
     if method not in METHODS:
@@ -122,9 +123,12 @@ def albedo_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float,
     if method == "uniform":
         return _scalar(_uniform(model, values, wi, level)[0])
     if method == "auto":
-        for lv in range(level, min(level + AUTO_EXTRA_LEVELS, MAX_LEVEL) + 1):
-            a, ok = _uniform(model, values, wi, lv)
-            if ok:
+        a, bad = _uniform(model, values, wi, level)
+        if bad <= 1.0:
+            return _scalar(a)
+        if bad <= 4.0 and level < MAX_LEVEL:  # one more level should do (second order)
+            a, bad = _uniform(model, values, wi, level + 1)
+            if bad <= 1.0:
                 return _scalar(a)
     ad = refine_adaptive(lambda wo: _radiance(model, values, wi, wo), tol,
                          max_level=ADAPTIVE_MAX_LEVEL, base_level=2, focus=mirror(wi))
