@@ -11,8 +11,10 @@ variants: exact Fresnel vs Schlick, Oren-Nayar full vs simple, float64 vs float3
 References: smooth cases use Richardson extrapolation of uniform levels 8 and 9 (the rule is
 second order, so ``(4·a9 − a8)/3``; the ± printed is a9's own error estimate |a9 − a8|/3, a
 generous bound); sharp lobes use adaptive refinement at tol 1e-8 down to level 13 (0.008°
-edges), ± = its change from level 12.  Times are best of 2-3 runs with the meshes prebuilt;
-"auto" is what ``albedo()`` does by default.  Numbers depend on the machine; errors do not.
+edges; 14 at θi = 89°), ± = its change from one level less.  Times are best of 2-3 runs
+with the meshes prebuilt; "auto" is what ``albedo()`` does by default; adaptive rows stop at
+the quadrature's max level (10, up to 13 at grazing incidence).  Numbers depend on the
+machine; errors do not.
 """
 
 from __future__ import annotations
@@ -26,7 +28,13 @@ from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.frame import from_degrees, incident, mirror
 from tuibrdf.core.mesh import hemisphere, interpolate, refine_adaptive
 from tuibrdf.core.models import get_model
-from tuibrdf.core.quadrature import DEFAULT_LEVEL, DEFAULT_TOL, albedo_resolved, peak_resolved
+from tuibrdf.core.quadrature import (
+    DEFAULT_LEVEL,
+    DEFAULT_TOL,
+    adaptive_max_level,
+    albedo_resolved,
+    peak_resolved,
+)
 
 FAMILIES = [
     ("lambert", {}),
@@ -68,7 +76,8 @@ def uniform_albedo(model, values, wi, level):
     return float(m.integrate(radiance(model, values, wi, m.vertices))), len(m.vertices)
 
 
-def adaptive_albedo(model, values, wi, tol, max_level=10):
+def adaptive_albedo(model, values, wi, tol, max_level=None):
+    max_level = max_level or adaptive_max_level(wi[2])
     a = refine_adaptive(lambda w: radiance(model, values, wi, w), tol, max_level=max_level,
                         focus=mirror(wi))
     return float(a.integrate()), a.evaluations
@@ -77,9 +86,10 @@ def adaptive_albedo(model, values, wi, tol, max_level=10):
 def reference(model, values, wi, sharp):
     """``(reference, uncertainty)``: see the module docstring."""
     if sharp:
-        a12 = adaptive_albedo(model, values, wi, 1e-8, max_level=12)[0]
-        a13 = adaptive_albedo(model, values, wi, 1e-8, max_level=13)[0]
-        return a13, abs(a13 - a12)
+        hi = max(13, adaptive_max_level(wi[2]) + 2)
+        a_lo = adaptive_albedo(model, values, wi, 1e-8, max_level=hi - 1)[0]
+        a_hi = adaptive_albedo(model, values, wi, 1e-8, max_level=hi)[0]
+        return a_hi, abs(a_hi - a_lo)
     a8 = uniform_albedo(model, values, wi, 8)[0]
     a9 = uniform_albedo(model, values, wi, 9)[0]
     return (4 * a9 - a8) / 3, abs(a9 - a8) / 3

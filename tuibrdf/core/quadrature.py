@@ -39,6 +39,9 @@ ADAPTIVE_MAX_LEVEL = 10
 #: second order, so the error is then about a third of it.
 RESOLVED_RTOL = 3e-3
 METHODS = ("auto", "uniform", "adaptive")
+#: Below this cos θi (85°) adaptive refinement may go deeper (see adaptive_max_level).
+GRAZING_COS = float(np.cos(np.radians(85.0)))
+GRAZING_EXTRA_LEVELS = 3
 #: Level of the all-pairs reciprocity check (341 directions, 116,281 pairs).
 RECIPROCITY_LEVEL = 3
 
@@ -104,6 +107,19 @@ def _uniform(model: Model, values, wi: np.ndarray, level: int) -> tuple[np.ndarr
     return a, bad
 
 
+def adaptive_max_level(cos_i: float) -> int:
+    """:data:`ADAPTIVE_MAX_LEVEL`, plus up to 3 levels at grazing incidence.
+
+    A microfacet lobe reflected at θi is squeezed across the plane of incidence by about
+    cos θi (a tilt δ of H moves wo by ~2δ·cos θi sideways): at θi = 89° a lobe of width α =
+    0.005 is 0.01° thin, below the 0.06° edges of level 10.  One level per halving of cos θi
+    below cos 85°, at most 3 (measured in docs/accuracy.md).
+    """
+    ratio = GRAZING_COS / max(float(cos_i), 1e-300)
+    extra = int(np.clip(np.round(np.log2(ratio)), 0, GRAZING_EXTRA_LEVELS)) if ratio > 1 else 0
+    return ADAPTIVE_MAX_LEVEL + extra
+
+
 def albedo_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
                     level: int = DEFAULT_LEVEL, tol: float = DEFAULT_TOL,
                     method: str = "auto") -> float | np.ndarray:
@@ -112,7 +128,8 @@ def albedo_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float,
 
     ``method="uniform"``: the vertex rule of ``hemisphere(level)``.  ``"adaptive"``:
     :func:`refine_adaptive` at ``tol`` from level 2 down to :data:`ADAPTIVE_MAX_LEVEL`,
-    focused on the mirror direction.  ``"auto"`` (default): uniform at ``level``, or one level
+    focused on the mirror direction (deeper at grazing incidence: :func:`adaptive_max_level`).
+    ``"auto"`` (default): uniform at ``level``, or one level
     finer when that should suffice, if the lobe is resolved there (see :func:`_uniform`), else
     adaptive
     (``docs/accuracy.md`` has the measurements behind this).
@@ -131,7 +148,7 @@ def albedo_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float,
             if bad <= 1.0:
                 return _scalar(a)
     ad = refine_adaptive(lambda wo: _radiance(model, values, wi, wo), tol,
-                         max_level=ADAPTIVE_MAX_LEVEL, base_level=2, focus=mirror(wi))
+                         max_level=adaptive_max_level(wi[2]), base_level=2, focus=mirror(wi))
     return _scalar(ad.integrate())
 
 
