@@ -7,11 +7,13 @@ One module per subcommand, each exposing ``add_args(parser)`` and ``run(args) ->
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
 from ..core.params import unknown_message
 from . import albedo as _albedo
 from . import eval as _eval
+from . import fit as _fit
 from . import models as _models
 from . import render as _render
 from .common import Parser, UsageError
@@ -22,6 +24,7 @@ SUBCOMMANDS = [
     ("eval", _eval, "print BRDF values for given directions"),
     ("albedo", _albedo, "print the directional albedo a(θi)"),
     ("render", _render, "print a picture of the BRDF (deterministic, for docs and tests)"),
+    ("fit", _fit, "fit an analytic model to a measured MERL file"),
 ]
 
 
@@ -57,3 +60,13 @@ def main(argv: list[str] | None = None) -> int:
     except (UsageError, ValueError) as e:
         print(f"tuibrdf: error: {e}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # `tuibrdf models | head`: the reader left; no traceback
+        return _broken_pipe()
+
+
+def _broken_pipe() -> int:
+    # Python flushes stdout again at exit and would print a second BrokenPipeError: point
+    # stdout at /dev/null first (the recipe in the `signal` module's documentation)
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    return 141  # 128 + SIGPIPE, what a C tool killed by the signal reports

@@ -127,4 +127,8 @@ class Geometry:
         self.h, self.h_valid = half_vector(wi, wo)
         self.cos_h = cos_theta(self.h)
         self.sin2_h = sin2_theta(self.h)
-        self.cos_d = np.where(self.h_valid, np.clip(np.sum(self.h * wi, axis=-1), 0.0, 1.0), 0.0)
+        # H·wi = H·wo = |wi + wo|/2 for unit vectors: this form is symmetric in (wi, wo) to the
+        # last bit (so every model using it stays reciprocal) and free of cancellation when wi
+        # and wo are nearly opposite; 0 where H is undefined (wi = −wo)
+        s = np.asarray(wi, dtype=float) + np.asarray(wo, dtype=float)
+        self.cos_d = np.minimum(0.5 * np.sqrt(np.sum(s * s, axis=-1)), 1.0)

@@ -36,8 +36,11 @@ def fresnel_exact(cos_psi: np.ndarray, f0: float) -> np.ndarray:
         return np.zeros_like(c)  # n = 1: no interface, no reflection (0/0 at grazing)
     if f0 >= 1.0:
         return np.ones_like(c)  # n = ∞: the index diverges; the limit is total reflection
-    n2 = index_from_f0(f0) ** 2
-    g = safe_sqrt(n2 - 1.0 + c * c)  # n > 1 so g ≥ √(n²−1) > 0: denominators below are > 0
+    r = np.sqrt(f0)
+    n2 = ((1.0 + r) / (1.0 - r)) ** 2
+    # n² − 1 = 4r/(1 − r)², written without the cancellation of n² − 1 (for f0 ≲ 1e-32, n²
+    # rounds to 1 and g would be 0 at grazing: 0/0); g > 0 for f0 > 0, so c + g > 0 below
+    g = safe_sqrt(4.0 * r / (1.0 - r) ** 2 + c * c)
     rs = (c - g) / (c + g)
     rp = (n2 * c - g) / (n2 * c + g)
     return 0.5 * (rs * rs + rp * rp)

@@ -5,6 +5,7 @@ One module per model family; each opens with its formula, its source and a param
 
 from __future__ import annotations
 
+from ..merl import MERL
 from ..params import Model, unknown_message
 from . import diffuse, microfacet_models, phong
 
@@ -27,6 +28,7 @@ register(
     microfacet_models.GLTF,
     diffuse.DISNEY_DIFFUSE,
     microfacet_models.UE4,
+    MERL,
 )
 
 

@@ -1,0 +1,22 @@
+"""Generated documentation matches the declarations it is generated from."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def test_models_doc_is_current():
+    r = subprocess.run([sys.executable, "scripts/gen_docs.py", "--check"], cwd=ROOT,
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+
+
+def test_readme_opens_with_the_two_commands():
+    lines = [ln for ln in (ROOT / "README.md").read_text().splitlines() if ln.strip()]
+    code = [ln for ln in lines[:12] if "pip install" in ln]
+    assert any("tuibrdf" in ln and "[test]" not in ln for ln in code)
+    assert any("[test]" in ln and "pytest" in ln for ln in code)
