@@ -42,6 +42,8 @@ import numpy as np
 
 #: Finest level :func:`hemisphere` builds (level 10 has ~5 million hemisphere vertices).
 MAX_LEVEL = 10
+#: Finest level :func:`refine_adaptive` may reach (it only builds what it refines).
+ADAPTIVE_MAX_LEVEL = 16
 
 
 def _readonly(*arrays: np.ndarray) -> None:
@@ -136,10 +138,10 @@ def sphere(level: int) -> tuple[np.ndarray, np.ndarray]:
     return v, f
 
 
-def _check_level(level, lowest: int) -> int:
-    if int(level) != level or not lowest <= level <= MAX_LEVEL:
+def _check_level(level, lowest: int, highest: int = MAX_LEVEL) -> int:
+    if int(level) != level or not lowest <= level <= highest:
         raise ValueError(f"mesh level = {level!r} is invalid: expected an integer in "
-                         f"[{lowest}, {MAX_LEVEL}]")
+                         f"[{lowest}, {highest}]")
     return int(level)
 
 
@@ -332,7 +334,7 @@ def refine_adaptive(
     may hide between vertices) are split down to ``max_level`` regardless.
     """
     _check_level(base_level, 1)
-    _check_level(max_level, base_level)
+    _check_level(max_level, base_level, ADAPTIVE_MAX_LEVEL)
     base = hemisphere(base_level)
     verts = [np.array(base.vertices)]
     vals = [np.asarray(f(base.vertices), dtype=float)]

@@ -22,7 +22,7 @@ import numpy as np
 
 from .evaluate import evaluate_resolved
 from .frame import incident, mirror, phi_of, theta_of
-from .mesh import hemisphere, refine_adaptive
+from .mesh import MAX_LEVEL, hemisphere, refine_adaptive
 from .models import get_model
 from .params import Model
 
@@ -30,10 +30,18 @@ from .params import Model
 #: sharp lobe (phong n = 200, ggx α = 0.1, cook-torrance m = 0.1) is within 1e-3 (measured in
 #: docs/accuracy.md).
 DEFAULT_LEVEL = 6
-#: Adaptive tolerance (relative midpoint-interpolation error) giving ~1e-3 on the hard lobes.
-DEFAULT_TOL = 1e-4
-#: Finest level adaptive refinement may reach (0.25° edges at level 8, 0.06° at 10).
+#: Adaptive tolerance (relative midpoint-interpolation error) for lobes the uniform mesh does
+#: not resolve: ≤ 5e-5 albedo error on phong n = 5000 and cook-torrance m = 0.01 at ≤ 85°.
+DEFAULT_TOL = 1e-5
+#: Finest level adaptive refinement reaches in the quadrature (0.06° edges at level 10).
 ADAPTIVE_MAX_LEVEL = 10
+#: "auto" keeps the uniform result when the next coarser level agrees within this (relative);
+#: second order, so the error is then about a third of it.
+RESOLVED_RTOL = 3e-3
+METHODS = ("auto", "uniform", "adaptive")
+#: Below this cos θi (85°) adaptive refinement may go deeper (see adaptive_max_level).
+GRAZING_COS = float(np.cos(np.radians(85.0)))
+GRAZING_EXTRA_LEVELS = 3
 #: Level of the all-pairs reciprocity check (341 directions, 116,281 pairs).
 RECIPROCITY_LEVEL = 3
 
@@ -78,47 +86,99 @@ def _scalar(x: np.ndarray) -> float | np.ndarray:
 # albedo
 
 
+def _uniform(model: Model, values, wi: np.ndarray, level: int) -> tuple[np.ndarray, float]:
+    """Vertex rule at ``level`` and how far from resolved the integrand looks there.
+
+    The second value is ``|a_L − a_(L−1)| / (RESOLVED_RTOL·|a_L|)`` (the level below is a prefix
+    of this one, so its values are already computed): ≤ 1 means resolved; since the rule is
+    second order, one more level divides it by about 4.  It is ``inf`` when a vertex misses the
+    lobe's top by more than 2× (``f·cos`` at the mirror direction, where a sharp lobe can hide
+    between vertices while both levels agree on missing it).
+    """
+    mesh = hemisphere(level)
+    g = _radiance(model, values, wi, mesh.vertices)
+    a = mesh.integrate(g)
+    coarse = hemisphere(level - 1)
+    a0 = coarse.integrate(g[: len(coarse.vertices)])
+    bad = float(np.max(np.abs(a - a0) / (RESOLVED_RTOL * np.abs(a) + 1e-12)))
+    top = _radiance(model, values, wi, mirror(wi)[None, :])[0]
+    if np.any(top > 2.0 * g.max(axis=0)):
+        bad = np.inf
+    return a, bad
+
+
+def adaptive_max_level(cos_i: float) -> int:
+    """:data:`ADAPTIVE_MAX_LEVEL`, plus up to 3 levels at grazing incidence.
+
+    A microfacet lobe reflected at θi is squeezed across the plane of incidence by about
+    cos θi (a tilt δ of H moves wo by ~2δ·cos θi sideways): at θi = 89° a lobe of width α =
+    0.005 is 0.01° thin, below the 0.06° edges of level 10.  One level per halving of cos θi
+    below cos 85°, at most 3 (measured in docs/accuracy.md).
+    """
+    ratio = GRAZING_COS / max(float(cos_i), 1e-300)
+    extra = int(np.clip(np.round(np.log2(ratio)), 0, GRAZING_EXTRA_LEVELS)) if ratio > 1 else 0
+    return ADAPTIVE_MAX_LEVEL + extra
+
+
 def albedo_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
-                    level: int = DEFAULT_LEVEL, tol: float | None = None
-                    ) -> float | np.ndarray:
+                    level: int = DEFAULT_LEVEL, tol: float = DEFAULT_TOL,
+                    method: str = "auto") -> float | np.ndarray:
     """Directional albedo ``∫ f cos θo dω`` at incidence ``theta_i_deg``: a float, or ``(3,)``
-    for an RGB model.  ``tol`` switches to adaptive refinement (from ``level`` if it is ≤ 3,
-    else from level 2) focused on the mirror direction."""
+    for an RGB model.
+
+    ``method="uniform"``: the vertex rule of ``hemisphere(level)``.  ``"adaptive"``:
+    :func:`refine_adaptive` at ``tol`` from level 2 down to :data:`ADAPTIVE_MAX_LEVEL`,
+    focused on the mirror direction (deeper at grazing incidence: :func:`adaptive_max_level`).
+    ``"auto"`` (default): uniform at ``level``, or one level
+    finer when that should suffice, if the lobe is resolved there (see :func:`_uniform`), else
+    adaptive
+    (``docs/accuracy.md`` has the measurements behind this).
+    """
+    if method not in METHODS:
+        raise ValueError(f"method = {method!r} is invalid: expected one of {', '.join(METHODS)}")
     wi = incident(_check_theta(theta_i_deg))
-    if tol is None:
-        mesh = hemisphere(level)
-        return _scalar(mesh.integrate(_radiance(model, values, wi, mesh.vertices)))
-    a = refine_adaptive(lambda wo: _radiance(model, values, wi, wo), tol,
-                        max_level=ADAPTIVE_MAX_LEVEL, base_level=2,
-                        focus=mirror(wi))
-    return _scalar(a.integrate())
+    if method == "uniform":
+        return _scalar(_uniform(model, values, wi, level)[0])
+    if method == "auto":
+        a, bad = _uniform(model, values, wi, level)
+        if bad <= 1.0:
+            return _scalar(a)
+        if bad <= 4.0 and level < MAX_LEVEL:  # one more level should do (second order)
+            a, bad = _uniform(model, values, wi, level + 1)
+            if bad <= 1.0:
+                return _scalar(a)
+    ad = refine_adaptive(lambda wo: _radiance(model, values, wi, wo), tol,
+                         max_level=adaptive_max_level(wi[2]), base_level=2, focus=mirror(wi))
+    return _scalar(ad.integrate())
 
 
 def albedo(model: str | Model, params: Mapping[str, Any] | None = None,
-           theta_i_deg: float = 0.0, *, level: int = DEFAULT_LEVEL, tol: float | None = None
-           ) -> float | np.ndarray:
+           theta_i_deg: float = 0.0, *, level: int = DEFAULT_LEVEL, tol: float = DEFAULT_TOL,
+           method: str = "auto") -> float | np.ndarray:
     """Directional albedo of ``model`` with user ``params`` (see :func:`albedo_resolved`)."""
     m, v = _resolve(model, params)
-    return albedo_resolved(m, v, theta_i_deg, level=level, tol=tol)
+    return albedo_resolved(m, v, theta_i_deg, level=level, tol=tol, method=method)
 
 
 def albedo_curve_resolved(model: Model, values: Mapping[str, Any],
                           thetas_deg: Sequence[float] | np.ndarray, *,
-                          level: int = DEFAULT_LEVEL, tol: float | None = None) -> np.ndarray:
+                          level: int = DEFAULT_LEVEL, tol: float = DEFAULT_TOL,
+                          method: str = "auto") -> np.ndarray:
     """Albedo at each incidence: ``(n,)``, or ``(n, 3)`` for an RGB model.
 
     Vectorised over the mesh; the loop is over incidence angles only (a ``(n, N)`` batch would
     hold every kernel temporary n times)."""
     thetas = np.atleast_1d(np.asarray(thetas_deg, dtype=float))
-    out = [albedo_resolved(model, values, t, level=level, tol=tol) for t in thetas]
+    out = [albedo_resolved(model, values, t, level=level, tol=tol, method=method)
+           for t in thetas]
     return np.array(out, dtype=float)
 
 
 def albedo_curve(model: str | Model, params: Mapping[str, Any] | None,
                  thetas_deg: Sequence[float] | np.ndarray, *, level: int = DEFAULT_LEVEL,
-                 tol: float | None = None) -> np.ndarray:
+                 tol: float = DEFAULT_TOL, method: str = "auto") -> np.ndarray:
     m, v = _resolve(model, params)
-    return albedo_curve_resolved(m, v, thetas_deg, level=level, tol=tol)
+    return albedo_curve_resolved(m, v, thetas_deg, level=level, tol=tol, method=method)
 
 
 # ---------------------------------------------------------------------------------------------
