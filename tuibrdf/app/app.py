@@ -19,6 +19,7 @@ from textual.containers import Container, Horizontal, Vertical, VerticalScroll
 from textual.screen import ModalScreen
 from textual.widgets import Footer, Input, Static
 
+from ..render import views
 from . import scene
 from .presets import PresetError, apply_loaded, load_preset, save_preset
 from .state import COMPARE_PRESETS, VIEW_TITLES, ViewerState
@@ -67,7 +68,7 @@ Screen { layout: vertical; }
 #main.compare-map { layout: grid; grid-size: 2 2; }
 #main.compare-solid { layout: horizontal; }
 #side { width: 1fr; height: 1fr; }
-#side Picture { height: 1fr; border: round $primary-darken-3; }
+#side Picture { height: 1fr; }
 Picture { border-title-color: $text-muted; }
 #main Picture { border: none; }
 #main.compare-map Picture, #main.compare-solid Picture { border: round $primary-darken-3; }
@@ -156,6 +157,7 @@ class BrdfApp(App):
         self.message = message
         self._dirty = False
         self._scheduled = False
+        self._stats_running = False
         self.rebuilds = 0  # how many heavy rebuilds ran (tests, benchmarks)
 
     # -- layout ------------------------------------------------------------------------------
@@ -176,8 +178,6 @@ class BrdfApp(App):
         yield Footer(compact=True)
 
     def on_mount(self) -> None:
-        self.query_one("#incidence").border_title = "plane of incidence"
-        self.query_one("#perpendicular").border_title = "perpendicular plane"
         self._layout()
         self._changed()
 
@@ -239,7 +239,7 @@ class BrdfApp(App):
         for i, panel in enumerate(self.query(ParamPanel)):
             if i < len(self.state.sides):
                 panel.show(self.state, i)
-        self._status(cached_only=True)
+        self._status()
         self.request_rebuild()
 
     def request_rebuild(self) -> None:
@@ -270,77 +270,98 @@ class BrdfApp(App):
         self.rebuilds += 1
         for pane in self.visible_panes():
             self._draw(pane)
-        self._status(cached_only=False)
+        if self.state.compare:
+            self.query_one("#legend", Static).update(self._legend())
 
     def _draw(self, pane: str) -> None:
         s, look = self.state, self.look
         pic = self.query_one(f"#{pane}", Picture)
         w, h = pic.size.width, pic.size.height
-        if w < 2 or h < 1:
+        if w < views.MIN_WIDTH or h < views.MIN_HEIGHT:
+            pic.show(Text(f"{w}×{h}: too small for this pane"), None)
             return
-        t = s.theta_i
-        sides = s.sides
+        t, sides = s.theta_i, s.sides
         key = (pane, w, h, look, t, tuple(x.key() for x in sides), s.azimuth, s.elevation)
         if pic.shown_for == key:
             return
+        k = 1 if pane.endswith("-b") else 0
         if pane in ("map-a", "map-b"):
-            side = sides[0 if pane == "map-a" else 1]
-            vmax = scene.compare_vmax(sides, t, w, h, look) if s.compare else None
-            r, vmax = scene.map_pane(side, t, w, h, look, vmax)
-            self._vmax = vmax
+            r = scene.compare_map(sides, k, t, w, h, look) if s.compare else \
+                scene.view_pane("map", sides[0], t, w, h, look)
         elif pane == "diff":
-            r, m = scene.diff_pane(sides[0], sides[1], t, w, h, look)
-            self.query_one("#legend", Static).update(self._legend(m))
+            r = scene.diff_map(sides, t, w, h, look)
         elif pane in ("solid-a", "solid-b"):
-            side = sides[0 if pane == "solid-a" else 1]
-            r = scene.solid_pane(side, t, w, h, look, s.azimuth, s.elevation)
+            r = scene.view_pane("solid", sides[k], t, w, h, look, s.azimuth, s.elevation)
         elif pane == "albedo":
             r = scene.albedo_pane(sides, t, w, h, look)
+        elif s.compare:
+            r = scene.compare_section(sides, t, pane, w, h, look)
         else:
-            r = scene.polar_pane(sides, t, pane, w, h, look)
+            r = scene.view_pane(pane, sides[0], t, w, h, look)
         pic.show(r, key)
 
-    def _legend(self, diff_max: float) -> Text:
+    def _legend(self) -> Text:
         s = self.state
         t = Text()
         for i, side in enumerate(s.sides):
-            t.append(f"{'AB'[i]}: ", style="bold " + scene.SIDE_COLORS[i])
+            t.append(f"{'AB'[i]}: ", style="bold")
             t.append(s.describe(side) + "\n")
-        t.append(f"A and B share one colour scale\nA − B: max |Δ| = {diff_max:.3g} sr⁻¹\n"
-                 "(red A > B, blue A < B)\n", style="")
+        t.append("A and B share one colour scale.\n", style="dim")
         if s.preset:
             title = next(p.title for p in COMPARE_PRESETS if p.name == s.preset)
-            t.append(f"preset {title}", style="dim")
+            t.append(f"preset {title}\n", style="dim")
+        t.append("tab: keys act on the other side", style="dim")
         return t
 
-    def _status(self, cached_only: bool) -> None:
+    def _stats_wanted(self) -> list[tuple]:
+        s = self.state
+        return [(side, s.theta_i, s.cosine) for side in s.sides]
+
+    def _compute_stats(self) -> None:
+        """Albedo and peak of every side (cached), off the event loop; then the status line."""
+        wanted = self._stats_wanted()
+        for side, t, cos in wanted:
+            scene.stats(side, t, cos)
+        self.call_from_thread(self._status)
+
+    def _status(self) -> None:
         s = self.state
         line = Text()
         line.append(f"θi {s.theta_i:g}°", style="bold")
+        pending = False
         for i, side in enumerate(s.sides):
-            key = (side.key(), s.theta_i, s.cosine)
-            if cached_only and key not in scene._stats_cache.data:
-                line.append("  a(θi) …")
+            tag = f"  {'AB'[i]}:" if s.compare else " "
+            if scene.stats_key(side, s.theta_i, s.cosine) not in scene.STATS:
+                line.append(f"{tag} a(θi) …")
+                pending = True
                 continue
             st = scene.stats(side, s.theta_i, s.cosine)
-            tag = f"  {'AB'[i]}" if s.compare else " "
             alb = st.albedo
             alb_txt = f"{alb:.3f}" if isinstance(alb, float) else \
-                "(" + ", ".join(f"{a:.3f}" for a in alb) + ")"
+                "(" + ",".join(f"{a:.3f}" for a in alb) + ")"
             line.append(f"{tag} a(θi)={alb_txt}")
             if st.albedo_max > 1.0 + 1e-9:
-                line.append(" >1 not energy-conserving", style="bold red")
+                line.append(" >1 NOT energy-conserving", style="bold red")
             what = "f·cos" if s.cosine else "peak"
             line.append(f"  {what} {st.peak:.3g} at θ={st.peak_theta:.0f}° φ={st.peak_phi:.0f}°")
         second = Text()
-        second.append(f"{VIEW_TITLES[s.view]} · {'log' if s.log else 'linear'} · {s.cmap}"
-                      f"{' · f·cos θr' if s.cosine else ''}  ", style="dim")
-        vmax = getattr(self, "_vmax", None)
-        if vmax is not None and s.view == "map":
-            second.append_text(scene.colorbar(self.look, vmax, 12))
+        scale = "log (3 decades)" if s.log else "linear"
+        second.append(f"{VIEW_TITLES[s.view]} · {scale} · {s.cmap}"
+                      f"{' · f·cos θr' if s.cosine else ''}", style="dim")
+        if s.compare:
+            second.append(f" · keys → {'AB'[s.active]}", style="bold")
         if self.message:
             second.append(f"  {self.message}", style="bold yellow")
         self.query_one("#status", StatusLine).update(Text("\n").join([line, second]))
+        if pending and not self._stats_running:
+            self._stats_running = True
+            self.run_worker(self._stats_thread, thread=True, exclusive=True, group="stats")
+
+    def _stats_thread(self) -> None:
+        try:
+            self._compute_stats()
+        finally:
+            self._stats_running = False
 
     # -- actions ---------------------------------------------------------------------------
     def _do(self, result: str | None, relayout: bool = False) -> None:

@@ -1,9 +1,9 @@
-"""What the viewer draws, as Rich renderables built from the state (no Textual).
+"""What the viewer draws: Rich renderables from the state, via :mod:`tuibrdf.render` (no Textual).
 
-The app asks for one pane at a time with the pane's size in cells; everything heavy is cached
-on what it depends on, so a key that changes nothing a pane shows costs nothing.  Pictures come
-from :mod:`tuibrdf.render` when it is there, and from :mod:`.fallback` until then; the
-directional albedo and the peak from :mod:`tuibrdf.core.quadrature` likewise.
+The app asks for one pane at a time with the pane's size in cells.  Single-model panes are
+``render_view`` calls; compare mode adds what only the viewer needs: two maps on one colour
+scale, a difference map, and cross-sections overlaid.  The directional albedo and the peak come
+from :mod:`tuibrdf.core.quadrature`.
 """
 
 from __future__ import annotations
@@ -14,26 +14,27 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from rich.console import Group
 from rich.text import Text
 
-from ..core.params import Model
+from ..core import quadrature
+from ..render import views
+from ..render.colormap import CMAPS as CMAPS  # re-exported for the app
+from ..render.colormap import Scale, colorbar, colorize, fmt_value, luminance
 from ..render.halfblock import HalfBlockImage, Mark
-from . import fallback
+from ..render.hemimap import map_values
+from ..render.polar import plot_body, polar_plot, section_curves
 from .state import Side
 
-try:  # helper render's module (agreed API); the fallback serves until it lands
-    from ..render import views as _views  # type: ignore[attr-defined]
-except ImportError:  # pragma: no cover - depends on what is merged
-    _views = None
-try:
-    from ..core import quadrature as _quad  # type: ignore[attr-defined]
-except ImportError:  # pragma: no cover
-    _quad = None
-
-LEVELS = 32  # grey levels of the map: within one level of the converged picture, few runs
-LOG_DECADES = 3.0
-LUMA = np.array([0.2126, 0.7152, 0.0722])
-CMAPS = tuple(getattr(_views, "CMAPS", fallback.CMAPS))
+#: colour levels of the maps: 32 keeps a full 160×48 map update near 50 KiB (docs/app.md)
+LEVELS = 32
+#: the albedo curve: 31 angles on the uniform level-5 mesh (≈ 20 ms for a sharp lobe; a curve
+#: on screen, the status line's number uses the accurate default)
+CURVE_THETAS = np.linspace(0.0, 90.0, 31)
+CURVE_LEVEL = 5
+#: diverging palette of the difference map: blue (B larger) – grey – red (A larger)
+DIVERGING = ((59, 76, 192), (221, 221, 221), (180, 4, 38))
+SIDE_LABELS = ("A", "B")
 
 
 class LRU:
@@ -51,6 +52,9 @@ class LRU:
         if len(self.data) > self.size:
             self.data.popitem(last=False)
         return value
+
+    def __contains__(self, key: Hashable) -> bool:
+        return key in self.data
 
 
 @dataclass(frozen=True)
@@ -75,190 +79,140 @@ class Stats:
         return float(np.max(self.albedo))
 
 
-_values_cache = LRU(12)
-_stats_cache = LRU(64)
-_curve_cache = LRU(16)
+STATS = LRU(64)
+_curves = LRU(16)
+_values = LRU(8)
 
 
-def side_values(side: Side, theta_i: float, px_w: int, px_h: int, cosine: bool):
-    """Map values of one side (cached)."""
-    key = (side.key(), theta_i, px_w, px_h, cosine)
-    return _values_cache.get(key, lambda: fallback.map_values(
-        side.spec, side.values, theta_i, px_w, px_h, cosine=cosine))
+def stats_key(side: Side, theta_i: float, cosine: bool) -> tuple:
+    return (side.key(), theta_i, cosine)
 
 
 def stats(side: Side, theta_i: float, cosine: bool = False) -> Stats:
     """Directional albedo and peak (value, θ, φ) of one side at θi (cached)."""
 
     def make() -> Stats:
-        if _quad is not None:
-            m, v = side.spec, side.values
-            a = _quad.albedo_resolved(m, v, theta_i)
-            pk = _quad.peak_resolved(m, v, theta_i, cosine=cosine)
-            return Stats(_plain(a), float(pk.value), float(pk.theta_deg), float(pk.phi_deg))
-        a, (pv, pt, pp) = fallback.albedo_and_peak(side.spec, side.values, theta_i,
-                                                   cosine=cosine)
-        return Stats(_plain(a), pv, pt, pp)
+        m, v = side.spec, side.values
+        a = np.asarray(quadrature.albedo_resolved(m, v, theta_i), dtype=float)
+        pk = quadrature.peak_resolved(m, v, theta_i, cosine=cosine)
+        pv = np.asarray(pk.value, dtype=float)
+        value = float(luminance(pv)) if pv.ndim == 1 else float(pv)
+        alb = float(a) if a.ndim == 0 else tuple(float(x) for x in a)
+        return Stats(alb, value, float(pk.theta_deg), float(pk.phi_deg))
 
-    return _stats_cache.get((side.key(), theta_i, cosine), make)
-
-
-def _plain(a) -> float | tuple[float, ...]:
-    a = np.asarray(a, dtype=float)
-    return float(a) if a.ndim == 0 else tuple(float(x) for x in a)
+    return STATS.get(stats_key(side, theta_i, cosine), make)
 
 
-# --------------------------------------------------------------------------- maps
+# --------------------------------------------------------------------------- single panes
+def view_pane(view: str, side: Side, theta_i: float, w: int, h: int, look: Look,
+              azimuth: float = -60.0, elevation: float = 25.0):
+    """``render_view`` of one side; a short note when the renderer lacks the view."""
+    kw: dict[str, Any] = dict(color=look.color, cosine=look.cosine)
+    if view in ("map", "solid"):
+        kw.update(cmap=look.cmap, log=look.log)
+    if view == "map":
+        kw.update(levels=LEVELS)
+    if view in ("incidence", "perpendicular"):
+        kw.update(log=look.log)
+    if view == "solid":
+        kw.update(azimuth_deg=azimuth, elevation_deg=elevation)
+    try:
+        return views.render_view(view, side.spec, side.values, theta_i, w, h, **kw)
+    except ImportError:  # a renderer module not merged yet
+        return Text(f"{view}: not available in this build", justify="center")
+
+
+# --------------------------------------------------------------------------- compare mode
+def _map_data(side: Side, theta_i: float, px_w: int, px_h: int, cosine: bool):
+    key = (side.key(), theta_i, px_w, px_h, cosine)
+    return _values.get(key, lambda: map_values(side.spec, side.values, theta_i, px_w, px_h,
+                                                cosine=cosine))
+
+
 def _scalar(v: np.ndarray) -> np.ndarray:
-    return v @ LUMA if v.ndim == 3 else v
+    return luminance(v) if v.ndim == 3 else v
 
 
-def normalise(v: np.ndarray, vmax: float, log: bool) -> np.ndarray:
-    """Values in [0, 1] (NaN stays NaN): linear v/vmax, or log over :data:`LOG_DECADES`."""
-    vmax = vmax if vmax > 0 else 1.0
-    t = v / vmax  # vmax > 0 (guarded above)
-    if log:  # log10 only where t > 0 (0 and NaN would warn); the rest is the bottom level
-        pos = t > 0
-        lt = np.full(t.shape, np.nan)
-        np.log10(t, out=lt, where=pos)
-        t = np.where(pos, lt / LOG_DECADES + 1.0, np.where(np.isnan(t), np.nan, 0.0))
-    return np.clip(t, 0.0, 1.0)
+def compare_map(sides: list[Side], k: int, theta_i: float, w: int, h: int, look: Look):
+    """Side ``k``'s map on the colour scale shared by both sides (title, disc, colour bar)."""
+    px_w, px_h = w, 2 * (h - 3)
+    data = [_map_data(s, theta_i, px_w, px_h, look.cosine) for s in sides]
+    vmax = max(Scale.for_values(_scalar(d)).vmax for d, _ in data)
+    scale = Scale(vmax, look.log)
+    vals, info = data[k]
+    col = colorize(_scalar(vals), look.cmap, levels=LEVELS, log=look.log, scale=scale)
+    ring = len(col.palette)
+    index = np.where(views.ring_mask(px_w, px_h), ring, col.index)
+    pal = np.concatenate([col.palette, np.array([views.RING_RGB], dtype=np.uint8)])
+    marks = [Mark(info.mirror_px[0] // 2, info.mirror_px[1], **views.MIRROR_MARK)]
+    img = HalfBlockImage(index, pal, marks, color_system=look.color)
+    title = Text(f"{SIDE_LABELS[k]}: {sides[k].model}  peak {fmt_value(info.peak_value)}"[:w],
+                 no_wrap=True)
+    bar = colorbar(scale, look.cmap, w, levels=LEVELS, color_system=look.color)
+    return Group(title, img, bar)
 
 
-def vmax_of(*arrays: np.ndarray) -> float:
-    m = max((float(np.nanmax(_scalar(a))) if np.isfinite(_scalar(a)).any() else 0.0)
-            for a in arrays)
-    return m if m > 0 else 1.0
-
-
-def image(values: np.ndarray, info: dict, theta_i: float, look: Look, vmax: float,
-          cmap: str | None = None) -> HalfBlockImage:
-    """Quantise map values to a half-block image with a mirror mark."""
-    inside = np.isfinite(_scalar(values))
-    marks = []
-    mx, my = info.get("mirror_px", (None, None))
-    if mx is not None:
-        marks.append(Mark(int(my // 2), int(min(mx, values.shape[1] - 1)), "×", "X",
-                          (255, 60, 60)))
-    system = look.color
-    if values.ndim == 3 and cmap is None:  # an RGB model: its own colours
-        t = normalise(values, vmax, look.log)
-        rgb = np.rint(np.nan_to_num(t) * (LEVELS - 1)) * 255 / (LEVELS - 1)
-        return HalfBlockImage.from_rgb(np.rint(rgb).astype(int), inside, marks, system)
-    t = normalise(_scalar(values), vmax, look.log)
-    idx = np.where(inside, np.rint(np.nan_to_num(t) * (LEVELS - 1)), -1).astype(np.int64)
-    return HalfBlockImage(idx, fallback.palette(cmap or look.cmap, LEVELS), marks, system)
-
-
-def map_pane(side: Side, theta_i: float, w: int, h: int, look: Look, vmax: float | None = None):
-    """``(renderable, vmax)`` of the equal-area map of one side in ``w × h`` cells."""
-    vals, info = side_values(side, theta_i, w, 2 * h, look.cosine)
-    vmax = vmax if vmax is not None else vmax_of(vals)
-    return image(vals, info, theta_i, look, vmax), vmax
-
-
-def compare_vmax(sides: list[Side], theta_i: float, w: int, h: int, look: Look) -> float:
-    return vmax_of(*(side_values(s, theta_i, w, 2 * h, look.cosine)[0] for s in sides))
-
-
-def diff_pane(a: Side, b: Side, theta_i: float, w: int, h: int, look: Look):
-    """``(renderable, max |A − B|)``: the difference map on a diverging scale (red: A > B)."""
-    va, info = side_values(a, theta_i, w, 2 * h, look.cosine)
-    vb, _ = side_values(b, theta_i, w, 2 * h, look.cosine)
+def diff_map(sides: list[Side], theta_i: float, w: int, h: int, look: Look):
+    """A − B on a diverging scale symmetric about 0 (red: A larger, blue: B larger)."""
+    px_w, px_h = w, 2 * (h - 3)
+    (va, _), (vb, _) = (_map_data(s, theta_i, px_w, px_h, look.cosine) for s in sides)
     d = _scalar(va) - _scalar(vb)
-    m = float(np.nanmax(np.abs(d))) if np.isfinite(d).any() else 0.0
-    t = d / (m if m > 0 else 1.0) * 0.5 + 0.5  # m > 0 (guarded)
-    idx = np.where(np.isfinite(d), np.rint(np.nan_to_num(t) * (LEVELS - 1)), -1)
-    return HalfBlockImage(idx.astype(np.int64), fallback.palette("diverging", LEVELS), (),
-                          look.color), m
+    finite = np.isfinite(d)
+    m = float(np.max(np.abs(d[finite]))) if finite.any() else 0.0
+    m = m if m > 0 else 1.0  # identical sides: all mid-grey, no division by zero
+    t = np.clip(d / m * 0.5 + 0.5, 0.0, 1.0)
+    idx = np.where(finite, np.rint(np.nan_to_num(t) * (LEVELS - 1)), -1).astype(np.int64)
+    stops = np.array(DIVERGING, dtype=float)
+    x = np.linspace(0, 1, LEVELS)
+    pal = np.stack([np.interp(x, [0, 0.5, 1], stops[:, c]) for c in range(3)], -1)
+    img = HalfBlockImage(idx, np.rint(pal).astype(np.uint8), (), color_system=look.color)
+    title = Text(f"A − B  max |Δ| {fmt_value(m)}"[:w], no_wrap=True)
+    legend = Text("blue B > A · red A > B"[:w], no_wrap=True)
+    return Group(title, img, legend)
 
 
-# --------------------------------------------------------------------------- plots
-SIDE_COLORS = ("cyan", "orange")
+def compare_section(sides: list[Side], theta_i: float, plane: str, w: int, h: int,
+                    look: Look):
+    """Both sides' cross-sections overlaid (A first colour, B second)."""
+    curves = []
+    for k, s in enumerate(sides):
+        for label, th, v in section_curves(s.spec, s.values, theta_i, plane,
+                                           cosine=look.cosine):
+            curves.append((f"{SIDE_LABELS[k]}:{s.model}" if label == s.model else label, th, v))
+    text, caption = polar_plot(curves, w, h - 1, log=look.log, color=look.color,
+                               theta_i_deg=theta_i if plane == "incidence" else None)
+    title = f"{plane}  A {sides[0].model} vs B {sides[1].model}  {caption}"
+    return Group(Text(title[:w], no_wrap=True), plot_body(text, look.color))
 
 
-def polar_pane(sides: list[Side], theta_i: float, plane: str, w: int, h: int, look: Look):
-    """Polar cross-section(s) drawn with plotext: radius = f, θr from −90° to 90°; one curve
-    per side (overlaid in compare mode), the light direction as a dotted ray."""
-    import plotext as plt
-
-    curves = [fallback.plane_curve(s.spec, s.values, theta_i, plane, cosine=look.cosine)
-              for s in sides]
-    r = max(float(np.max(f)) for _, f in curves) or 1.0
-    plt.clear_figure()
-    plt.plotsize(max(w, 10), max(h, 4))
-    plt.theme("clear")
-    plt.frame(False)
-    plt.xticks([])
-    plt.yticks([])
-    for k in (0.5, 1.0):  # guide circles at half and full radius
-        t = np.radians(np.linspace(-90, 90, 91))
-        plt.plot((k * r * np.sin(t)).tolist(), (k * r * np.cos(t)).tolist(),
-                 marker="braille", color="gray")
-    if plane == "incidence":  # the light's direction, on the φ = 180° (left) side
-        s_, c_ = np.sin(np.radians(theta_i)), np.cos(np.radians(theta_i))
-        ln = np.linspace(0, r, 20)
-        plt.plot((-s_ * ln).tolist(), (c_ * ln).tolist(), marker="dot", color="yellow")
-    for (t, f), col in zip(curves, SIDE_COLORS, strict=False):
-        a = np.radians(t)
-        plt.plot((f * np.sin(a)).tolist(), (f * np.cos(a)).tolist(), marker="braille",
-                 color=col)
-    plt.xlim(-r, r)
-    plt.ylim(0, r)
-    text = Text.from_ansi(plt.build())
-    if look.color == "none":
-        text = Text(text.plain)
-    return text
+# --------------------------------------------------------------------------- albedo curve
+def albedo_curve(side: Side) -> np.ndarray:
+    return _curves.get(side.key(), lambda: np.asarray(quadrature.albedo_curve_resolved(
+        side.spec, side.values, CURVE_THETAS, level=CURVE_LEVEL, method="uniform")))
 
 
 def albedo_pane(sides: list[Side], theta_i: float, w: int, h: int, look: Look):
-    """The directional albedo a(θi) over θi ∈ [0°, 90°], the current θi marked, 1 dotted."""
-    import plotext as plt
+    """a(θi) over 0–90° for each side (luminance for RGB), θi marked, a = 1 dotted."""
+    from ..render.polar import PLOT_LOCK, finish_plot, plt
 
-    thetas = np.linspace(0.0, 90.0, 31)
-    plt.clear_figure()
-    plt.plotsize(max(w, 20), max(h, 6))
-    plt.theme("clear")
-    top = 1.0
-    for s, col in zip(sides, SIDE_COLORS, strict=False):
-        curve = _curve_cache.get(s.key(), lambda s=s: _albedo_curve(s.spec, s.values, thetas))
-        y = curve @ LUMA if curve.ndim == 2 else curve
-        top = max(top, float(np.max(y)))
-        plt.plot(thetas.tolist(), y.tolist(), marker="braille", color=col, label=s.model)
-    plt.plot([0, 90], [1, 1], marker="dot", color="red")
-    plt.vertical_line(theta_i, color="yellow")
-    plt.xlim(0, 90)
-    plt.ylim(0, top * 1.05)
-    plt.xlabel("θi (°)")
-    text = Text.from_ansi(plt.build())
-    return Text(text.plain) if look.color == "none" else text
-
-
-def _albedo_curve(model: Model, values: dict, thetas: np.ndarray) -> np.ndarray:
-    if _quad is not None:
-        return np.asarray(_quad.albedo_curve_resolved(model, values, thetas), dtype=float)
-    return fallback.albedo_curve(model, values, thetas)
-
-
-def solid_pane(side: Side, theta_i: float, w: int, h: int, look: Look, azimuth: float,
-               elevation: float):
-    """The 3D photometric solid (helper render's ``solid`` view), or a note until it lands."""
-    if _views is not None:
-        return _views.render_view("solid", side.spec, side.values, theta_i, w, h,
-                                  color=look.color, cmap=look.cmap, log=look.log,
-                                  cosine=look.cosine)
-    return Text(f"3D photometric solid\n(azimuth {azimuth:g}°, elevation {elevation:g}°)\n"
-                "waiting for tuibrdf.render.solid", justify="center")
-
-
-def colorbar(look: Look, vmax: float, width: int) -> Text:
-    """``0 ▁▂▃ 2.4 sr⁻¹`` in the map's colours (a strip of cells)."""
-    width = max(4, width)
-    pal = fallback.palette(look.cmap, width)
-    bar = Text()
-    for r, g, b in pal.tolist():
-        bar.append(" ", style=f"on rgb({r},{g},{b})" if look.color != "none" else "")
-    if look.color == "none":
-        bar = Text(" .:-=+*#%@"[:width].ljust(width, "@"))
-    lo = f"{vmax * 10 ** -LOG_DECADES:.3g}" if look.log else "0"
-    return Text.assemble(f"{lo} ", bar, f" {vmax:.3g} sr⁻¹")
+    ys = []
+    for s in sides:
+        c = albedo_curve(s)
+        ys.append(luminance(c) if c.ndim == 2 else c)
+    top = max(1.0, *(float(np.max(y)) for y in ys)) * 1.05
+    with PLOT_LOCK:
+        plt.clf()
+        plt.theme("clear")
+        plt.plotsize(w, h - 1)
+        plt.xlim(0, 90)
+        plt.ylim(0, top)
+        plt.xlabel("θi (°)")
+        plt.plot([0, 90], [1, 1], marker="dot", color="red")
+        plt.plot([theta_i, theta_i], [0, top], marker="braille", color="yellow")
+        for k, (s, y) in enumerate(zip(sides, ys, strict=True)):
+            plt.plot(CURVE_THETAS.tolist(), y.tolist(), marker="braille",
+                     color=("cyan", "orange")[k],
+                     label=(f"{SIDE_LABELS[k]}: " if len(sides) > 1 else "") + s.model)
+        text = finish_plot(look.color)
+    title = Text("directional albedo a(θi) = ∫ f cos θr dω   (dotted: a = 1)"[:w], no_wrap=True)
+    return Group(title, plot_body(text, look.color))
