@@ -147,8 +147,9 @@ class BrdfApp(App):
     TITLE = "tuibrdf"
 
     def __init__(self, state: ViewerState | None = None, *, color: str | None = None,
-                 message: str = "") -> None:
+                 message: str = "", sync_stats: bool = False) -> None:
         super().__init__()
+        self.sync_stats = sync_stats  # tests: albedo and peak on the loop (deterministic)
         self.state = state or ViewerState()
         self.state.cmaps = scene.CMAPS
         if self.state.cmap not in self.state.cmaps:
@@ -353,7 +354,11 @@ class BrdfApp(App):
         if self.message:
             second.append(f"  {self.message}", style="bold yellow")
         self.query_one("#status", StatusLine).update(Text("\n").join([line, second]))
-        if pending and not self._stats_running:
+        if pending and self.sync_stats:
+            for side, t, cos in self._stats_wanted():
+                scene.stats(side, t, cos)
+            self._status()
+        elif pending and not self._stats_running:
             self._stats_running = True
             self.run_worker(self._stats_thread, thread=True, exclusive=True, group="stats")
 

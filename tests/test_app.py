@@ -1,0 +1,151 @@
+"""The viewer driven by keys (Textual's Pilot).
+
+Expected values come from the parameter declarations (each Param's step and coarse step, its
+range, the kd + ks ≤ 1 constraint) and the key table of issue 4 / SPEC §5, not from the app.
+"""
+
+import pytest
+
+from tuibrdf.app.app import BrdfApp
+from tuibrdf.app.state import Side, ViewerState
+from tuibrdf.core.models import MODELS
+
+
+@pytest.fixture(autouse=True)
+def config_home(tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path))
+    return tmp_path
+
+
+def make(model="phong", theta=30.0, **params):
+    return BrdfApp(ViewerState(sides=[Side.of(model, params)], theta_i=theta), sync_stats=True)
+
+
+def status(app) -> str:
+    return str(app.query_one("#status").render())
+
+
+async def test_theta_keys_step_by_one_and_ten():
+    app = make()
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("right")
+        assert app.state.theta_i == 31.0
+        await pilot.press("shift+left")
+        assert app.state.theta_i == 21.0
+        await pilot.pause()
+        assert "θi 21°" in status(app)
+
+
+async def test_theta_limit_is_refused_with_a_message():
+    app = make(theta=90.0)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("right")
+        await pilot.pause()
+        assert app.state.theta_i == 90.0
+        assert "range 0–90°" in app.message and "0–90°" in status(app)
+
+
+async def test_param_keys_use_the_declared_steps():
+    app = make(kd=0.2, ks=0.3, n=20.0)
+    kd = MODELS["phong"].param("kd")
+    n = MODELS["phong"].param("n")
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("plus")
+        assert app.state.side.values["kd"] == pytest.approx(0.2 + kd.step)
+        await pilot.press("left_square_bracket", "left_square_bracket")
+        assert app.state.side.values["kd"] == pytest.approx(0.2 - kd.step)
+        await pilot.press("down", "down")  # third row: n
+        await pilot.press("right_curly_bracket")
+        assert app.state.side.values["n"] == pytest.approx(20.0 + n.coarse_step)
+        await pilot.press("r")
+        assert app.state.side.values["n"] == n.default
+
+
+async def test_constraint_refused_and_values_unchanged():
+    app = make(kd=0.5, ks=0.5, n=20.0)  # kd + ks = 1: no room
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("plus")
+        await pilot.pause()
+        assert app.state.side.values["kd"] == 0.5
+        assert "kd + ks" in app.message
+
+
+async def test_model_cycling_keeps_theta_and_the_panel_follows():
+    app = make(theta=42.0)
+    names = list(MODELS)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("m")
+        await pilot.pause()
+        assert app.state.side.model == names[names.index("phong") + 1]
+        assert app.state.theta_i == 42.0
+        panel = app.query_one("#panel-a")
+        assert panel.border_title == MODELS[app.state.side.model].title
+        await pilot.press("M")
+        assert app.state.side.model == "phong"
+
+
+async def test_compare_presets_from_the_seed():
+    app = make()
+    async with app.run_test(size=(120, 36)) as pilot:
+        await pilot.press("p")
+        await pilot.pause()
+        assert [s.model for s in app.state.sides] == ["lambert", "oren-nayar"]
+        assert app.query_one("#map-b").display and app.query_one("#diff").display
+        await pilot.press("p")
+        a, b = app.state.sides
+        assert (a.model, a.values["kd"], a.values["ks"], a.values["n"]) == \
+            ("phong", 0.0, 0.08, 70.0)  # seed §8: Phong kd=0, ks=0.08, n=70
+        assert (b.model, b.values["kd"], b.values["f0"], b.values["m"]) == \
+            ("cook-torrance", 0.0, 0.04, 0.07)  # Cook-Torrance kd=0, f0=0.04, m=0.07
+        await pilot.press("tab", "plus")  # keys act on B now
+        assert app.state.sides[1].values["kd"] == pytest.approx(0.01)
+        assert app.state.sides[0].values["kd"] == 0.0
+        await pilot.press("c")
+        assert not app.state.compare and not app.query_one("#map-b").display
+
+
+async def test_preset_round_trip_restores_every_value(config_home):
+    app = make("cook-torrance", theta=55.0, kd=0.3, f0=0.2, m=0.15)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("s")
+        await pilot.pause()
+        await pilot.press(*"mine", "enter")
+        await pilot.pause()
+        assert "saved" in app.message
+    assert (config_home / "tuibrdf" / "presets" / "mine.toml").is_file()
+    other = make()
+    async with other.run_test(size=(100, 30)):
+        assert other.load("mine") is None
+        assert other.state.theta_i == 55.0
+        s = other.state.side
+        assert s.model == "cook-torrance"
+        assert (s.values["kd"], s.values["f0"], s.values["m"]) == (0.3, 0.2, 0.15)
+
+
+async def test_malformed_preset_is_reported(config_home):
+    d = config_home / "tuibrdf" / "presets"
+    d.mkdir(parents=True)
+    (d / "bad.toml").write_text("theta_i = [oops\n")
+    app = make()
+    async with app.run_test(size=(100, 30)):
+        msg = app.load("bad")
+        assert msg and "bad.toml" in msg and "TOML" in msg
+        assert app.state.side.model == "phong"
+
+
+async def test_every_view_and_toggle_renders_without_error():
+    app = make()
+    async with app.run_test(size=(100, 30)) as pilot:
+        for key in ("v", "v", "v", "l", "k", "o", "ctrl+left", "c", "v", "v", "v"):
+            await pilot.press(key)
+            await pilot.pause()
+        assert app.state.view == "map" and app.state.log and app.state.cosine
+        assert app.rebuilds > 0
+
+
+async def test_too_small_shows_a_message():
+    app = make()
+    async with app.run_test(size=(50, 15)) as pilot:
+        await pilot.pause()
+        assert app.screen.has_class("small")
+        assert "at least" in str(app.query_one("#toosmall").render())
