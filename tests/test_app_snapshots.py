@@ -1,0 +1,53 @@
+"""Screenshots of the viewer (pytest-textual-snapshot); regenerate with --snapshot-update.
+
+Deterministic: stats are computed on the loop (``sync_stats``), nothing time-dependent is shown,
+and conftest.py pops NO_COLOR / TEXTUAL_THEME / COLORTERM.  Small sizes keep the SVGs small.
+"""
+
+import pytest
+
+from tuibrdf.app.app import BrdfApp
+from tuibrdf.app.state import Side, ViewerState
+
+
+@pytest.fixture(autouse=True)
+def config_home(tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path))
+
+
+def app_for(model="lambert", theta=30.0, **params):
+    return BrdfApp(ViewerState(sides=[Side.of(model, params)], theta_i=theta), sync_stats=True)
+
+
+def test_default_80x24(snap_compare):
+    assert snap_compare(app_for(), terminal_size=(80, 24))
+
+
+def test_default_160x48(snap_compare):
+    assert snap_compare(app_for(), terminal_size=(160, 48))
+
+
+@pytest.mark.parametrize("model", ["phong", "cook-torrance", "oren-nayar", "ue4"])
+def test_model_families(snap_compare, model):
+    assert snap_compare(app_for(model, theta=45.0), terminal_size=(80, 24))
+
+
+@pytest.mark.parametrize("presses", [["p"], ["p", "p"]], ids=["diffuse", "specular"])
+def test_compare_seed_presets(snap_compare, presses):
+    assert snap_compare(app_for(), terminal_size=(120, 36), press=presses)
+
+
+def test_solid_view(snap_compare):
+    assert snap_compare(app_for("phong"), terminal_size=(80, 24), press=["v"])
+
+
+def test_albedo_view(snap_compare):
+    assert snap_compare(app_for("phong"), terminal_size=(80, 24), press=["v", "v"])
+
+
+def test_help_screen(snap_compare):
+    assert snap_compare(app_for(), terminal_size=(80, 24), press=["question_mark"])
+
+
+def test_too_small_message(snap_compare):
+    assert snap_compare(app_for(), terminal_size=(50, 14))
