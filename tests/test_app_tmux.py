@@ -1,0 +1,51 @@
+"""End to end in a real terminal: tmux runs ``python -m tuibrdf`` (the viewer, no arguments).
+
+Skipped when tmux is missing (``.ci/run`` installs it).  Waits poll the captured pane with a
+generous timeout, so the test does not depend on machine speed.
+"""
+
+import os
+import shutil
+import subprocess
+import sys
+import time
+import uuid
+from pathlib import Path
+
+import pytest
+
+pytestmark = pytest.mark.skipif(shutil.which("tmux") is None, reason="tmux not installed")
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def wait_for(sock, predicate, timeout=30.0):
+    end = time.monotonic() + timeout
+    screen = ""
+    while time.monotonic() < end:
+        screen = subprocess.run(["tmux", "-L", sock, "capture-pane", "-p", "-t", "t"],
+                                capture_output=True, text=True).stdout
+        if predicate(screen):
+            return screen
+        time.sleep(0.1)
+    raise AssertionError(f"timed out; last screen:\n{screen}")
+
+
+def test_viewer_in_tmux(tmp_path):
+    sock = f"tuibrdf-test-{uuid.uuid4().hex[:8]}"
+    env_cmd = (f"cd {ROOT} && XDG_CONFIG_HOME={tmp_path} PYTHONPATH={ROOT} "
+               f"{sys.executable} -m tuibrdf; sleep 5")
+    subprocess.run(["tmux", "-L", sock, "new-session", "-d", "-s", "t", "-x", "100", "-y", "30",
+                    "-e", "COLORTERM=truecolor", env_cmd], check=True,
+                   env={k: v for k, v in os.environ.items() if k != "TMUX"})
+    try:
+        # the map's frame: title line (model, θi) and the colour bar's unit under the disc
+        first = wait_for(sock, lambda s: "lambert  θi=30°" in s and "sr⁻¹" in s)
+        assert "θi 30°" in first
+        assert "▀" in first or "▄" in first  # the disc's half-block edge
+        subprocess.run(["tmux", "-L", sock, "send-keys", "-t", "t", "Right", "Right"],
+                       check=True)
+        after = wait_for(sock, lambda s: "θi 32°" in s and "lambert  θi=32°" in s)
+        assert "θi 30°" not in after
+        subprocess.run(["tmux", "-L", sock, "send-keys", "-t", "t", "q"], check=True)
+    finally:
+        subprocess.run(["tmux", "-L", sock, "kill-server"], capture_output=True)
