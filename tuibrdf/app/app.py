@@ -36,8 +36,8 @@ BINDINGS = [
     B("shift+right", "theta(10)", "θi +10°", show=False),
     B("up", "select(-1)", "param ↑", show=False),
     B("down", "select(1)", "param ↓", show=False),
-    B("plus,equals_sign,right_square_bracket", "step(1)", "param+", key_display="+"),
-    B("minus,left_square_bracket", "step(-1)", "param−", key_display="-"),
+    B("plus,equals_sign,right_square_bracket", "step(1)", "inc", key_display="+"),
+    B("minus,left_square_bracket", "step(-1)", "dec", key_display="-"),
     B("right_curly_bracket", "step(1, True)", "+coarse", show=False, key_display="}"),
     B("left_curly_bracket,underscore", "step(-1, True)", "−coarse", show=False,
       key_display="{"),
@@ -176,7 +176,7 @@ class BrdfApp(App):
                     yield Picture("perpendicular", id="perpendicular")
             yield StatusLine(id="status")
         yield Static(id="toosmall")
-        yield Footer(compact=True)
+        yield Footer(compact=True, show_command_palette=False)
 
     def on_mount(self) -> None:
         self._layout()

@@ -19,6 +19,7 @@ from rich.text import Text
 
 from ..core import quadrature
 from ..render import views
+from ..render.albedo_plot import albedo_plot
 from ..render.colormap import CMAPS as CMAPS  # re-exported for the app
 from ..render.colormap import Scale, colorbar, colorize, fmt_value, luminance
 from ..render.halfblock import HalfBlockImage, Mark
@@ -28,9 +29,9 @@ from .state import Side
 
 #: colour levels of the maps: 32 keeps a full 160×48 map update near 50 KiB (docs/app.md)
 LEVELS = 32
-#: the albedo curve: 31 angles on the uniform level-5 mesh (≈ 20 ms for a sharp lobe; a curve
+#: the albedo curve: every 3° on the uniform level-5 mesh (≈ 20 ms for a sharp lobe; a curve
 #: on screen, the status line's number uses the accurate default)
-CURVE_THETAS = np.linspace(0.0, 90.0, 31)
+CURVE_THETAS = np.arange(0.0, 91.5, 3.0)
 CURVE_LEVEL = 5
 #: diverging palette of the difference map: blue (B larger) – grey – red (A larger)
 DIVERGING = ((59, 76, 192), (221, 221, 221), (180, 4, 38))
@@ -192,27 +193,12 @@ def albedo_curve(side: Side) -> np.ndarray:
 
 
 def albedo_pane(sides: list[Side], theta_i: float, w: int, h: int, look: Look):
-    """a(θi) over 0–90° for each side (luminance for RGB), θi marked, a = 1 dotted."""
-    from ..render.polar import PLOT_LOCK, finish_plot, plt
-
-    ys = []
-    for s in sides:
+    """a(θi) over 0–90° for each side (luminance for RGB), θi marked, a = 1 drawn."""
+    curves = []
+    for k, s in enumerate(sides):
         c = albedo_curve(s)
-        ys.append(luminance(c) if c.ndim == 2 else c)
-    top = max(1.0, *(float(np.max(y)) for y in ys)) * 1.05
-    with PLOT_LOCK:
-        plt.clf()
-        plt.theme("clear")
-        plt.plotsize(w, h - 1)
-        plt.xlim(0, 90)
-        plt.ylim(0, top)
-        plt.xlabel("θi (°)")
-        plt.plot([0, 90], [1, 1], marker="dot", color="red")
-        plt.plot([theta_i, theta_i], [0, top], marker="braille", color="yellow")
-        for k, (s, y) in enumerate(zip(sides, ys, strict=True)):
-            plt.plot(CURVE_THETAS.tolist(), y.tolist(), marker="braille",
-                     color=("cyan", "orange")[k],
-                     label=(f"{SIDE_LABELS[k]}: " if len(sides) > 1 else "") + s.model)
-        text = finish_plot(look.color)
-    title = Text("directional albedo a(θi) = ∫ f cos θr dω   (dotted: a = 1)"[:w], no_wrap=True)
+        label = f"{SIDE_LABELS[k]}: {s.model}" if len(sides) > 1 else s.model
+        curves.append((label, luminance(c) if c.ndim == 2 else c))
+    text = albedo_plot(CURVE_THETAS, curves, w, h - 1, theta_i_deg=theta_i, color=look.color)
+    title = Text("directional albedo a(θi) = ∫ f cos θr dω  (line: a = 1)"[:w], no_wrap=True)
     return Group(title, plot_body(text, look.color))
