@@ -1,0 +1,215 @@
+"""Interactive speed of the viewer under a real pseudo-terminal (issue 6).
+
+Runs ``python -m tuibrdf view ...`` in a pty of the given size, writes key sequences to it and
+timestamps the bytes the app writes back:
+
+* **key → frame**: from writing the key to the last byte of the first output burst larger than
+  ``FRAME_MIN`` bytes (the picture update; bursts are chunks < ``GAP_S`` apart, the app's writer
+  thread writes a frame in one go).  Parameter change (``+``/``-`` on phong's Kd), θi change
+  (→/←) and model change (``m``).  p50 / p95 over ``--reps`` keys each.
+* **bytes per update**: the size of the θi-change bursts (the whole map, both plots, status).
+* **catch-up**: a key held 2 s (30 repeats/s) while the reader drains the pty at ~1 MB/s;
+  the time from the last key until the output stops (idle ``IDLE_S``).
+* **startup**: spawn → the first frame containing the map's colour bar unit (``sr⁻¹``); and
+  ``tuibrdf --help``.
+
+Usage: ``python scripts/bench_app.py [--sizes 80x24,160x48,240x70] [--reps 20]``.
+Prints a Markdown table.  Numbers depend on the machine: read them as "about".
+"""
+
+from __future__ import annotations
+
+import argparse
+import fcntl
+import os
+import pty
+import select
+import signal
+import statistics
+import struct
+import subprocess
+import sys
+import termios
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+GAP_S = 0.004
+FRAME_MIN = 3000
+IDLE_S = 0.25
+KEYS = {"right": b"\x1b[C", "left": b"\x1b[D", "plus": b"+", "minus": b"-", "m": b"m",
+        "q": b"q"}
+
+
+class Term:
+    """The app in a pty; ``rate`` limits reading (bytes/s, None = as fast as possible)."""
+
+    def __init__(self, w: int, h: int, color: str, args: list[str]) -> None:
+        env = dict(os.environ, TERM="xterm-256color", PYTHONPATH=str(ROOT))
+        env.pop("NO_COLOR", None)
+        if color == "truecolor":
+            env["COLORTERM"] = "truecolor"
+        else:
+            env.pop("COLORTERM", None)
+        self.t0 = time.perf_counter()
+        pid, fd = pty.fork()
+        if pid == 0:  # child
+            os.chdir(ROOT)
+            os.execvpe(sys.executable, [sys.executable, "-m", "tuibrdf", "view", *args,
+                                        "--color", color], env)
+        self.pid, self.fd = pid, fd
+        fcntl.ioctl(fd, termios.TIOCSWINSZ, struct.pack("HHHH", h, w, 0, 0))
+        self.buf = bytearray()
+
+    def read(self, timeout: float, limit: int = 65536) -> tuple[float, bytes] | None:
+        r, _, _ = select.select([self.fd], [], [], timeout)
+        if not r:
+            return None
+        try:
+            data = os.read(self.fd, limit)
+        except OSError:
+            return None
+        return time.perf_counter(), data
+
+    def until(self, marker: bytes, timeout: float = 20.0) -> float:
+        end = time.perf_counter() + timeout
+        tail = b""
+        while time.perf_counter() < end:
+            got = self.read(0.05)
+            if got:
+                tail = (tail + got[1])[-4096:]
+                if marker in tail:
+                    return got[0]
+        raise TimeoutError(f"no {marker!r} within {timeout} s")
+
+    def drain(self, idle: float = IDLE_S) -> float:
+        """Read until nothing arrives for ``idle`` seconds; time of the last byte."""
+        last = time.perf_counter()
+        while True:
+            got = self.read(idle)
+            if got is None:
+                return last
+            last = got[0]
+
+    def key_to_frame(self, key: bytes, timeout: float = 10.0) -> tuple[float, int]:
+        """(seconds from the key to the end of the first big burst, bytes of that burst)."""
+        t_key = time.perf_counter()
+        os.write(self.fd, key)
+        end = t_key + timeout
+        size, last = 0, None
+        while time.perf_counter() < end:
+            got = self.read(GAP_S if size else 0.5)
+            if got is None:
+                if size >= FRAME_MIN:
+                    return last - t_key, size
+                size = 0  # a small burst (panel or status only): wait for the picture
+                continue
+            t, data = got
+            size += len(data)
+            last = t
+        raise TimeoutError("no frame")
+
+    def close(self) -> None:
+        try:
+            os.write(self.fd, KEYS["q"])
+            self.drain(0.3)
+        except OSError:
+            pass
+        try:
+            os.kill(self.pid, signal.SIGTERM)
+        except ProcessLookupError:
+            pass
+        os.waitpid(self.pid, 0)
+        os.close(self.fd)
+
+
+def pct(xs: list[float], q: float) -> float:
+    xs = sorted(xs)
+    return xs[min(len(xs) - 1, round(q * (len(xs) - 1)))]
+
+
+def latency(w: int, h: int, color: str, reps: int) -> dict:
+    term = Term(w, h, color, ["phong", "--theta-i", "30"])
+    out: dict = {}
+    try:
+        out["startup"] = term.until("sr⁻¹".encode()) - term.t0
+        term.drain()
+        for name, seq in (("param", ("plus", "minus")), ("theta", ("right", "left")),
+                          ("model", ("m",))):
+            times, sizes = [], []
+            for i in range(reps):
+                dt, n = term.key_to_frame(KEYS[seq[i % len(seq)]])
+                times.append(dt)
+                sizes.append(n)
+                term.drain(0.15)
+            out[name] = (statistics.median(times), pct(times, 0.95), statistics.median(sizes))
+    finally:
+        term.close()
+    return out
+
+
+def catch_up(w: int, h: int, color: str, rate: float = 1e6, hold_s: float = 2.0) -> float:
+    """Seconds the screen keeps changing after a held → is released, reader at ``rate`` B/s."""
+    term = Term(w, h, color, ["phong", "--theta-i", "0"])
+    try:
+        term.until("sr⁻¹".encode())
+        term.drain()
+        t_next = time.perf_counter()
+        t_end = t_next + hold_s
+        last_key = t_next
+        while time.perf_counter() < t_end:
+            if time.perf_counter() >= t_next:  # key repeat at 30 Hz
+                os.write(term.fd, KEYS["right"])
+                last_key = time.perf_counter()
+                t_next += 1 / 30
+            got = term.read(0.001, 4096)  # drain at `rate`: a chunk, then its transfer time
+            if got:
+                time.sleep(len(got[1]) / rate)
+        last = last_key
+        while True:  # after release: keep draining at `rate` until idle
+            got = term.read(IDLE_S, 4096)
+            if got is None:
+                break
+            last = got[0]
+            time.sleep(len(got[1]) / rate)
+        return max(0.0, last - last_key)
+    finally:
+        term.close()
+
+
+def help_time() -> float:
+    ts = []
+    for _ in range(5):
+        t = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "tuibrdf", "--help"], cwd=ROOT,
+                       capture_output=True, check=True)
+        ts.append(time.perf_counter() - t)
+    return statistics.median(ts)
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sizes", default="80x24,160x48,240x70")
+    ap.add_argument("--reps", type=int, default=20)
+    ap.add_argument("--colors", default="truecolor,256")
+    args = ap.parse_args()
+    sizes = [tuple(int(v) for v in s.split("x")) for s in args.sizes.split(",")]
+    colors = args.colors.split(",")
+    print("| size | colours | startup s | param p50/p95 ms | θi p50/p95 ms | model p50/p95 ms "
+          "| bytes/update (θi) | catch-up s |")
+    print("|---|---|---|---|---|---|---|---|")
+    for w, h in sizes:
+        for color in colors:
+            r = latency(w, h, color, args.reps)
+            cu = catch_up(w, h, color)
+            ms = [f"{r[k][0] * 1e3:.0f} / {r[k][1] * 1e3:.0f}" for k in ("param", "theta",
+                                                                          "model")]
+            kib = r["theta"][2] / 1024
+            print(f"| {w}×{h} | {color} | {r['startup']:.2f} | {' | '.join(ms)} | "
+                  f"{kib:.0f} KiB | {cu:.2f} |", flush=True)
+    print(f"\n`tuibrdf --help`: {help_time() * 1e3:.0f} ms (median of 5)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
