@@ -149,3 +149,29 @@ async def test_too_small_shows_a_message():
         await pilot.pause()
         assert app.screen.has_class("small")
         assert "at least" in str(app.query_one("#toosmall").render())
+
+
+async def test_no_color_draws_the_plain_picture(no_color):
+    app = make()
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("right")
+        await pilot.pause()
+        assert app.color_system() == "none"
+        lines = [app.query_one("#map-a").render_line(y).text for y in range(24)]
+        assert any("@" in line for line in lines)  # the ASCII ramp's brightest glyph
+
+
+def test_view_command_line_is_validated_before_textual(capsys):
+    from tuibrdf.cli import build_parser, main
+    from tuibrdf.cli.view import build_state
+
+    assert main(["view", "nope"]) == 2
+    assert "unknown model" in capsys.readouterr().err
+    assert main(["view", "phong", "-p", "kd=0.9", "-p", "ks=0.5"]) == 2  # kd + ks > 1
+    assert main(["view", "--preset", "missing"]) == 2
+    assert "diffuse" in capsys.readouterr().err  # the seed comparisons are offered
+    args = build_parser().parse_args(["view", "phong", "--theta-i", "12", "--preset",
+                                      "specular"])
+    state = build_state(args)
+    assert state.compare and state.theta_i == 12.0
+    assert [s.model for s in state.sides] == ["phong", "cook-torrance"]

@@ -36,6 +36,9 @@ class Picture(Widget):
         console = self.app.console
         options = console.options.update(width=w, height=h)
         lines = console.render_lines(renderable, options, style=BLANK, pad=True)
+        if self.app.no_color:  # Textual's Monochrome filter crashes on a None style
+            lines = [[s if s.style is not None else Segment(s.text, BLANK) for s in line]
+                     for line in lines]
         self._strips = [Strip(line, w).crop_extend(0, w, BLANK) for line in lines[:h]]
         self.shown_for = key
         self.refresh()
