@@ -7,7 +7,9 @@ timestamps the bytes the app writes back:
   ``FRAME_MIN`` bytes (the picture update; bursts are chunks < ``GAP_S`` apart, the app's writer
   thread writes a frame in one go).  Parameter change (``+``/``-`` on phong's Kd), θi change
   (→/←) and model change (``m``).  p50 / p95 over ``--reps`` keys each.
-* **bytes per update**: the size of the θi-change bursts (the whole map, both plots, status).
+* **all panes**: key → the last byte before the output stays idle (map, then the two plots one
+  frame later, then the status line's albedo and peak from a worker thread).
+* **bytes per update**: the size of the θi-change picture burst (the map, panel, status).
 * **catch-up**: a key held 2 s (30 repeats/s) while the reader drains the pty at ~1 MB/s;
   the time from the last key until the output stops (idle ``IDLE_S``).
 * **startup**: spawn → the first frame containing the map's colour bar unit (``sr⁻¹``); and
@@ -137,12 +139,15 @@ def latency(w: int, h: int, color: str, reps: int) -> dict:
         for name, seq in (("param", ("plus", "minus")), ("theta", ("right", "left")),
                           ("model", ("m",))):
             times, sizes = [], []
+            settled = []
             for i in range(reps):
+                t_key = time.perf_counter()
                 dt, n = term.key_to_frame(KEYS[seq[i % len(seq)]])
                 times.append(dt)
                 sizes.append(n)
-                term.drain(0.15)
-            out[name] = (statistics.median(times), pct(times, 0.95), statistics.median(sizes))
+                settled.append(term.drain(0.15) - t_key)
+            out[name] = (statistics.median(times), pct(times, 0.95), statistics.median(sizes),
+                         statistics.median(settled), pct(settled, 0.95))
     finally:
         term.close()
     return out
@@ -196,8 +201,8 @@ def main() -> int:
     sizes = [tuple(int(v) for v in s.split("x")) for s in args.sizes.split(",")]
     colors = args.colors.split(",")
     print("| size | colours | startup s | param p50/p95 ms | θi p50/p95 ms | model p50/p95 ms "
-          "| bytes/update (θi) | catch-up s |")
-    print("|---|---|---|---|---|---|---|---|")
+          "| θi all panes p50/p95 ms | bytes/update (θi) | catch-up s |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for w, h in sizes:
         for color in colors:
             r = latency(w, h, color, args.reps)
@@ -205,7 +210,8 @@ def main() -> int:
             ms = [f"{r[k][0] * 1e3:.0f} / {r[k][1] * 1e3:.0f}" for k in ("param", "theta",
                                                                           "model")]
             kib = r["theta"][2] / 1024
-            print(f"| {w}×{h} | {color} | {r['startup']:.2f} | {' | '.join(ms)} | "
+            done = f"{r['theta'][3] * 1e3:.0f} / {r['theta'][4] * 1e3:.0f}"
+            print(f"| {w}×{h} | {color} | {r['startup']:.2f} | {' | '.join(ms)} | {done} | "
                   f"{kib:.0f} KiB | {cu:.2f} |", flush=True)
     print(f"\n`tuibrdf --help`: {help_time() * 1e3:.0f} ms (median of 5)")
     return 0

@@ -269,10 +269,24 @@ class BrdfApp(App):
         if self.screen.has_class("small"):
             return
         self.rebuilds += 1
-        for pane in self.visible_panes():
+        panes = self.visible_panes()
+        main, plots = panes[:-2], panes[-2:]
+        for pane in main:
             self._draw(pane)
         if self.state.compare:
             self.query_one("#legend", Static).update(self._legend())
+        # the cross-sections (plotext, ≈ 8 ms each at 160×48) go out one frame later, so the
+        # main view's frame is not held back by them
+        self.call_after_refresh(self._draw_later, plots)
+
+    def _draw_later(self, panes: list[str]) -> None:
+        if self._writer_busy():
+            self.set_timer(RETRY_S, lambda: self._draw_later(panes))
+            return
+        visible = self.visible_panes()
+        for pane in panes:
+            if pane in visible and not self.screen.has_class("small"):
+                self._draw(pane)
 
     def _draw(self, pane: str) -> None:
         s, look = self.state, self.look
