@@ -175,3 +175,24 @@ def test_view_command_line_is_validated_before_textual(capsys):
     state = build_state(args)
     assert state.compare and state.theta_i == 12.0
     assert [s.model for s in state.sides] == ["phong", "cook-torrance"]
+
+
+async def test_command_palette_runs_an_action():
+    app = make()
+    async with app.run_test(size=(100, 30)) as pilot:
+        before = app.state.cmap
+        await pilot.press("ctrl+p")
+        await pilot.pause()
+        await pilot.press(*"next colour map")
+        from textual.command import CommandList
+
+        for _ in range(100):  # the palette searches asynchronously: poll, up to ≈ 5 s
+            if app.screen.query(CommandList) and app.screen.query_one(CommandList).option_count:
+                break
+            await pilot.pause(0.05)
+        await pilot.press("enter")
+        for _ in range(100):
+            if app.state.cmap != before:
+                break
+            await pilot.pause(0.05)
+        assert app.state.cmap != before
