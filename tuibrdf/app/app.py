@@ -26,6 +26,7 @@ from .state import COMPARE_PRESETS, VIEW_TITLES, ViewerState
 from .widgets import ParamPanel, Picture, StatusLine
 
 MIN_W, MIN_H = 60, 18
+BOTH_PANELS_H = 40  # compare mode shows both parameter panels from this height
 RETRY_S = 0.02  # re-check a busy writer after this long
 
 B = Binding
@@ -223,7 +224,10 @@ class BrdfApp(App):
         for pic in self.query(Picture):
             pic.display = pic.pane in visible
         self.query_one("#legend").display = s.compare and s.view == "map"
-        self.query_one("#panel-b").display = s.compare
+        # both panels when there is room; otherwise only the side the keys act on
+        both = s.compare and h >= BOTH_PANELS_H
+        self.query_one("#panel-a").display = not s.compare or both or s.active == 0
+        self.query_one("#panel-b").display = both or (s.compare and s.active == 1)
         if s.compare:
             self.query_one("#map-a").border_title = f"A: {s.sides[0].model}"
             self.query_one("#map-b").border_title = f"B: {s.sides[1].model}"
@@ -354,11 +358,13 @@ class BrdfApp(App):
             alb = st.albedo
             alb_txt = f"{alb:.3f}" if isinstance(alb, float) else \
                 "(" + ",".join(f"{a:.3f}" for a in alb) + ")"
-            line.append(f"{tag} a(θi)={alb_txt}")
+            line.append(f"{tag} a={alb_txt}" if s.compare else f"{tag} a(θi)={alb_txt}")
             if st.albedo_max > 1.0 + 1e-9:
                 line.append(" >1 NOT energy-conserving", style="bold red")
             what = "f·cos" if s.cosine else "peak"
-            line.append(f"  {what} {st.peak:.3g} at θ={st.peak_theta:.0f}° φ={st.peak_phi:.0f}°")
+            where = f"({st.peak_theta:.0f}°,{st.peak_phi:.0f}°)" if s.compare else \
+                f"at θ={st.peak_theta:.0f}° φ={st.peak_phi:.0f}°"
+            line.append(f"  {what} {st.peak:.3g} {where}")
         second = Text()
         scale = "log (3 decades)" if s.log else "linear"
         second.append(f"{VIEW_TITLES[s.view]} · {scale} · {s.cmap}"
@@ -423,7 +429,7 @@ class BrdfApp(App):
         self._do(self.state.toggle_compare(), relayout=True)
 
     def action_side(self) -> None:
-        self._do(self.state.switch_side())
+        self._do(self.state.switch_side(), relayout=True)
 
     def action_preset(self) -> None:
         self._do(self.state.next_preset(), relayout=True)

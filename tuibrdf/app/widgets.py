@@ -64,7 +64,8 @@ class ParamPanel(Static):
     """The parameter rows of one side: value, range, unit; the selected row highlighted."""
 
     DEFAULT_CSS = """
-    ParamPanel { height: auto; padding: 0 1; border: round $primary-darken-2; }
+    ParamPanel { height: auto; padding: 0 1; border: round $primary-darken-2;
+                 text-wrap: nowrap; text-overflow: ellipsis; }
     ParamPanel.active { border: round $accent; }
     """
 
