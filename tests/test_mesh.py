@@ -73,7 +73,7 @@ def test_sphere_is_centrally_symmetric_to_the_bit(level):
     # horizon directions are exactly opposite, as the models' wi = −wo case expects)
     v = sphere(level)[0]
     have = {tuple(x) for x in v.tolist()}
-    assert all(tuple(-x) in have for x in v.tolist())
+    assert all(tuple(x) in have for x in (-v).tolist())
 
 
 @pytest.mark.parametrize("level", LEVELS)
