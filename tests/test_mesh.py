@@ -66,6 +66,16 @@ def test_prefix_property(level):
     assert np.array_equal(hb[: len(ha)], ha)
 
 
+@pytest.mark.parametrize("level", range(0, 6))
+def test_sphere_is_centrally_symmetric_to_the_bit(level):
+    # the lower ring is built as the exact negation of the upper one, and −(a+b)/|a+b| is the
+    # exact negation of (a+b)/|a+b|: every vertex's antipode is a vertex, bit for bit (so two
+    # horizon directions are exactly opposite, as the models' wi = −wo case expects)
+    v = sphere(level)[0]
+    have = {tuple(x) for x in v.tolist()}
+    assert all(tuple(x) in have for x in (-v).tolist())
+
+
 @pytest.mark.parametrize("level", LEVELS)
 def test_vertices_unit_and_upper(level):
     m = hemisphere(level)

@@ -3,7 +3,9 @@
 Construction
 ------------
 Level 0 is the icosahedron with a vertex on each pole, an upper ring of five vertices at
-``z = +1/√5`` (azimuths 0°, 72°, …) and a lower ring at ``z = −1/√5`` (azimuths 36°, 108°, …).
+``z = +1/√5`` (azimuths 0°, 72°, …) and a lower ring at ``z = −1/√5`` (azimuths 36°, 108°, …),
+built as the exact negatives of the upper ring so that every level is centrally symmetric to the
+last bit (two horizon vertices are exact antipodes, so ``wi + wo`` is exactly 0 there).
 Level L+1 splits every triangle in four at its edge midpoints, pushed onto the sphere:
 ``10·4ᴸ + 2`` vertices and ``20·4ᴸ`` faces on the whole sphere.  New vertices are appended in
 the order of their edge ``(min, max)`` vertex pair, so level-L vertex indices are a prefix of
@@ -40,8 +42,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-#: Finest level :func:`hemisphere` builds (level 10 has ~5 million hemisphere vertices).
-MAX_LEVEL = 10
+#: Finest level :func:`hemisphere` builds: level 9 has 1.3 million hemisphere vertices and its
+#: sphere ~200 MB of arrays (5.2 million faces); each level is 4× that.
+MAX_LEVEL = 9
 #: Finest level :func:`refine_adaptive` may reach (it only builds what it refines).
 ADAPTIVE_MAX_LEVEL = 16
 
@@ -56,15 +59,11 @@ def _icosahedron() -> tuple[np.ndarray, np.ndarray]:
     r = 2.0 / np.sqrt(5.0)
     k = np.arange(5)
     up = np.radians(72.0 * k)
-    lo = np.radians(72.0 * k + 36.0)
-    verts = np.concatenate(
-        [
-            [[0.0, 0.0, 1.0]],
-            np.stack([r * np.cos(up), r * np.sin(up), np.full(5, z)], axis=1),
-            np.stack([r * np.cos(lo), r * np.sin(lo), np.full(5, -z)], axis=1),  # exactly -z
-            [[0.0, 0.0, -1.0]],
-        ]
-    )
+    upper = np.stack([r * np.cos(up), r * np.sin(up), np.full(5, z)], axis=1)
+    # the lower ring (azimuths 36° + 72°j) is the upper ring's antipodes, negated exactly: the
+    # mesh is then centrally symmetric to the last bit at every level (−(a+b) = (−a)+(−b))
+    lower = -upper[(k + 3) % 5]
+    verts = np.concatenate([[[0.0, 0.0, 1.0]], upper, lower, [[0.0, 0.0, -1.0]]])
     top, u, lw, bot = 0, 1 + k, 6 + k, 11
     u1, l1 = 1 + (k + 1) % 5, 6 + (k + 1) % 5
     faces = np.concatenate(
