@@ -362,8 +362,8 @@ class BrdfApp(App):
             if st.albedo_max > 1.0 + 1e-9:
                 line.append(" >1 NOT energy-conserving", style="bold red")
             what = "f·cos" if s.cosine else "peak"
-            where = f"({st.peak_theta:.0f}°,{st.peak_phi:.0f}°)" if s.compare else \
-                f"at θ={st.peak_theta:.0f}° φ={st.peak_phi:.0f}°"
+            th, ph = round(st.peak_theta), round(st.peak_phi)  # ints: never "-0°"
+            where = f"({th}°,{ph}°)" if s.compare else f"at θ={th}° φ={ph}°"
             line.append(f"  {what} {st.peak:.3g} {where}")
         second = Text()
         scale = "log (3 decades)" if s.log else "linear"
