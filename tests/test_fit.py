@@ -91,13 +91,6 @@ def test_nelder_mead_finds_the_rosenbrock_minimum():
     assert f < 1e-10 and n < 5000
 
 
-def test_albedo_quadrature_of_lambert():
-    """A constant f = ρ/π has albedo ρ at every θi (∫ cos θ dω = π)."""
-    for theta in (0.0, 45.0, 80.0):
-        a = fit.albedo_rgb(lambda wi, wo: np.full(wo.shape, 0.7 / np.pi), theta)
-        np.testing.assert_allclose(a, 0.7, rtol=1e-12)
-
-
 def test_unfittable_models_are_errors(files):
     data = merl.load(files["ggx"])
     with pytest.raises(ValueError, match="not an analytic model"):
