@@ -59,6 +59,9 @@ STRIDE = (1, 3, 15)
 #: incidence angles (degrees) at which data and fit albedos are reported
 ALBEDO_THETAS = (0.0, 30.0, 60.0)
 CHANNELS = "RGB"
+#: the optimiser's box in z: σ(±16) is within 1.2e-7 of 0 or 1, so a parameter can reach its
+#: end to 1.2e-7 of its range (log-scaled ones to a factor 1.2e-7·ln(hi/lo) of it)
+Z_BOUND = 16.0
 
 
 # ------------------------------------------------------------------------------ samples
@@ -174,33 +177,40 @@ class Space:
 
 
 def nelder_mead(fun: Callable[[np.ndarray], float], x0: np.ndarray, *, step: float = 0.6,
-                xtol: float = 1e-4, ftol: float = 1e-12, max_evals: int = 2000):
+                xtol: float = 1e-4, ftol: float = 1e-12, frtol: float = 1e-9,
+                max_evals: int = 2000, bound: float = math.inf):
     """Minimise ``fun`` from ``x0``; returns ``(x, f, evaluations)``.
 
     Stops when the simplex is smaller than ``xtol`` in every coordinate and its values differ by
-    less than ``ftol`` (absolute + relative), or after ``max_evals`` evaluations.
+    less than ``ftol + frtol·|f|``, or after ``max_evals`` evaluations.  Every trial point is
+    clipped to ``[-bound, bound]``: where the optimum is at a parameter's end (σ(z) → 0 or 1)
+    the simplex then collapses onto the box face instead of drifting off to infinity.
     """
+    def clipped(x: np.ndarray) -> float:  # clips x in place, so the simplex stores it clipped
+        np.clip(x, -bound, bound, out=x)
+        return fun(x)
+
     n = len(x0)
     if n >= 4:  # adaptive coefficients (Gao & Han 2012) keep high dimensions from stalling
         rho, chi, psi, sigma = 1.0, 1.0 + 2.0 / n, 0.75 - 1.0 / (2 * n), 1.0 - 1.0 / n
     else:
         rho, chi, psi, sigma = 1.0, 2.0, 0.5, 0.5
     sim = np.vstack([x0, x0 + step * np.eye(n)])
-    fs = np.array([fun(x) for x in sim])
+    fs = np.array([clipped(x) for x in sim])
     evals = n + 1
     while evals < max_evals:
         order = np.argsort(fs, kind="stable")
         sim, fs = sim[order], fs[order]
         if (np.max(np.abs(sim[1:] - sim[0])) <= xtol
-                and fs[-1] - fs[0] <= ftol + 1e-9 * abs(fs[0])):
+                and fs[-1] - fs[0] <= ftol + frtol * abs(fs[0])):
             break
         centroid = sim[:-1].mean(axis=0)
         xr = centroid + rho * (centroid - sim[-1])
-        fr = fun(xr)
+        fr = clipped(xr)
         evals += 1
         if fr < fs[0]:
             xe = centroid + chi * (xr - centroid)
-            fe = fun(xe)
+            fe = clipped(xe)
             evals += 1
             sim[-1], fs[-1] = (xe, fe) if fe < fr else (xr, fr)
         elif fr < fs[-2]:
@@ -208,13 +218,13 @@ def nelder_mead(fun: Callable[[np.ndarray], float], x0: np.ndarray, *, step: flo
         else:
             outside = fr < fs[-1]
             xc = centroid + psi * ((xr if outside else sim[-1]) - centroid)
-            fc = fun(xc)
+            fc = clipped(xc)
             evals += 1
             if fc < (fr if outside else fs[-1]):
                 sim[-1], fs[-1] = xc, fc
             else:  # shrink toward the best vertex
                 sim[1:] = sim[0] + sigma * (sim[1:] - sim[0])
-                fs[1:] = [fun(x) for x in sim[1:]]
+                fs[1:] = [clipped(x) for x in sim[1:]]
                 evals += n
     best = int(np.argmin(fs))
     return sim[best], float(fs[best]), evals
@@ -289,7 +299,7 @@ def _minimise(objective: Callable[[np.ndarray], float], k: int, warm=()):
     order = np.argsort(values, kind="stable")
     starts = [grid[i] for i in order[:1 if warm else 2]] + list(warm)
     for z0 in starts:
-        z, err, n = nelder_mead(objective, z0)
+        z, err, n = nelder_mead(objective, z0, bound=Z_BOUND)
         evaluations += n
         if best is None or err < best[1]:
             best = (z, err)

@@ -19,10 +19,11 @@ pole) gives ``θd``, ``φd``.  Bin coordinates (continuous; the bin is their flo
     tφd = 180·φd / π             φd folded to [0, π)
 
 Sample ``i`` of an axis sits at bin coordinate ``t = i`` (the bin's lower edge: θh = (i/90)²·90°,
-θd = i°, φd = i°), the inverse mapping the MERL tools and the fitting literature use.  Lookups:
+θd = i°, φd = i°): the inverse of the bin formulas, so that a sample's own angles look up that
+sample with either rule.  Lookups:
 
-* ``nearest``: the bin that contains the direction, ``⌊t⌋`` clamped — bit for bit what
-  ``BRDFRead.cpp`` (and pbrt-v2's ``RegularHalfangleBRDF``) return;
+* ``nearest``: the bin that contains the direction, ``⌊t⌋`` clamped — the rule of
+  ``BRDFRead.cpp`` (and pbrt-v2's ``RegularHalfangleBRDF``);
 * ``trilinear``: linear in each of ``tθh, tθd, tφd`` between samples ``⌊t⌋`` and ``⌊t⌋+1``;
   beyond the last sample of θh or θd the value is held constant (clamped); φd is periodic
   (sample 180 is sample 0, since φd ≡ φd + π), so bins 179 and 0 interpolate with each other.
