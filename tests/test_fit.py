@@ -63,6 +63,18 @@ def test_rgb_model_recovers_joint_parameters(files):
     assert got["roughness"] == pytest.approx(0.4, rel=1e-3)
 
 
+def test_mean_fit_is_one_parameter_set(files):
+    """Fitted to the mean of the channels, GGX data (shared α = 0.2) give one set whose α is
+    near 0.2 and whose f0 lies between the channels' (0.3 … 0.9); its residual is not 0, since
+    the mean of three GGX lobes with different Fresnel terms is not one GGX lobe."""
+    result = fit.fit(merl.load(files["ggx"]), "ggx", stride=(3, 6, 30), mean=True)
+    assert result.channels == ("mean",) and len(result.params) == 1
+    (p,) = result.params
+    MODELS["ggx"].resolve(p)
+    assert p["alpha"] == pytest.approx(0.2, rel=0.1) and 0.3 < p["f0"] < 0.9
+    assert 0 < result.residual < 0.05
+
+
 def test_wrong_model_has_a_residual_and_respects_the_constraint(files):
     """Blinn-Phong cannot reproduce GGX (different lobe shape and no Fresnel): residual > 0, and
     the fitted kd + ks stays ≤ 1 (its declared constraint)."""
@@ -112,6 +124,12 @@ def test_cli_fit_json_and_errors(files, tmp_path, capsys):
     rc = main(["fit", str(files["ggx"]), "--model", "gltf", "--stride", "3,6,30"])
     out, _ = capsys.readouterr()
     assert rc == 0 and "RGB  base_color=" in out and "residual" in out
+    assert "as options: -p base_color=" in out
+    rc = main(["fit", str(files["ggx"]), "--model", "ggx", "--stride", "3,6,30", "--mean",
+               "--json"])
+    doc = json.loads(capsys.readouterr()[0])
+    assert rc == 0 and [f["channel"] for f in doc["fits"]] == ["mean"]
+    assert all(len(row["fit"]) == 3 for row in doc["albedo"])
     bad = tmp_path / "bad.binary"
     bad.write_bytes(b"\0" * 12)
     for argv, words in ((["fit", str(bad), "--model", "ggx"], "wrong header"),

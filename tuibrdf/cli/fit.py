@@ -24,6 +24,9 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--stride", type=stride_type, default=STRIDE, metavar="H,D,P",
                         help="use every H-th θh, D-th θd, P-th φd bin (default: "
                              f"{','.join(map(str, STRIDE))}; larger is faster and coarser)")
+    parser.add_argument("--mean", action="store_true",
+                        help="fit a scalar model once, to the mean of R, G, B (one parameter "
+                             "set) instead of once per channel")
     parser.add_argument("--json", action="store_true", help="print JSON instead of text")
 
 
@@ -39,8 +42,7 @@ def stride_type(text: str) -> tuple[int, int, int]:
 
 
 def run(args: argparse.Namespace) -> int:
-    data, result = fit_file(args.file, args.model, stride=args.stride)
-    labels = ["RGB"] if result.model.rgb else ["R", "G", "B"]
+    data, result = fit_file(args.file, args.model, stride=args.stride, mean=args.mean)
     albedo = albedo_table(data, result)
     if args.json:
         doc = {
@@ -53,7 +55,7 @@ def run(args: argparse.Namespace) -> int:
             "seconds": round(result.seconds, 3),
             "residual": result.residual,
             "fits": [{"channel": c, "params": json_params(p)}
-                     for c, p in zip(labels, result.params, strict=True)],
+                     for c, p in zip(result.channels, result.params, strict=True)],
             "albedo": albedo,
             "invalid_bins": list(data.n_invalid),
         }
@@ -62,8 +64,9 @@ def run(args: argparse.Namespace) -> int:
     print(f"# fit {result.model.name} to {data.path}")
     print(f"# {result.n_samples} samples, {result.evaluations} evaluations, "
           f"{result.seconds:.1f} s; objective: {OBJECTIVE}")
-    for c, p in zip(labels, result.params, strict=True):
-        print(f"{c:>3}  {fmt_params(p)}")
+    for c, p in zip(result.channels, result.params, strict=True):
+        print(f"{c:>4}  {fmt_params(p)}")
+        print(f"      as options: {' '.join(f'-p {k}={fmt(v)}' for k, v in p.items())}")
     print(f"residual {fmt(result.residual)}")
     print(f"{'theta_i':>7}  {'albedo data (R,G,B)':>26}  {'albedo fit (R,G,B)':>26}")
     for row in albedo:

@@ -235,10 +235,13 @@ def nelder_mead(fun: Callable[[np.ndarray], float], x0: np.ndarray, *, step: flo
 
 @dataclass(frozen=True)
 class Fit:
-    """A fitted model.  ``params`` holds one value mapping per fitted channel group: three
-    (R, G, B) for a scalar model, one for an RGB model."""
+    """A fitted model.  ``params`` holds one complete value mapping per entry of ``channels``:
+    ``("R", "G", "B")`` for a scalar model fitted per channel, ``("RGB",)`` for an RGB model,
+    ``("mean",)`` for a scalar model fitted to the mean of the channels (one parameter set that
+    can be shown as it is, e.g. in the app's compare mode)."""
 
     model: Model
+    channels: tuple[str, ...]
     params: tuple[dict[str, Any], ...]
     residual: float
     evaluations: int
@@ -246,32 +249,37 @@ class Fit:
     n_samples: int
 
     def rgb(self, wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
-        """The fitted model as RGB, ``(..., 3)``."""
+        """The fitted model as RGB, ``(..., 3)`` (a ``mean`` fit is grey)."""
         with kernel_errstate():
             if self.model.rgb:
                 return evaluate_resolved(self.model, self.params[0], wi, wo)
-            return np.stack([evaluate_resolved(self.model, v, wi, wo) for v in self.params],
-                            axis=-1)
+            f = [evaluate_resolved(self.model, v, wi, wo) for v in self.params]
+            return np.stack(f * (3 // len(f)), axis=-1)
 
 
 def fit(data: MerlData, model: str | Model, *, fixed: Mapping[str, Any] | None = None,
-        stride: tuple[int, int, int] = STRIDE) -> Fit:
+        stride: tuple[int, int, int] = STRIDE, mean: bool = False) -> Fit:
     """Fit ``model``'s free parameters to ``data`` (module docstring); ``fixed`` sets the
-    non-continuous ones (default: their defaults)."""
+    non-continuous ones (default: their defaults).  ``mean`` fits a scalar model once, to the
+    mean of R, G and B, instead of once per channel."""
     m = get_model(model)
     if m is MERL or any(p.kind == "path" for p in m.params):
         raise ValueError(f"fit: {m.name} is not an analytic model")
     space = Space.of(m, m.resolve(fixed or {}) if fixed else {})
     samples = sample_set(data, stride)
     start = time.perf_counter()
-    target = samples.compressed(samples.data)  # (M, 3)
+    if m.rgb:
+        channels, targets = ("RGB",), [samples.compressed(samples.data)]
+    elif mean:
+        channels, targets = ("mean",), [samples.compressed(samples.data.mean(axis=1))]
+    else:
+        target = samples.compressed(samples.data)
+        channels, targets = tuple(CHANNELS), [target[:, c] for c in range(3)]
     evaluations = 0
     params = []
-    sq_sum = 0.0
+    errors = []
     warm: list[np.ndarray] = []  # earlier channels' solutions: extra starting points
-    groups = [slice(0, 3)] if m.rgb else [slice(c, c + 1) for c in range(3)]
-    for channels in groups:
-        want = target[:, channels] if m.rgb else target[:, channels.start]
+    for want in targets:
 
         def objective(z, want=want):
             with kernel_errstate():
@@ -282,8 +290,8 @@ def fit(data: MerlData, model: str | Model, *, fixed: Mapping[str, Any] | None =
         warm.append(z)
         evaluations += n
         params.append(space.values(z))
-        sq_sum += err * (3 if m.rgb else 1)
-    return Fit(m, tuple(params), math.sqrt(sq_sum / 3), evaluations,
+        errors.append(err)
+    return Fit(m, channels, tuple(params), math.sqrt(float(np.mean(errors))), evaluations,
                time.perf_counter() - start, len(samples.cos_io))
 
 
@@ -320,6 +328,7 @@ def albedo_table(data: MerlData, result: Fit, thetas=ALBEDO_THETAS) -> list[dict
             fitted = np.asarray(albedo_resolved(result.model, result.params[0], t))
         else:
             fitted = np.array([albedo_resolved(result.model, p, t) for p in result.params])
+            fitted = np.resize(fitted, 3)  # a mean fit is grey: its one albedo for R, G, B
         rows.append({"theta_i": float(t),
                      "data": np.asarray(albedo_resolved(MERL, measured, t)).tolist(),
                      "fit": fitted.tolist()})
