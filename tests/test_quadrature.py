@@ -112,7 +112,7 @@ def test_smith_g1_weak_white_furnace(alpha, theta_o):
 def test_rgb_models_return_channels():
     for name, m in MODELS.items():
         if any(p.kind == "path" for p in m.params):
-            continue  # merl needs a file: tests/test_merl.py
+            continue  # merl needs a file: tests/test_merl.py covers it
         a = albedo(name, None, 30.0, level=3)
         curve = albedo_curve(name, None, [0.0, 45.0, 90.0], level=3)
         if m.rgb:

@@ -1,0 +1,92 @@
+"""Polar cross-sections (tuibrdf/render/polar.py)."""
+
+import numpy as np
+import plotext
+import pytest
+
+from tuibrdf.core.models import MODELS
+from tuibrdf.render import polar
+from tuibrdf.render.polar import polar_plot, radius, section_curves, section_directions
+
+
+@pytest.fixture
+def captured(monkeypatch):
+    """Record what polar_plot hands to plotext (data and axis limits)."""
+    calls = {"plot": [], "xlim": None, "ylim": None}
+    real_plot = plotext.plot
+
+    def plot(x, y, **kw):
+        calls["plot"].append((np.array(x), np.array(y), kw))
+        return real_plot(x, y, **kw)
+
+    monkeypatch.setattr(polar.plt, "plot", plot)
+    real_x, real_y = plotext.xlim, plotext.ylim
+    monkeypatch.setattr(polar.plt, "xlim", lambda a, b: (calls.__setitem__("xlim", (a, b)),
+                                                        real_x(a, b)))
+    monkeypatch.setattr(polar.plt, "ylim", lambda a, b: (calls.__setitem__("ylim", (a, b)),
+                                                        real_y(a, b)))
+    return calls
+
+
+def test_section_directions_signs():
+    # incidence plane: θr > 0 on the mirror side (+x), θr < 0 on the light's side (−x)
+    w = section_directions("incidence", np.array([-90.0, 0.0, 45.0]))
+    assert w[0] == pytest.approx([-1, 0, 0]) and w[1] == pytest.approx([0, 0, 1])
+    assert w[2] == pytest.approx([np.sqrt(0.5), 0, np.sqrt(0.5)])
+    assert section_directions("perpendicular", np.array([90.0]))[0] == pytest.approx([0, 1, 0])
+
+
+def test_phong_curve_values_closed_form():
+    # modified Phong at wo = S (θr = +θi in the incidence plane): kd/π + (n+2)/(2π)·ks;
+    # at θr = −θi (back toward the light) cos α = S·wi = cos 2θi
+    m = MODELS["phong"]
+    v = m.resolve({"kd": 0.2, "ks": 0.5, "n": 20})
+    (label, th, f), = section_curves(m, v, 30, "incidence")
+    assert label == "phong"
+    assert f[np.argmin(abs(th - 30))] == pytest.approx(0.2 / np.pi + 22 / (2 * np.pi) * 0.5)
+    back = 0.2 / np.pi + 22 / (2 * np.pi) * 0.5 * np.cos(np.radians(60)) ** 20
+    assert f[np.argmin(abs(th + 30))] == pytest.approx(back)
+
+
+def test_plotted_radius_equals_value(captured):
+    m = MODELS["phong"]
+    curves = section_curves(m, m.resolve({}), 40, "incidence")
+    polar_plot(curves, 60, 15, theta_i_deg=40, color="none")
+    x, y, kw = captured["plot"][-1]  # the model curve is drawn last
+    assert np.hypot(x, y) == pytest.approx(curves[0][2], rel=1e-12)
+    # and at the right angle: x = r sin θr
+    assert x == pytest.approx(curves[0][2] * np.sin(np.radians(curves[0][1])), abs=1e-12)
+
+
+def test_equal_aspect_limits(captured):
+    # one data unit spans the same on-screen length in x and y, cells being 1:2
+    polar_plot([("a", np.array([-90.0, 0, 90]), np.array([1.0, 1.0, 1.0]))], 50, 12)
+    (x0, x1), (y0, y1) = captured["xlim"], captured["ylim"]
+    assert (x1 - x0) / 50 == pytest.approx((y1 - y0) / (2 * 12))
+    assert x1 >= 1.0 and y1 >= 1.0  # the unit circle fits
+
+
+def test_log_radius():
+    # 3 decades: vmax → 1, vmax/10 → 2/3, vmax/1000 and 0 → centre
+    assert radius(np.array([5.0, 0.5, 0.005, 0.0]), 5.0, True, 3) == pytest.approx(
+        [1, 2 / 3, 0, 0])
+
+
+def test_plain_output_and_deterministic():
+    m = MODELS["lambert"]
+    curves = section_curves(m, m.resolve({}), 0, "perpendicular")
+    a, cap = polar_plot(curves, 40, 10, color="none")
+    b, _ = polar_plot(curves, 40, 10, color="none")
+    assert a == b and "\x1b" not in a
+    lines = a.split("\n")
+    assert len(lines) == 10 and all(len(s) == 40 for s in lines)
+    c, _ = polar_plot(curves, 40, 10)
+    assert "\x1b[" in c
+    # lambert kd=0.8: 0.8/π ≈ 0.255 → 1-2-5 step with at most 5 circles: 0.1
+    assert cap == "circles every 0.1, max 0.255"
+
+
+def test_rgb_model_gives_channel_curves():
+    m = MODELS["gltf"]
+    curves = section_curves(m, m.resolve({}), 20, "incidence")
+    assert [c[0] for c in curves] == ["R", "G", "B"]

@@ -1,0 +1,97 @@
+"""render_view: every view, every model, plain fallback, determinism (tuibrdf/render/views.py)."""
+
+import re
+
+import numpy as np
+import pytest
+from rich.console import Console
+
+from tuibrdf.core.models import MODELS
+from tuibrdf.render.views import CMAPS, VIEWS, render_view
+
+MODELS_NO_FILE = [n for n, m in MODELS.items() if all(p.kind != "path" for p in m.params)]
+DONE_VIEWS = [v for v in VIEWS if v in ("map", "incidence", "perpendicular")]
+
+
+def to_text(renderable, system=None, width=200) -> str:
+    con = Console(width=width, color_system=system, force_terminal=system is not None,
+                  record=False, legacy_windows=False)
+    with con.capture() as cap:
+        con.print(renderable)
+    return cap.get()
+
+
+def test_views_and_cmaps_tuples():
+    assert VIEWS == ("map", "incidence", "perpendicular", "solid", "albedo")
+    assert "grey" in CMAPS and "viridis" in CMAPS and "inferno" in CMAPS
+
+
+@pytest.mark.parametrize("view", DONE_VIEWS)
+@pytest.mark.parametrize("name", MODELS_NO_FILE)
+def test_every_model_every_view_plain(view, name):
+    m = MODELS[name]
+    for theta_i in (0, 45, 89, 90):
+        out = to_text(render_view(view, m, m.resolve({}), theta_i, 40, 14, color="none"))
+        lines = out.rstrip("\n").split("\n")
+        assert len(lines) <= 14, (view, name, theta_i)
+        assert all(len(s) <= 40 for s in lines)
+        assert "nan" not in out.lower() and "inf" not in out.lower()
+        assert "\x1b" not in out
+
+
+def test_map_plain_shows_marks_and_title():
+    m = MODELS["phong"]
+    out = to_text(render_view("map", m, m.resolve({"kd": 0, "ks": 1, "n": 500}), 45, 40, 14,
+                              color="none"))
+    lines = out.split("\n")
+    # title: model, θi and the exact mirror peak (n+2)/(2π)·ks = 79.9
+    assert lines[0].startswith("phong  θi=45°") and "79.9" in lines[0]
+    body = "\n".join(lines[1:12])
+    assert "X" in body and "o" in body  # mirror and light marks
+    # the light mark is left of the centre column, the mirror mark right of it
+    row_x = next(s for s in lines if "X" in s)
+    assert row_x.index("o") < 20 < row_x.index("X")
+
+
+@pytest.mark.parametrize("color", ["truecolor", "256"])
+def test_deterministic_bytes(color):
+    m = MODELS["cook-torrance"]
+    v = m.resolve({"kd": 0, "f0": 0.04, "m": 0.07})
+    a = to_text(render_view("map", m, v, 60, 50, 16, color=color, cmap="inferno"), "truecolor")
+    b = to_text(render_view("map", m, v, 60, 50, 16, color=color, cmap="inferno"), "truecolor")
+    assert a == b
+    if color == "256":
+        assert "38;2;" not in a and "48;5;" in a
+    else:
+        assert "48;2;" in a
+
+
+def test_rgb_model_colour_map_shows_channels():
+    m = MODELS["gltf"]
+    v = m.resolve({"base_color": (1.0, 0.0, 0.0), "roughness": 1.0})
+    out = to_text(render_view("map", m, v, 0, 40, 14), "truecolor")
+    # a red base colour: some diffuse cell is pure-ish red (green and blue channels lower)
+    cols = [tuple(map(int, t)) for t in re.findall(r"48;2;(\d+);(\d+);(\d+)", out)]
+    assert any(r > 100 and g < r / 2 and b < r / 2 for r, g, b in cols)
+
+
+@pytest.mark.parametrize("bad,match", [
+    (dict(view="nope"), "unknown view"),
+    (dict(color="16"), "color"),
+    (dict(cmap="jet"), "colour map"),
+    (dict(width=5), "too small"),
+    (dict(theta_i_deg=91), "0..90"),
+])
+def test_bad_arguments(bad, match):
+    m = MODELS["lambert"]
+    kw = dict(view="map", model=m, values=m.resolve({}), theta_i_deg=10, width=40, height=14)
+    kw.update(bad)
+    with pytest.raises(ValueError, match=match):
+        render_view(**kw)
+
+
+def test_cosine_title():
+    m = MODELS["lambert"]
+    out = to_text(render_view("map", m, m.resolve({}), 10, 60, 14, color="none", cosine=True))
+    assert "f·cosθr" in out.split("\n")[0]
+    assert np.isclose(float(re.search(r"peak ([0-9.]+)", out).group(1)), 0.8 / np.pi, rtol=1e-2)

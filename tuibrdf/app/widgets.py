@@ -1,0 +1,98 @@
+"""The viewer's widgets: a Line-API picture, the parameter panel, the status line."""
+
+from __future__ import annotations
+
+from rich.console import RenderableType
+from rich.segment import Segment
+from rich.style import Style
+from rich.text import Text
+from textual.filter import ANSIToTruecolor
+from textual.strip import Strip
+from textual.widget import Widget
+from textual.widgets import Static
+
+from ..core.params import _fmt
+from .state import Side, ViewerState
+
+BLANK = Style()  # never None: Textual's NO_COLOR filter crashes on a None style
+
+
+class Picture(Widget):
+    """Shows precomputed lines; ``render_line`` only returns a stored ``Strip``.
+
+    The app renders a pane's renderable once per change (:meth:`show`), not once per refresh.
+    """
+
+    DEFAULT_CSS = "Picture { width: 1fr; height: 1fr; }"
+
+    def __init__(self, pane: str, **kw) -> None:
+        super().__init__(**kw)
+        self.pane = pane
+        self._strips: list[Strip] = []
+        self.shown_for: object = None  # what the strips were made from (the app's key)
+
+    def show(self, renderable: RenderableType, key: object = None) -> None:
+        w, h = self.size.width, self.size.height
+        console = self.app.console
+        options = console.options.update(width=w, height=h)
+        lines = console.render_lines(renderable, options, style=BLANK, pad=True)
+        self._strips = [Strip(line, w).crop_extend(0, w, BLANK) for line in lines[:h]]
+        self.shown_for = key
+        self.refresh()
+
+    def on_resize(self, event) -> None:
+        self.shown_for = None
+        request = getattr(self.app, "request_rebuild", None)
+        if request is not None and self.display:
+            request()
+
+    def render_line(self, y: int) -> Strip:
+        if y < len(self._strips):
+            return self._strips[y]
+        return Strip([Segment(" " * self.size.width, BLANK)], self.size.width)
+
+    def get_line_filters(self):
+        # ANSIToTruecolor costs ≈ 10 ms per 160×48 frame and our colours are RGB already;
+        # keep the others (NO_COLOR relies on Monochrome)
+        return [f for f in super().get_line_filters() if not isinstance(f, ANSIToTruecolor)]
+
+
+class ParamPanel(Static):
+    """The parameter rows of one side: value, range, unit; the selected row highlighted."""
+
+    DEFAULT_CSS = """
+    ParamPanel { height: auto; padding: 0 1; border: round $primary-darken-2; }
+    ParamPanel.active { border: round $accent; }
+    """
+
+    def show(self, state: ViewerState, side_index: int) -> None:
+        side: Side = state.sides[side_index]
+        active = side_index == state.active
+        self.set_class(active and state.compare, "active")
+        label = "AB"[side_index] + ": " if state.compare else ""
+        self.border_title = f"{label}{side.spec.title}"
+        self.border_subtitle = "m/M model" if active else ""
+        text = Text(no_wrap=True, overflow="ellipsis")
+        rows = side.rows()
+        for i, row in enumerate(rows):
+            sel = active and i == min(side.selected, len(rows) - 1)
+            v = state.row_value(row, side)
+            p = row.param
+            line = Text(f"{'▶' if sel else ' '} {row.label:<7}", style="bold" if sel else "")
+            line.append(f"{_fmt(v):>8}", style="bold reverse" if sel else "bold")
+            unit = p.unit if p.unit not in ("", None) else ""
+            line.append(f" {unit:<2}")
+            if p.kind in ("float", "rgb"):
+                line.append(f" {p.min:g}–{p.max:g}", style="dim")
+            elif p.kind == "choice":
+                line.append(" " + "/".join(p.choices), style="dim")
+            text.append_text(line)
+            if i < len(rows) - 1:
+                text.append("\n")
+        if not rows:
+            text.append("(no parameters)", style="dim")
+        self.update(text)
+
+
+class StatusLine(Static):
+    DEFAULT_CSS = "StatusLine { height: auto; max-height: 3; padding: 0 1; }"

@@ -1,0 +1,185 @@
+"""Polar cross-sections with plotext (SPEC §4 view 2).
+
+plotext has no polar axes: a curve is drawn as ``x = r sin θr``, ``y = r cos θr`` for
+``θr ∈ [−90°, 90°]`` with braille dots; negative ``θr`` is the left half of the plot.
+
+- plane of incidence: ``wo = (sin θr, 0, cos θr)``: the right half is φr = 0 (mirror side), the
+  left half φr = 180° (the light's side); the incident direction is drawn as a (yellow) line;
+- perpendicular plane: ``wo = (0, sin θr, cos θr)``: right half φr = 90°, left half φr = 270°.
+
+Radius = value (linear), or in log mode ``1 + log10(v / vmax) / decades`` clipped at 0 (the centre
+is ``vmax·10^-decades`` and below).  Guide circles: 1-2-5 steps in linear mode, one per decade in
+log mode; the title says their spacing.  The axis limits are set so that one data unit has the
+same length on screen in x and y, with terminal cells twice as tall as wide: circles are round.
+
+plotext keeps its figure in module-global state, so every build runs under :data:`PLOT_LOCK`
+(``clf`` → plot → ``build``) and is deterministic; the app may call it from worker threads.
+Several curves (comparisons, or the R, G, B channels of a colour model) share one radius scale
+and get a legend in the top-left corner.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+import plotext as plt
+from rich.console import Group
+from rich.text import Text
+
+from ..core.evaluate import evaluate_resolved
+from ..core.frame import incident, sincos_deg
+from ..core.params import Model
+from .colormap import LOG_DECADES, fmt_value
+
+PLOT_LOCK = threading.Lock()
+PLANES = {"incidence": 0.0, "perpendicular": 90.0}
+#: curve colours in order (plotext's 16-colour names: readable on dark and light terminals)
+CURVE_COLORS = ("red", "cyan", "green", "magenta", "yellow", "blue")
+GUIDE_COLOR = 244  # xterm grey
+INCIDENT_COLOR = "yellow"
+CELL_ASPECT = 2.0  # a terminal cell is about twice as tall as it is wide
+
+Curve = tuple[str, np.ndarray, np.ndarray]  # (label, θr degrees, values)
+
+
+def section_directions(plane: str, thetas_deg: np.ndarray) -> np.ndarray:
+    """Unit directions for signed ``θr`` in ``plane`` (exact at ±90°)."""
+    if plane not in PLANES:
+        raise ValueError(f"unknown plane {plane!r}: expected one of {', '.join(PLANES)}")
+    s, c = sincos_deg(np.asarray(thetas_deg, dtype=float))
+    zero = np.zeros_like(s)
+    if plane == "incidence":
+        return np.stack([s, zero, c], axis=-1)
+    return np.stack([zero, s, c], axis=-1)
+
+
+def section_curves(
+    model: Model,
+    values: dict[str, Any],
+    theta_i_deg: float,
+    plane: str,
+    *,
+    n: int = 181,
+    cosine: bool = False,
+) -> list[Curve]:
+    """The model's values along ``plane``: one curve, or R, G, B curves for RGB models."""
+    thetas = np.linspace(-90.0, 90.0, n)
+    wo = section_directions(plane, thetas)
+    f = np.asarray(evaluate_resolved(model, values, incident(theta_i_deg), wo), dtype=float)
+    if cosine:
+        f = f * (wo[:, 2][:, None] if f.ndim == 2 else wo[:, 2])
+    if f.ndim == 2:
+        return [(ch, thetas, f[:, k]) for k, ch in enumerate("RGB")]
+    return [(model.name, thetas, f)]
+
+
+def curve_color(label: str, j: int) -> str:
+    """Channel curves R, G, B in their own colour, other curves in :data:`CURVE_COLORS` order."""
+    return {"R": "red", "G": "green", "B": "blue"}.get(label, CURVE_COLORS[j % len(CURVE_COLORS)])
+
+
+def nice_step(vmax: float) -> float:
+    """A 1-2-5 step giving 2 to 5 guide circles up to ``vmax``."""
+    if vmax <= 0:
+        return 1.0
+    e = 10.0 ** np.floor(np.log10(vmax))
+    for m in (0.2, 0.5, 1.0, 2.0, 5.0):
+        if vmax / (m * e) <= 5:
+            return m * e
+    return 10 * e  # not reached: vmax / (5e) < 2
+
+
+def radius(values: np.ndarray, vmax: float, log: bool, decades: float) -> np.ndarray:
+    """Plot radius of ``values``: the value itself, or the log position in [0, 1]."""
+    v = np.asarray(values, dtype=float)
+    if not log:
+        return v
+    lo = vmax * 10.0**-decades
+    # values at or below the centre value (zeros included) sit at the centre
+    return np.clip(1.0 + np.log10(np.maximum(v, lo) / vmax) / decades, 0.0, 1.0)
+
+
+def polar_plot(
+    curves: Sequence[Curve],
+    width: int,
+    height: int,
+    *,
+    theta_i_deg: float | None = None,
+    log: bool = False,
+    decades: float = LOG_DECADES,
+    color: str = "truecolor",
+) -> tuple[str, str]:
+    """Build the plot; returns ``(text, caption)``.  ``text`` is plotext's output (ANSI colours
+    unless ``color == "none"``), exactly ``height`` lines of ``width`` cells; ``caption`` says
+    what the guide circles are."""
+    vmax = max((float(np.max(v)) for _, _, v in curves), default=0.0)
+    vmax = vmax if vmax > 0 else 1.0  # an all-zero curve still gets a unit circle
+    if log:
+        rmax, guides = 1.0, [1.0 - k / decades for k in range(int(decades))]
+        caption = f"log: circles every decade, outer {fmt_value(vmax)}"
+    else:
+        step = nice_step(vmax)
+        guides = list(step * np.arange(1, int(np.floor(vmax / step + 1e-9)) + 1))
+        rmax = max(vmax, guides[-1] if guides else vmax)
+        caption = f"circles every {fmt_value(step)}, max {fmt_value(vmax)}"
+    # equal aspect: one data unit spans the same physical length in x and y
+    span = rmax * 1.08
+    k = max(2 * span / width, span / (CELL_ASPECT * height))
+    xr, y0 = k * width / 2, -0.03 * rmax
+    ring = np.radians(np.linspace(-90.0, 90.0, 2 * width + 1))
+    with PLOT_LOCK:
+        plt.clf()
+        plt.theme("clear")
+        plt.plotsize(width, height)
+        plt.frame(False)
+        plt.xticks([])
+        plt.yticks([])
+        plt.xlim(-xr, xr)
+        plt.ylim(y0, y0 + k * CELL_ASPECT * height)
+        for g in guides:
+            plt.plot((g * np.sin(ring)).tolist(), (g * np.cos(ring)).tolist(),
+                     marker="braille", color=GUIDE_COLOR)
+        plt.plot([-rmax, rmax], [0.0, 0.0], marker="braille", color=GUIDE_COLOR)
+        if theta_i_deg is not None:
+            s, c = sincos_deg(float(theta_i_deg))
+            plt.plot([0.0, -float(s) * rmax], [0.0, float(c) * rmax], marker="braille",
+                     color=INCIDENT_COLOR)
+        for j, (label, thetas, vals) in enumerate(curves):
+            r = radius(vals, vmax, log, decades)
+            s, c = sincos_deg(np.asarray(thetas, dtype=float))
+            plt.plot((r * s).tolist(), (r * c).tolist(), marker="braille",
+                     color=curve_color(label, j), label=label if len(curves) > 1 else None)
+        text = plt.build()
+        plt.clf()
+    if text.endswith("\n"):  # plotext ends its last line with a newline
+        text = text[:-1]
+    if color == "none":
+        text = plt.uncolorize(text)
+    return text, caption
+
+
+def section_view(
+    plane: str,
+    model: Model,
+    values: dict[str, Any],
+    theta_i_deg: float,
+    width: int,
+    height: int,
+    *,
+    color: str = "truecolor",
+    log: bool = False,
+    cosine: bool = False,
+) -> Group:
+    """Title line + polar plot of ``model`` in ``plane`` (``height − 1`` rows)."""
+    curves = section_curves(model, values, theta_i_deg, plane, cosine=cosine)
+    text, caption = polar_plot(curves, width, height - 1, log=log, color=color,
+                               theta_i_deg=theta_i_deg if plane == "incidence" else None)
+    what = "f·cosθr" if cosine else "f"
+    sides = "φ=180°|0°" if plane == "incidence" else "φ=270°|90°"
+    title = f"{model.name}  θi={theta_i_deg:g}°  {plane} plane {sides}  {what}: {caption}"
+    body = Text(text) if color == "none" else Text.from_ansi(text)
+    body.no_wrap = True
+    return Group(Text(title[:width], no_wrap=True), body)
