@@ -279,7 +279,7 @@ def evaluate(data: MerlData, wi: np.ndarray, wo: np.ndarray,
         i_h = np.minimum(t_h.astype(np.intp), N_THETA_H - 1)
         i_d = np.minimum(t_d.astype(np.intp), N_THETA_D - 1)
         i_p = np.minimum(t_p.astype(np.intp), N_PHI_D - 1)
-        rgb = planes[:, flat_index(i_h, i_d, i_p).ravel()]
+        rgb = planes.take(flat_index(i_h, i_d, i_p).ravel(), axis=1)  # take: 2-3x fancy indexing
     else:
         rgb = np.zeros((3, theta_h.size))
         axes = [_linear_weights(t_h.ravel(), N_THETA_H, periodic=False),
@@ -290,7 +290,7 @@ def evaluate(data: MerlData, wi: np.ndarray, wo: np.ndarray,
                 for c in range(2):
                     w = axes[0][1][a] * axes[1][1][b] * axes[2][1][c]
                     idx = flat_index(axes[0][0][a], axes[1][0][b], axes[2][0][c])
-                    rgb += w * planes[:, idx]
+                    rgb += w * planes.take(idx, axis=1)
     out = np.moveaxis(rgb, 0, -1).reshape(*shape, 3)
     return np.where(inside[..., None], np.maximum(out, 0.0), 0.0)
 
