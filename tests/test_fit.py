@@ -85,6 +85,22 @@ def test_wrong_model_has_a_residual_and_respects_the_constraint(files):
         MODELS["blinn-phong"].resolve(p)  # validates ranges and the constraint
 
 
+def test_fixed_parameters_are_kept(files):
+    """Fixing kd at its true value (0.1 for R) still recovers f0 and α; fixing blinn-phong's kd
+    leaves ks the budget 1 − kd."""
+    data = merl.load(files["ggx"])
+    result = fit.fit(data, "ggx", fixed={"kd": 0.1}, stride=(3, 6, 30))
+    r = result.params[0]
+    assert r["kd"] == 0.1 and list(r) == ["kd", "f0", "alpha", "fresnel"]
+    assert r["f0"] == pytest.approx(0.9, rel=1e-3) and r["alpha"] == pytest.approx(0.2, rel=1e-3)
+    result = fit.fit(data, "blinn-phong", fixed={"kd": 0.6}, stride=(3, 6, 30))
+    assert all(p["kd"] == 0.6 and p["ks"] <= 0.4 + 1e-12 for p in result.params)
+    with pytest.raises(ValueError, match="violate kd"):
+        fit.fit(data, "blinn-phong", fixed={"kd": 0.8, "ks": 0.5})
+    with pytest.raises(ValueError, match="no free continuous parameter"):
+        fit.fit(data, "lambert", fixed={"kd": 0.5})
+
+
 def test_space_maps_every_point_into_the_valid_region():
     rng = np.random.default_rng(0)
     for name in ("blinn-phong", "cook-torrance", "ggx", "gltf", "phong", "oren-nayar"):
@@ -138,6 +154,10 @@ def test_cli_fit_json_and_errors(files, tmp_path, capsys):
                         (["fit", str(files["ggx"]), "--model", "merl"], "not an analytic"),
                         (["fit", str(files["ggx"]), "--model", "ggx", "--stride", "1,2"],
                          "stride"),
+                        (["fit", str(files["ggx"]), "--model", "ggx", "-p", "kd=2"],
+                         "expected in [0, 1]"),
+                        (["fit", str(files["ggx"]), "--model", "ggx", "-p", "m=0.2"],
+                         "unknown parameter 'm'"),
                         (["fit", str(files["ggx"])], "--model")):
         rc = main(argv)
         out, err = capsys.readouterr()

@@ -12,7 +12,8 @@ import argparse
 import json
 
 from ..core.fit import STRIDE, albedo_table, fit_file
-from .common import fmt, fmt_params, json_params
+from ..core.models import get_model
+from .common import fmt, fmt_params, json_params, parse_params
 
 OBJECTIVE = "rms of log(1 + f*cos(theta_i)*cos(theta_o)) - log(1 + f_data*cos*cos) over bins"
 
@@ -21,6 +22,9 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("file", metavar="FILE", help="MERL .binary file")
     parser.add_argument("--model", required=True, metavar="NAME",
                         help="analytic model to fit (e.g. ggx, cook-torrance, blinn-phong, gltf)")
+    parser.add_argument("-p", "--param", action="append", default=[], metavar="NAME=VALUE",
+                        help="keep a parameter at this value instead of fitting it "
+                             "(repeatable), e.g. -p kd=0 or -p fresnel=schlick")
     parser.add_argument("--stride", type=stride_type, default=STRIDE, metavar="H,D,P",
                         help="use every H-th θh, D-th θd, P-th φd bin (default: "
                              f"{','.join(map(str, STRIDE))}; larger is faster and coarser)")
@@ -42,7 +46,9 @@ def stride_type(text: str) -> tuple[int, int, int]:
 
 
 def run(args: argparse.Namespace) -> int:
-    data, result = fit_file(args.file, args.model, stride=args.stride, mean=args.mean)
+    fixed = parse_params(get_model(args.model), args.param)
+    data, result = fit_file(args.file, args.model, stride=args.stride, mean=args.mean,
+                            fixed=fixed)
     albedo = albedo_table(data, result)
     if args.json:
         doc = {

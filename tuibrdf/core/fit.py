@@ -18,14 +18,16 @@ the specular peak (10³ sr⁻¹ for a sharp metal) does not drown the diffuse pa
 uniform over bins (as in Ngan et al.), not over solid angle.  The reported ``residual`` is
 ``√E``, the RMS error in that compressed space.
 
-**Parameters.**  Every ``float`` and ``rgb`` parameter of the model is free (``choice``
-parameters keep the given value, e.g. ``fresnel=exact``).  Scalar models are fitted to each
+**Parameters.**  Every ``float`` and ``rgb`` parameter of the model is free unless it is given
+in ``fixed`` (``choice`` parameters keep the given value or their default, e.g.
+``fresnel=exact``).  Scalar models are fitted to each
 channel separately (three parameter sets); RGB models (``gltf``) are fitted to all three
 channels at once.  The optimiser works in an unconstrained space ``z ∈ ℝᵏ``: a parameter in
 ``[lo, hi]`` is ``lo + (hi − lo)·σ(z)`` (σ the logistic function), on a log scale when the
 range spans ≥ 2 decades (``m``, ``alpha``: ``lo·(hi/lo)^σ(z)``; ``n`` ∈ [0, 10⁴]:
 ``expm1(log1p(hi)·σ(z))``), and parameters tied by a ``a + b ≤ 1`` constraint (blinn-phong's
-kd, ks) are ``softmax(z_a, z_b, 0)``, so every point the optimiser visits is valid.
+kd, ks) are ``b·softmax(z_a, z_b, 0)`` with ``b`` = 1 minus the fixed members, so every point
+the optimiser visits is valid.
 
 **Optimiser.**  A coarse grid (4 values of each z for ≤ 3 free parameters, else 3), then
 Nelder–Mead (Nelder & Mead 1965, standard coefficients 1, 2, ½, ½; adaptive ones for k ≥ 4,
@@ -108,29 +110,41 @@ class Space:
     fixed: dict[str, Any]
     #: (name, channel or None) of each free scalar, in z order
     slots: tuple[tuple[str, int | None], ...]
-    #: groups of slot indices tied by a sum ≤ 1 constraint
+    #: groups of slot indices tied by a sum ≤ 1 constraint, and the budget each group shares
+    #: (1 minus the fixed members)
     groups: tuple[tuple[int, ...], ...] = field(default=())
+    budgets: tuple[float, ...] = field(default=())
 
     @classmethod
     def of(cls, model: Model, fixed: Mapping[str, Any]) -> Space:
+        """``fixed``: user values (already validated) of the parameters that are not fitted;
+        ``choice`` parameters not in it keep their defaults, continuous ones are free."""
         slots: list[tuple[str, int | None]] = []
+        values = {}
         for p in model.params:
-            if p.kind == "float":
+            if p.name in fixed:
+                values[p.name] = fixed[p.name]
+            elif p.kind == "float":
                 slots.append((p.name, None))
             elif p.kind == "rgb":
                 slots.extend((p.name, c) for c in range(3))
-        fixed_values = {p.name: fixed.get(p.name, p.default) for p in model.params
-                        if p.kind not in ("float", "rgb")}
+            else:
+                values[p.name] = p.default
         if not slots:
-            raise ValueError(f"fit: {model.name} has no continuous parameter to fit")
-        groups = []
+            raise ValueError(f"fit: {model.name} has no free continuous parameter to fit")
+        groups, budgets = [], []
         for c in model.constraints:
             members = [i for i, (n, _) in enumerate(slots) if n in c.names]
             unit = all(model.param(n).min == 0.0 and model.param(n).max == 1.0 for n in c.names)
-            if c.text != " + ".join(c.names) + " ≤ 1" or not unit or len(members) != len(c.names):
+            if c.text != " + ".join(c.names) + " ≤ 1" or not unit:
                 raise ValueError(f"fit: constraint {c.text} of {model.name} is not supported")
-            groups.append(tuple(members))
-        return cls(model, fixed_values, tuple(slots), tuple(groups))
+            budget = 1.0 - sum(float(values[n]) for n in c.names if n in values)
+            if budget < -1e-9:
+                raise ValueError(f"fit: the fixed values violate {c.text}")
+            if members:
+                groups.append(tuple(members))
+                budgets.append(max(budget, 0.0))
+        return cls(model, values, tuple(slots), tuple(groups), tuple(budgets))
 
     @property
     def k(self) -> int:
@@ -153,10 +167,10 @@ class Space:
             else:
                 x[i] = lo + (hi - lo) * u[i]
             x[i] = min(max(x[i], lo), hi)  # rounding of the maps must not leave the range
-        for g in self.groups:
+        for g, budget in zip(self.groups, self.budgets, strict=True):
             zg = np.append(z[list(g)], 0.0)
             e = np.exp(zg - zg.max())  # softmax, shifted so exp cannot overflow
-            x[list(g)] = (e / e.sum())[:-1]
+            x[list(g)] = budget * (e / e.sum())[:-1]
         return x
 
     def values(self, z: np.ndarray) -> dict[str, Any]:
@@ -170,7 +184,7 @@ class Space:
                 rgb = list(out.get(name, (0.0, 0.0, 0.0)))
                 rgb[channel] = float(v)
                 out[name] = tuple(rgb)
-        return out
+        return {p.name: out[p.name] for p in self.model.params}  # declaration order
 
 
 # ------------------------------------------------------------------------------ optimiser
@@ -259,13 +273,14 @@ class Fit:
 
 def fit(data: MerlData, model: str | Model, *, fixed: Mapping[str, Any] | None = None,
         stride: tuple[int, int, int] = STRIDE, mean: bool = False) -> Fit:
-    """Fit ``model``'s free parameters to ``data`` (module docstring); ``fixed`` sets the
-    non-continuous ones (default: their defaults).  ``mean`` fits a scalar model once, to the
-    mean of R, G and B, instead of once per channel."""
+    """Fit ``model``'s free parameters to ``data`` (module docstring).  ``fixed`` maps names to
+    user values that are kept, not fitted (e.g. ``{"kd": 0}``, ``{"fresnel": "schlick"}``);
+    unnamed ``choice`` parameters keep their defaults.  ``mean`` fits a scalar model once, to
+    the mean of R, G and B, instead of once per channel."""
     m = get_model(model)
     if m is MERL or any(p.kind == "path" for p in m.params):
         raise ValueError(f"fit: {m.name} is not an analytic model")
-    space = Space.of(m, m.resolve(fixed or {}) if fixed else {})
+    space = Space.of(m, {k: m.param(k).validate(v, m.name) for k, v in (fixed or {}).items()})
     samples = sample_set(data, stride)
     start = time.perf_counter()
     if m.rgb:
