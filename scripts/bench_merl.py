@@ -116,10 +116,6 @@ def main() -> None:
                              for k, v in p.items() if k != "fresnel") for p in r.params)
                 print(f"{truth_name:<6.6} {name:<14} {r.seconds:7.2f} {r.evaluations:6d} "
                       f"{r.residual:10.3g}  {shown}")
-        a = fit.albedo_rgb(lambda wi, wo: merl.evaluate(data, wi, wo), 30.0)
-        a4 = fit.albedo_rgb(lambda wi, wo: merl.evaluate(data, wi, wo), 30.0, 256, 512)
-        print(f"\nalbedo quadrature 64×128 vs 256×512 at θi=30°: max rel diff "
-              f"{np.max(np.abs(a / a4 - 1)):.1e}")
 
 
 if __name__ == "__main__":

@@ -63,6 +63,18 @@ def test_rgb_model_recovers_joint_parameters(files):
     assert got["roughness"] == pytest.approx(0.4, rel=1e-3)
 
 
+def test_mean_fit_is_one_parameter_set(files):
+    """Fitted to the mean of the channels, GGX data (shared α = 0.2) give one set whose α is
+    near 0.2 and whose f0 lies between the channels' (0.3 … 0.9); its residual is not 0, since
+    the mean of three GGX lobes with different Fresnel terms is not one GGX lobe."""
+    result = fit.fit(merl.load(files["ggx"]), "ggx", stride=(3, 6, 30), mean=True)
+    assert result.channels == ("mean",) and len(result.params) == 1
+    (p,) = result.params
+    MODELS["ggx"].resolve(p)
+    assert p["alpha"] == pytest.approx(0.2, rel=0.1) and 0.3 < p["f0"] < 0.9
+    assert 0 < result.residual < 0.05
+
+
 def test_wrong_model_has_a_residual_and_respects_the_constraint(files):
     """Blinn-Phong cannot reproduce GGX (different lobe shape and no Fresnel): residual > 0, and
     the fitted kd + ks stays ≤ 1 (its declared constraint)."""
@@ -71,6 +83,22 @@ def test_wrong_model_has_a_residual_and_respects_the_constraint(files):
     for p in result.params:
         assert p["kd"] + p["ks"] <= 1.0 + 1e-12
         MODELS["blinn-phong"].resolve(p)  # validates ranges and the constraint
+
+
+def test_fixed_parameters_are_kept(files):
+    """Fixing kd at its true value (0.1 for R) still recovers f0 and α; fixing blinn-phong's kd
+    leaves ks the budget 1 − kd."""
+    data = merl.load(files["ggx"])
+    result = fit.fit(data, "ggx", fixed={"kd": 0.1}, stride=(3, 6, 30))
+    r = result.params[0]
+    assert r["kd"] == 0.1 and list(r) == ["kd", "f0", "alpha", "fresnel"]
+    assert r["f0"] == pytest.approx(0.9, rel=1e-3) and r["alpha"] == pytest.approx(0.2, rel=1e-3)
+    result = fit.fit(data, "blinn-phong", fixed={"kd": 0.6}, stride=(3, 6, 30))
+    assert all(p["kd"] == 0.6 and p["ks"] <= 0.4 + 1e-12 for p in result.params)
+    with pytest.raises(ValueError, match="violate kd"):
+        fit.fit(data, "blinn-phong", fixed={"kd": 0.8, "ks": 0.5})
+    with pytest.raises(ValueError, match="no free continuous parameter"):
+        fit.fit(data, "lambert", fixed={"kd": 0.5})
 
 
 def test_space_maps_every_point_into_the_valid_region():
@@ -89,13 +117,6 @@ def test_nelder_mead_finds_the_rosenbrock_minimum():
                               max_evals=5000)
     np.testing.assert_allclose(x, [1.0, 1.0], atol=1e-5)
     assert f < 1e-10 and n < 5000
-
-
-def test_albedo_quadrature_of_lambert():
-    """A constant f = ρ/π has albedo ρ at every θi (∫ cos θ dω = π)."""
-    for theta in (0.0, 45.0, 80.0):
-        a = fit.albedo_rgb(lambda wi, wo: np.full(wo.shape, 0.7 / np.pi), theta)
-        np.testing.assert_allclose(a, 0.7, rtol=1e-12)
 
 
 def test_unfittable_models_are_errors(files):
@@ -119,6 +140,12 @@ def test_cli_fit_json_and_errors(files, tmp_path, capsys):
     rc = main(["fit", str(files["ggx"]), "--model", "gltf", "--stride", "3,6,30"])
     out, _ = capsys.readouterr()
     assert rc == 0 and "RGB  base_color=" in out and "residual" in out
+    assert "as options: -p base_color=" in out
+    rc = main(["fit", str(files["ggx"]), "--model", "ggx", "--stride", "3,6,30", "--mean",
+               "--json"])
+    doc = json.loads(capsys.readouterr()[0])
+    assert rc == 0 and [f["channel"] for f in doc["fits"]] == ["mean"]
+    assert all(len(row["fit"]) == 3 for row in doc["albedo"])
     bad = tmp_path / "bad.binary"
     bad.write_bytes(b"\0" * 12)
     for argv, words in ((["fit", str(bad), "--model", "ggx"], "wrong header"),
@@ -127,6 +154,10 @@ def test_cli_fit_json_and_errors(files, tmp_path, capsys):
                         (["fit", str(files["ggx"]), "--model", "merl"], "not an analytic"),
                         (["fit", str(files["ggx"]), "--model", "ggx", "--stride", "1,2"],
                          "stride"),
+                        (["fit", str(files["ggx"]), "--model", "ggx", "-p", "kd=2"],
+                         "expected in [0, 1]"),
+                        (["fit", str(files["ggx"]), "--model", "ggx", "-p", "m=0.2"],
+                         "unknown parameter 'm'"),
                         (["fit", str(files["ggx"])], "--model")):
         rc = main(argv)
         out, err = capsys.readouterr()

@@ -274,7 +274,9 @@ def test_cache_rereads_a_changed_file(tmp_path):
     path = write_merl(tmp_path / "c.binary", t, raw=True)
     merl.clear_cache()
     a = merl.load_cached(path)
-    assert merl.load_cached(path) is a  # same (path, mtime, size): no second read
+    seen: list[float] = []
+    assert merl.load_cached(path, seen.append) is a  # same (path, mtime, size): no re-read
+    assert seen == [1.0]  # a cache hit still completes the caller's progress bar
     t[0] *= 2.0
     write_merl(path, t, raw=True)
     os.utime(path, ns=(1, 1))  # a different mtime even on a coarse-clock filesystem
@@ -345,3 +347,17 @@ def test_writer_sample_angles_match_the_spec():
     assert np.degrees(th[45, 0, 0]) == pytest.approx(22.5)  # (45/90)²·90°
     assert np.degrees(td[0, 30, 0]) == pytest.approx(30.0)
     assert np.degrees(pd[0, 0, 90]) == pytest.approx(90.0)
+
+
+def test_special_directions_are_finite_and_reciprocal(coded):
+    """H = N (wo the mirror of wi: φh undefined), wi = wo = N, the horizon, grazing pairs."""
+    s, c = np.sin(np.radians(40.0)), np.cos(np.radians(40.0))
+    wi = np.array([[0, 0, 1.0], [-s, 0, c], [1.0, 0, 0], [1.0, 0, 0], [0, 1.0, 0], [-s, 0, c]])
+    wo = np.array([[0, 0, 1.0], [s, 0, c], [1.0, 0, 0], [0, 1.0, 0], [0, 0, 1.0], [-s, 0, c]])
+    for mode in merl.LOOKUPS:
+        f = merl.evaluate(coded, wi, wo, mode)
+        assert np.all(np.isfinite(f)) and np.all(f > 0)
+        np.testing.assert_array_equal(f, merl.evaluate(coded, wo, wi, mode))
+    # H = N: θh = 0 and θd = angle(wi, N) = 40°, i.e. bin (0, 40, ·)
+    th, td, _, valid = merl.half_diff(wi[1], wo[1])
+    assert valid and th == 0.0 and np.degrees(td) == pytest.approx(40.0)

@@ -12,7 +12,8 @@ import argparse
 import json
 
 from ..core.fit import STRIDE, albedo_table, fit_file
-from .common import fmt, fmt_params, json_params
+from ..core.models import get_model
+from .common import fmt, fmt_params, json_params, parse_params
 
 OBJECTIVE = "rms of log(1 + f*cos(theta_i)*cos(theta_o)) - log(1 + f_data*cos*cos) over bins"
 
@@ -21,9 +22,15 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("file", metavar="FILE", help="MERL .binary file")
     parser.add_argument("--model", required=True, metavar="NAME",
                         help="analytic model to fit (e.g. ggx, cook-torrance, blinn-phong, gltf)")
+    parser.add_argument("-p", "--param", action="append", default=[], metavar="NAME=VALUE",
+                        help="keep a parameter at this value instead of fitting it "
+                             "(repeatable), e.g. -p kd=0 or -p fresnel=schlick")
     parser.add_argument("--stride", type=stride_type, default=STRIDE, metavar="H,D,P",
                         help="use every H-th θh, D-th θd, P-th φd bin (default: "
                              f"{','.join(map(str, STRIDE))}; larger is faster and coarser)")
+    parser.add_argument("--mean", action="store_true",
+                        help="fit a scalar model once, to the mean of R, G, B (one parameter "
+                             "set) instead of once per channel")
     parser.add_argument("--json", action="store_true", help="print JSON instead of text")
 
 
@@ -39,8 +46,9 @@ def stride_type(text: str) -> tuple[int, int, int]:
 
 
 def run(args: argparse.Namespace) -> int:
-    data, result = fit_file(args.file, args.model, stride=args.stride)
-    labels = ["RGB"] if result.model.rgb else ["R", "G", "B"]
+    fixed = parse_params(get_model(args.model), args.param)
+    data, result = fit_file(args.file, args.model, stride=args.stride, mean=args.mean,
+                            fixed=fixed)
     albedo = albedo_table(data, result)
     if args.json:
         doc = {
@@ -53,7 +61,7 @@ def run(args: argparse.Namespace) -> int:
             "seconds": round(result.seconds, 3),
             "residual": result.residual,
             "fits": [{"channel": c, "params": json_params(p)}
-                     for c, p in zip(labels, result.params, strict=True)],
+                     for c, p in zip(result.channels, result.params, strict=True)],
             "albedo": albedo,
             "invalid_bins": list(data.n_invalid),
         }
@@ -62,8 +70,9 @@ def run(args: argparse.Namespace) -> int:
     print(f"# fit {result.model.name} to {data.path}")
     print(f"# {result.n_samples} samples, {result.evaluations} evaluations, "
           f"{result.seconds:.1f} s; objective: {OBJECTIVE}")
-    for c, p in zip(labels, result.params, strict=True):
-        print(f"{c:>3}  {fmt_params(p)}")
+    for c, p in zip(result.channels, result.params, strict=True):
+        print(f"{c:>4}  {fmt_params(p)}")
+        print(f"      as options: {' '.join(f'-p {k}={fmt(v)}' for k, v in p.items())}")
     print(f"residual {fmt(result.residual)}")
     print(f"{'theta_i':>7}  {'albedo data (R,G,B)':>26}  {'albedo fit (R,G,B)':>26}")
     for row in albedo:

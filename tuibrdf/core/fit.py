@@ -18,14 +18,16 @@ the specular peak (10³ sr⁻¹ for a sharp metal) does not drown the diffuse pa
 uniform over bins (as in Ngan et al.), not over solid angle.  The reported ``residual`` is
 ``√E``, the RMS error in that compressed space.
 
-**Parameters.**  Every ``float`` and ``rgb`` parameter of the model is free (``choice``
-parameters keep the given value, e.g. ``fresnel=exact``).  Scalar models are fitted to each
+**Parameters.**  Every ``float`` and ``rgb`` parameter of the model is free unless it is given
+in ``fixed`` (``choice`` parameters keep the given value or their default, e.g.
+``fresnel=exact``).  Scalar models are fitted to each
 channel separately (three parameter sets); RGB models (``gltf``) are fitted to all three
 channels at once.  The optimiser works in an unconstrained space ``z ∈ ℝᵏ``: a parameter in
 ``[lo, hi]`` is ``lo + (hi − lo)·σ(z)`` (σ the logistic function), on a log scale when the
 range spans ≥ 2 decades (``m``, ``alpha``: ``lo·(hi/lo)^σ(z)``; ``n`` ∈ [0, 10⁴]:
 ``expm1(log1p(hi)·σ(z))``), and parameters tied by a ``a + b ≤ 1`` constraint (blinn-phong's
-kd, ks) are ``softmax(z_a, z_b, 0)``, so every point the optimiser visits is valid.
+kd, ks) are ``b·softmax(z_a, z_b, 0)`` with ``b`` = 1 minus the fixed members, so every point
+the optimiser visits is valid.
 
 **Optimiser.**  A coarse grid (4 values of each z for ≤ 3 free parameters, else 3), then
 Nelder–Mead (Nelder & Mead 1965, standard coefficients 1, 2, ½, ½; adaptive ones for k ≥ 4,
@@ -52,12 +54,16 @@ from .merl import MERL, MerlData, from_half_diff, load_cached
 from .models import get_model
 from .numerics import kernel_errstate
 from .params import Model
+from .quadrature import albedo_resolved
 
 #: default sample strides along (θh, θd, φd) bins
 STRIDE = (1, 3, 15)
 #: incidence angles (degrees) at which data and fit albedos are reported
 ALBEDO_THETAS = (0.0, 30.0, 60.0)
 CHANNELS = "RGB"
+#: the optimiser's box in z: σ(±16) is within 1.2e-7 of 0 or 1, so a parameter can reach its
+#: end to 1.2e-7 of its range (log-scaled ones to a factor 1.2e-7·ln(hi/lo) of it)
+Z_BOUND = 16.0
 
 
 # ------------------------------------------------------------------------------ samples
@@ -104,29 +110,41 @@ class Space:
     fixed: dict[str, Any]
     #: (name, channel or None) of each free scalar, in z order
     slots: tuple[tuple[str, int | None], ...]
-    #: groups of slot indices tied by a sum ≤ 1 constraint
+    #: groups of slot indices tied by a sum ≤ 1 constraint, and the budget each group shares
+    #: (1 minus the fixed members)
     groups: tuple[tuple[int, ...], ...] = field(default=())
+    budgets: tuple[float, ...] = field(default=())
 
     @classmethod
     def of(cls, model: Model, fixed: Mapping[str, Any]) -> Space:
+        """``fixed``: user values (already validated) of the parameters that are not fitted;
+        ``choice`` parameters not in it keep their defaults, continuous ones are free."""
         slots: list[tuple[str, int | None]] = []
+        values = {}
         for p in model.params:
-            if p.kind == "float":
+            if p.name in fixed:
+                values[p.name] = fixed[p.name]
+            elif p.kind == "float":
                 slots.append((p.name, None))
             elif p.kind == "rgb":
                 slots.extend((p.name, c) for c in range(3))
-        fixed_values = {p.name: fixed.get(p.name, p.default) for p in model.params
-                        if p.kind not in ("float", "rgb")}
+            else:
+                values[p.name] = p.default
         if not slots:
-            raise ValueError(f"fit: {model.name} has no continuous parameter to fit")
-        groups = []
+            raise ValueError(f"fit: {model.name} has no free continuous parameter to fit")
+        groups, budgets = [], []
         for c in model.constraints:
             members = [i for i, (n, _) in enumerate(slots) if n in c.names]
             unit = all(model.param(n).min == 0.0 and model.param(n).max == 1.0 for n in c.names)
-            if c.text != " + ".join(c.names) + " ≤ 1" or not unit or len(members) != len(c.names):
+            if c.text != " + ".join(c.names) + " ≤ 1" or not unit:
                 raise ValueError(f"fit: constraint {c.text} of {model.name} is not supported")
-            groups.append(tuple(members))
-        return cls(model, fixed_values, tuple(slots), tuple(groups))
+            budget = 1.0 - sum(float(values[n]) for n in c.names if n in values)
+            if budget < -1e-9:
+                raise ValueError(f"fit: the fixed values violate {c.text}")
+            if members:
+                groups.append(tuple(members))
+                budgets.append(max(budget, 0.0))
+        return cls(model, values, tuple(slots), tuple(groups), tuple(budgets))
 
     @property
     def k(self) -> int:
@@ -149,10 +167,10 @@ class Space:
             else:
                 x[i] = lo + (hi - lo) * u[i]
             x[i] = min(max(x[i], lo), hi)  # rounding of the maps must not leave the range
-        for g in self.groups:
+        for g, budget in zip(self.groups, self.budgets, strict=True):
             zg = np.append(z[list(g)], 0.0)
             e = np.exp(zg - zg.max())  # softmax, shifted so exp cannot overflow
-            x[list(g)] = (e / e.sum())[:-1]
+            x[list(g)] = budget * (e / e.sum())[:-1]
         return x
 
     def values(self, z: np.ndarray) -> dict[str, Any]:
@@ -166,40 +184,47 @@ class Space:
                 rgb = list(out.get(name, (0.0, 0.0, 0.0)))
                 rgb[channel] = float(v)
                 out[name] = tuple(rgb)
-        return out
+        return {p.name: out[p.name] for p in self.model.params}  # declaration order
 
 
 # ------------------------------------------------------------------------------ optimiser
 
 
 def nelder_mead(fun: Callable[[np.ndarray], float], x0: np.ndarray, *, step: float = 0.6,
-                xtol: float = 1e-4, ftol: float = 1e-12, max_evals: int = 2000):
+                xtol: float = 1e-4, ftol: float = 1e-12, frtol: float = 1e-9,
+                max_evals: int = 2000, bound: float = math.inf):
     """Minimise ``fun`` from ``x0``; returns ``(x, f, evaluations)``.
 
     Stops when the simplex is smaller than ``xtol`` in every coordinate and its values differ by
-    less than ``ftol`` (absolute + relative), or after ``max_evals`` evaluations.
+    less than ``ftol + frtol·|f|``, or after ``max_evals`` evaluations.  Every trial point is
+    clipped to ``[-bound, bound]``: where the optimum is at a parameter's end (σ(z) → 0 or 1)
+    the simplex then collapses onto the box face instead of drifting off to infinity.
     """
+    def clipped(x: np.ndarray) -> float:  # clips x in place, so the simplex stores it clipped
+        np.clip(x, -bound, bound, out=x)
+        return fun(x)
+
     n = len(x0)
     if n >= 4:  # adaptive coefficients (Gao & Han 2012) keep high dimensions from stalling
         rho, chi, psi, sigma = 1.0, 1.0 + 2.0 / n, 0.75 - 1.0 / (2 * n), 1.0 - 1.0 / n
     else:
         rho, chi, psi, sigma = 1.0, 2.0, 0.5, 0.5
     sim = np.vstack([x0, x0 + step * np.eye(n)])
-    fs = np.array([fun(x) for x in sim])
+    fs = np.array([clipped(x) for x in sim])
     evals = n + 1
     while evals < max_evals:
         order = np.argsort(fs, kind="stable")
         sim, fs = sim[order], fs[order]
         if (np.max(np.abs(sim[1:] - sim[0])) <= xtol
-                and fs[-1] - fs[0] <= ftol + 1e-9 * abs(fs[0])):
+                and fs[-1] - fs[0] <= ftol + frtol * abs(fs[0])):
             break
         centroid = sim[:-1].mean(axis=0)
         xr = centroid + rho * (centroid - sim[-1])
-        fr = fun(xr)
+        fr = clipped(xr)
         evals += 1
         if fr < fs[0]:
             xe = centroid + chi * (xr - centroid)
-            fe = fun(xe)
+            fe = clipped(xe)
             evals += 1
             sim[-1], fs[-1] = (xe, fe) if fe < fr else (xr, fr)
         elif fr < fs[-2]:
@@ -207,13 +232,13 @@ def nelder_mead(fun: Callable[[np.ndarray], float], x0: np.ndarray, *, step: flo
         else:
             outside = fr < fs[-1]
             xc = centroid + psi * ((xr if outside else sim[-1]) - centroid)
-            fc = fun(xc)
+            fc = clipped(xc)
             evals += 1
             if fc < (fr if outside else fs[-1]):
                 sim[-1], fs[-1] = xc, fc
             else:  # shrink toward the best vertex
                 sim[1:] = sim[0] + sigma * (sim[1:] - sim[0])
-                fs[1:] = [fun(x) for x in sim[1:]]
+                fs[1:] = [clipped(x) for x in sim[1:]]
                 evals += n
     best = int(np.argmin(fs))
     return sim[best], float(fs[best]), evals
@@ -224,10 +249,13 @@ def nelder_mead(fun: Callable[[np.ndarray], float], x0: np.ndarray, *, step: flo
 
 @dataclass(frozen=True)
 class Fit:
-    """A fitted model.  ``params`` holds one value mapping per fitted channel group: three
-    (R, G, B) for a scalar model, one for an RGB model."""
+    """A fitted model.  ``params`` holds one complete value mapping per entry of ``channels``:
+    ``("R", "G", "B")`` for a scalar model fitted per channel, ``("RGB",)`` for an RGB model,
+    ``("mean",)`` for a scalar model fitted to the mean of the channels (one parameter set that
+    can be shown as it is, e.g. in the app's compare mode)."""
 
     model: Model
+    channels: tuple[str, ...]
     params: tuple[dict[str, Any], ...]
     residual: float
     evaluations: int
@@ -235,32 +263,38 @@ class Fit:
     n_samples: int
 
     def rgb(self, wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
-        """The fitted model as RGB, ``(..., 3)``."""
+        """The fitted model as RGB, ``(..., 3)`` (a ``mean`` fit is grey)."""
         with kernel_errstate():
             if self.model.rgb:
                 return evaluate_resolved(self.model, self.params[0], wi, wo)
-            return np.stack([evaluate_resolved(self.model, v, wi, wo) for v in self.params],
-                            axis=-1)
+            f = [evaluate_resolved(self.model, v, wi, wo) for v in self.params]
+            return np.stack(f * (3 // len(f)), axis=-1)
 
 
 def fit(data: MerlData, model: str | Model, *, fixed: Mapping[str, Any] | None = None,
-        stride: tuple[int, int, int] = STRIDE) -> Fit:
-    """Fit ``model``'s free parameters to ``data`` (module docstring); ``fixed`` sets the
-    non-continuous ones (default: their defaults)."""
+        stride: tuple[int, int, int] = STRIDE, mean: bool = False) -> Fit:
+    """Fit ``model``'s free parameters to ``data`` (module docstring).  ``fixed`` maps names to
+    user values that are kept, not fitted (e.g. ``{"kd": 0}``, ``{"fresnel": "schlick"}``);
+    unnamed ``choice`` parameters keep their defaults.  ``mean`` fits a scalar model once, to
+    the mean of R, G and B, instead of once per channel."""
     m = get_model(model)
     if m is MERL or any(p.kind == "path" for p in m.params):
         raise ValueError(f"fit: {m.name} is not an analytic model")
-    space = Space.of(m, m.resolve(fixed or {}) if fixed else {})
+    space = Space.of(m, {k: m.param(k).validate(v, m.name) for k, v in (fixed or {}).items()})
     samples = sample_set(data, stride)
     start = time.perf_counter()
-    target = samples.compressed(samples.data)  # (M, 3)
+    if m.rgb:
+        channels, targets = ("RGB",), [samples.compressed(samples.data)]
+    elif mean:
+        channels, targets = ("mean",), [samples.compressed(samples.data.mean(axis=1))]
+    else:
+        target = samples.compressed(samples.data)
+        channels, targets = tuple(CHANNELS), [target[:, c] for c in range(3)]
     evaluations = 0
     params = []
-    sq_sum = 0.0
+    errors = []
     warm: list[np.ndarray] = []  # earlier channels' solutions: extra starting points
-    groups = [slice(0, 3)] if m.rgb else [slice(c, c + 1) for c in range(3)]
-    for channels in groups:
-        want = target[:, channels] if m.rgb else target[:, channels.start]
+    for want in targets:
 
         def objective(z, want=want):
             with kernel_errstate():
@@ -271,8 +305,8 @@ def fit(data: MerlData, model: str | Model, *, fixed: Mapping[str, Any] | None =
         warm.append(z)
         evaluations += n
         params.append(space.values(z))
-        sq_sum += err * (3 if m.rgb else 1)
-    return Fit(m, tuple(params), math.sqrt(sq_sum / 3), evaluations,
+        errors.append(err)
+    return Fit(m, channels, tuple(params), math.sqrt(float(np.mean(errors))), evaluations,
                time.perf_counter() - start, len(samples.cos_io))
 
 
@@ -288,7 +322,7 @@ def _minimise(objective: Callable[[np.ndarray], float], k: int, warm=()):
     order = np.argsort(values, kind="stable")
     starts = [grid[i] for i in order[:1 if warm else 2]] + list(warm)
     for z0 in starts:
-        z, err, n = nelder_mead(objective, z0)
+        z, err, n = nelder_mead(objective, z0, bound=Z_BOUND)
         evaluations += n
         if best is None or err < best[1]:
             best = (z, err)
@@ -298,36 +332,21 @@ def _minimise(objective: Callable[[np.ndarray], float], k: int, warm=()):
 # ------------------------------------------------------------------------------ albedo
 
 
-def albedo_rgb(fn: Callable[[np.ndarray, np.ndarray], np.ndarray], theta_i_deg: float,
-               n_u: int = 64, n_phi: int = 128) -> np.ndarray:
-    """Directional albedo ``∫ f cos θo dωo`` (RGB) of ``fn(wi, wo) -> (..., 3)``.
-
-    With ``u = sin²θo``, ``cos θo dωo = ½ du dφ``, so the albedo is ``π·mean(f)`` over a
-    midpoint grid in ``(u, φ)`` (cosine-weighted stratified sampling; for synthetic GGX data
-    with α = 0.2 at θi = 30° it differs from a 4×4 finer grid by 6e-5 relative, measured by
-    ``scripts/bench_merl.py``).  Exact for a constant ``f``.  Local until the mesh quadrature
-    (``tuibrdf.core.quadrature``) lands; both data and fit go through the same rule.
-    """
-    from .frame import incident
-
-    u = (np.arange(n_u) + 0.5) / n_u
-    phi = (np.arange(n_phi) + 0.5) / n_phi * 2 * np.pi
-    s = np.sqrt(u)[:, None]
-    c = np.sqrt(1.0 - u)[:, None]
-    wo = np.stack(np.broadcast_arrays(s * np.cos(phi), s * np.sin(phi), c), axis=-1)
-    wi = np.broadcast_to(incident(theta_i_deg), wo.shape)
-    return np.pi * np.asarray(fn(wi, wo)).reshape(-1, 3).mean(axis=0)
-
-
 def albedo_table(data: MerlData, result: Fit, thetas=ALBEDO_THETAS) -> list[dict[str, Any]]:
-    """``[{"theta_i": θ, "data": [r, g, b], "fit": [r, g, b]}, ...]``."""
-    from .merl import evaluate as lookup
-
+    """``[{"theta_i": θ, "data": [r, g, b], "fit": [r, g, b]}, ...]``: directional albedos by
+    the mesh quadrature (:func:`tuibrdf.core.quadrature.albedo_resolved`, its default level),
+    the data through the ``merl`` model (trilinear lookup)."""
+    measured = {"file": data.path, "lookup": "trilinear"}
     rows = []
     for t in thetas:
+        if result.model.rgb:
+            fitted = np.asarray(albedo_resolved(result.model, result.params[0], t))
+        else:
+            fitted = np.array([albedo_resolved(result.model, p, t) for p in result.params])
+            fitted = np.resize(fitted, 3)  # a mean fit is grey: its one albedo for R, G, B
         rows.append({"theta_i": float(t),
-                     "data": albedo_rgb(lambda wi, wo: lookup(data, wi, wo), t).tolist(),
-                     "fit": albedo_rgb(result.rgb, t).tolist()})
+                     "data": np.asarray(albedo_resolved(MERL, measured, t)).tolist(),
+                     "fit": fitted.tolist()})
     return rows
 
 
@@ -337,5 +356,5 @@ def fit_file(path: str, model: str | Model, **kw) -> tuple[MerlData, Fit]:
     return data, fit(data, model, **kw)
 
 
-__all__ = ["ALBEDO_THETAS", "Fit", "Samples", "Space", "albedo_rgb", "albedo_table", "fit",
+__all__ = ["ALBEDO_THETAS", "Fit", "Samples", "Space", "albedo_table", "fit",
            "fit_file", "nelder_mead", "sample_set"]

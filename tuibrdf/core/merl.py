@@ -19,10 +19,11 @@ pole) gives ``θd``, ``φd``.  Bin coordinates (continuous; the bin is their flo
     tφd = 180·φd / π             φd folded to [0, π)
 
 Sample ``i`` of an axis sits at bin coordinate ``t = i`` (the bin's lower edge: θh = (i/90)²·90°,
-θd = i°, φd = i°), the inverse mapping the MERL tools and the fitting literature use.  Lookups:
+θd = i°, φd = i°): the inverse of the bin formulas, so that a sample's own angles look up that
+sample with either rule.  Lookups:
 
-* ``nearest``: the bin that contains the direction, ``⌊t⌋`` clamped — bit for bit what
-  ``BRDFRead.cpp`` (and pbrt-v2's ``RegularHalfangleBRDF``) return;
+* ``nearest``: the bin that contains the direction, ``⌊t⌋`` clamped — the rule of
+  ``BRDFRead.cpp`` (and pbrt-v2's ``RegularHalfangleBRDF``);
 * ``trilinear``: linear in each of ``tθh, tθd, tφd`` between samples ``⌊t⌋`` and ``⌊t⌋+1``;
   beyond the last sample of θh or θd the value is held constant (clamped); φd is periodic
   (sample 180 is sample 0, since φd ≡ φd + π), so bins 179 and 0 interpolate with each other.
@@ -278,7 +279,7 @@ def evaluate(data: MerlData, wi: np.ndarray, wo: np.ndarray,
         i_h = np.minimum(t_h.astype(np.intp), N_THETA_H - 1)
         i_d = np.minimum(t_d.astype(np.intp), N_THETA_D - 1)
         i_p = np.minimum(t_p.astype(np.intp), N_PHI_D - 1)
-        rgb = planes[:, flat_index(i_h, i_d, i_p).ravel()]
+        rgb = planes.take(flat_index(i_h, i_d, i_p).ravel(), axis=1)  # take: 2-3x fancy indexing
     else:
         rgb = np.zeros((3, theta_h.size))
         axes = [_linear_weights(t_h.ravel(), N_THETA_H, periodic=False),
@@ -289,7 +290,7 @@ def evaluate(data: MerlData, wi: np.ndarray, wo: np.ndarray,
                 for c in range(2):
                     w = axes[0][1][a] * axes[1][1][b] * axes[2][1][c]
                     idx = flat_index(axes[0][0][a], axes[1][0][b], axes[2][0][c])
-                    rgb += w * planes[:, idx]
+                    rgb += w * planes.take(idx, axis=1)
     out = np.moveaxis(rgb, 0, -1).reshape(*shape, 3)
     return np.where(inside[..., None], np.maximum(out, 0.0), 0.0)
 
