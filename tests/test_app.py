@@ -196,3 +196,10 @@ async def test_command_palette_runs_an_action():
                 break
             await pilot.pause(0.05)
         assert app.state.cmap != before
+
+
+def test_plain_tuibrdf_without_a_terminal_prints_help(capsys):
+    from tuibrdf.cli import main
+
+    assert main([]) == 0  # pytest captures stdout: not a terminal, so no viewer
+    assert "view" in capsys.readouterr().out

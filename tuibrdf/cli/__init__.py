@@ -44,8 +44,8 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     argv = sys.argv[1:] if argv is None else list(argv)
-    if not argv:  # plain `tuibrdf` opens the viewer
-        argv = ["view"]
+    if not argv and sys.stdin.isatty() and sys.stdout.isatty():
+        argv = ["view"]  # plain `tuibrdf` in a terminal opens the viewer (else: the help)
     commands = [name for name, _, _ in SUBCOMMANDS]
     first = next((a for a in argv if not a.startswith("-")), None)
     if first is not None and first not in commands:  # a typo gets a close match
