@@ -83,7 +83,7 @@ def test_plain_output_and_deterministic():
     c, _ = polar_plot(curves, 40, 10)
     assert "\x1b[" in c
     # lambert kd=0.8: 0.8/π ≈ 0.255 → 1-2-5 step with at most 5 circles: 0.1
-    assert cap == "circles every 0.1, max 0.255"
+    assert cap == "max 0.255 · circles every 0.1"
 
 
 def test_rgb_model_gives_channel_curves():

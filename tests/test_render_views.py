@@ -45,7 +45,8 @@ def test_map_plain_shows_marks_and_title():
                               color="none"))
     lines = out.split("\n")
     # title: model, θi and the exact mirror peak (n+2)/(2π)·ks = 79.9
-    assert lines[0].startswith("phong  θi=45°") and "79.9" in lines[0]
+    # (40 cells: θi gives way to the numbers, see test_titles_keep_numbers)
+    assert lines[0].startswith("phong  f peak 79.9") and "θ=45° φ=0°" in lines[0]
     body = "\n".join(lines[1:12])
     assert "X" in body and "o" in body  # mirror and light marks
     # the light mark is left of the centre column, the mirror mark right of it
@@ -107,3 +108,31 @@ def test_output_fits_the_requested_cells(view, size):
                   "256", width=w)
     lines = Text.from_ansi(out).plain.rstrip("\n").split("\n")
     assert len(lines) <= h and max(len(s) for s in lines) <= w
+
+
+def test_titles_keep_numbers():
+    # a narrow pane drops the legend, then θi, then the name; the value and direction stay
+    from tuibrdf.render.text import fit_parts
+
+    parts = [("cook-torrance", 2), ("θi=60°", 3), ("f peak 6.14 at θ=62° φ=0°", 0),
+             ("× mirror", 4)]
+    assert fit_parts(parts, 80) == "cook-torrance  θi=60°  f peak 6.14 at θ=62° φ=0°  × mirror"
+    assert fit_parts(parts, 50) == "cook-torrance  θi=60°  f peak 6.14 at θ=62° φ=0°"
+    assert fit_parts(parts, 42) == "cook-torrance  f peak 6.14 at θ=62° φ=0°"
+    assert fit_parts(parts, 30) == "f peak 6.14 at θ=62° φ=0°"
+    assert fit_parts(parts, 6) == "f peak"
+    # two parts that must stay: both kept, the line cropped
+    assert fit_parts([("incidence", 0), ("(φ 180°|0°)", 4), ("max 6.14 · circles every 2", 0)],
+                     30) == "incidence  max 6.14 · circles"
+
+
+def test_uniform_map_says_everywhere_and_no_negative_zero():
+    # Lambert kd=0.8: f = 0.8/π = 0.2546 in every direction, so no direction is "the" peak
+    m = MODELS["lambert"]
+    head = to_text(render_view("map", m, m.resolve({"kd": 0.8}), 30, 80, 20, color="none"))
+    assert "f = 0.255 sr⁻¹ everywhere" in head.split("\n")[0]
+    for theta in (0, 30, 60, 89):  # φ of a peak in the plane of incidence is 0, never -0
+        m = MODELS["cook-torrance"]
+        out = to_text(render_view("map", m, m.resolve({"kd": 0, "m": 0.07}), theta, 80, 20,
+                                  color="none"))
+        assert "φ=-0°" not in out and "φ=0°" in out.split("\n")[0]

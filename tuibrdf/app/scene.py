@@ -21,10 +21,11 @@ from ..core import quadrature
 from ..render import views
 from ..render.albedo_plot import albedo_plot
 from ..render.colormap import CMAPS as CMAPS  # re-exported for the app
-from ..render.colormap import Scale, colorbar, colorize, fmt_value, luminance
-from ..render.halfblock import HalfBlockImage, Mark
+from ..render.colormap import Scale, fmt_value, luminance
+from ..render.halfblock import HalfBlockImage
 from ..render.hemimap import map_values
 from ..render.polar import plot_body, polar_plot, section_curves
+from ..render.text import title
 from .state import Side
 
 #: colour levels of the maps: 32 keeps a full 160×48 map update near 50 KiB (docs/app.md)
@@ -138,19 +139,11 @@ def compare_map(sides: list[Side], k: int, theta_i: float, w: int, h: int, look:
     """Side ``k``'s map on the colour scale shared by both sides (title, disc, colour bar)."""
     px_w, px_h = w, 2 * (h - 3)
     data = [_map_data(s, theta_i, px_w, px_h, look.cosine) for s in sides]
-    vmax = max(Scale.for_values(_scalar(d)).vmax for d, _ in data)
-    scale = Scale(vmax, look.log)
+    scale = Scale(max(Scale.for_values(d).vmax for d, _ in data), look.log)
     vals, info = data[k]
-    col = colorize(_scalar(vals), look.cmap, levels=LEVELS, log=look.log, scale=scale)
-    ring = len(col.palette)
-    index = np.where(views.ring_mask(px_w, px_h), ring, col.index)
-    pal = np.concatenate([col.palette, np.array([views.RING_RGB], dtype=np.uint8)])
-    marks = [Mark(info.mirror_px[0] // 2, info.mirror_px[1], **views.MIRROR_MARK)]
-    img = HalfBlockImage(index, pal, marks, color_system=look.color)
-    title = Text(f"{SIDE_LABELS[k]}: {sides[k].model}  peak {fmt_value(info.peak_value)}"[:w],
-                 no_wrap=True)
-    bar = colorbar(scale, look.cmap, w, levels=LEVELS, color_system=look.color)
-    return Group(title, img, bar)
+    return views.map_picture(vals, info, theta_i, w, label=f"{SIDE_LABELS[k]}: {sides[k].model}",
+                             color=look.color, cmap=look.cmap, log=look.log,
+                             cosine=look.cosine, levels=LEVELS, scale=scale)
 
 
 def diff_map(sides: list[Side], theta_i: float, w: int, h: int, look: Look):
@@ -167,9 +160,8 @@ def diff_map(sides: list[Side], theta_i: float, w: int, h: int, look: Look):
     x = np.linspace(0, 1, LEVELS)
     pal = np.stack([np.interp(x, [0, 0.5, 1], stops[:, c]) for c in range(3)], -1)
     img = HalfBlockImage(idx, np.rint(pal).astype(np.uint8), (), color_system=look.color)
-    title = Text(f"A − B  max |Δ| {fmt_value(m)}"[:w], no_wrap=True)
-    legend = Text("blue B > A · red A > B"[:w], no_wrap=True)
-    return Group(title, img, legend)
+    head = title([("A − B", 1), (f"max |Δ| {fmt_value(m)}", 0)], w)
+    return Group(head, img, title([("blue B > A · red A > B", 0)], w))
 
 
 def compare_section(sides: list[Side], theta_i: float, plane: str, w: int, h: int,
@@ -182,8 +174,8 @@ def compare_section(sides: list[Side], theta_i: float, plane: str, w: int, h: in
             curves.append((f"{SIDE_LABELS[k]}:{s.model}" if label == s.model else label, th, v))
     text, caption = polar_plot(curves, w, h - 1, log=look.log, color=look.color,
                                theta_i_deg=theta_i if plane == "incidence" else None)
-    title = f"{plane}  A {sides[0].model} vs B {sides[1].model}  {caption}"
-    return Group(Text(title[:w], no_wrap=True), plot_body(text, look.color))
+    head = title([(plane, 0), (f"A {sides[0].model} vs B {sides[1].model}", 2), (caption, 0)], w)
+    return Group(head, plot_body(text, look.color))
 
 
 # --------------------------------------------------------------------------- albedo curve
@@ -200,5 +192,5 @@ def albedo_pane(sides: list[Side], theta_i: float, w: int, h: int, look: Look):
         label = f"{SIDE_LABELS[k]}: {s.model}" if len(sides) > 1 else s.model
         curves.append((label, luminance(c) if c.ndim == 2 else c))
     text = albedo_plot(CURVE_THETAS, curves, w, h - 1, theta_i_deg=theta_i, color=look.color)
-    title = Text("directional albedo a(θi) = ∫ f cos θr dω  (line: a = 1)"[:w], no_wrap=True)
-    return Group(title, plot_body(text, look.color))
+    head = title([("directional albedo a(θi) = ∫ f cos θr dω", 0), ("(line: a = 1)", 1)], w)
+    return Group(head, plot_body(text, look.color))

@@ -15,7 +15,6 @@ from typing import Any
 import numpy as np
 import plotext as plt
 from rich.console import Group
-from rich.text import Text
 
 from ..core.params import Model
 from ..core.quadrature import albedo_curve_resolved, albedo_resolved
@@ -29,6 +28,7 @@ from .polar import (
     finish_plot,
     plot_body,
 )
+from .text import title
 
 LEVEL = 5  # ≈ 1 ms per incidence angle; level 6 costs 8× more for < 1 % change on smooth lobes
 STEP_DEG = 3.0
@@ -95,9 +95,9 @@ def albedo_view(
     now = np.atleast_1d(np.asarray(albedo_resolved(model, values, theta_i_deg, level=LEVEL)))
     curves = channel_curves(model.name, a)
     over = bool(np.max(a) > 1.0 + ENERGY_TOL)
-    flag = f"  a>1 (max {fmt_value(float(np.max(a)))}): not energy-conserving" if over else ""
+    flag = f"a>1 (max {fmt_value(float(np.max(a)))}): not energy-conserving" if over else ""
     now_s = ",".join(fmt_value(float(x)) for x in now)
-    title = f"{model.name}  a(θi={theta_i_deg:g}°) = {now_s}{flag}"
     text = albedo_plot(thetas, curves, width, height - 1, theta_i_deg=theta_i_deg, color=color)
-    head = Text(title[:width], no_wrap=True, style="bold red" if over and color != "none" else "")
+    head = title([(model.name, 2), (f"a(θi={theta_i_deg:g}°) = {now_s}", 0), (flag.strip(), 1)],
+                 width, style="bold red" if over and color != "none" else "")
     return Group(head, plot_body(text, color))

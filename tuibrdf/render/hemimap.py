@@ -176,6 +176,7 @@ class MapInfo:
     vmax: float
     method: str
     level: int | None = None
+    vmin: float = 0.0
 
 
 PEAK_ROUNDS = 8
@@ -264,5 +265,6 @@ def map_values(
     pt, pp = _angles(uv_to_dir(peak_uv))
     vmax = float(np.max(f)) if n else 0.0
     mirror_px = g.nearest_inside(dir_to_uv(s))
-    info = MapInfo(peak, pt, pp, mirror_px, g.pixel_sr, vmax, method, used_level)
+    vmin = float(np.min(scalar)) if n else 0.0
+    info = MapInfo(peak, pt, pp, mirror_px, g.pixel_sr, vmax, method, used_level, vmin)
     return out, info

@@ -33,6 +33,7 @@ from ..core.evaluate import evaluate_resolved
 from ..core.frame import incident, sincos_deg
 from ..core.params import Model
 from .colormap import LOG_DECADES, fmt_value
+from .text import title
 
 PLOT_LOCK = threading.Lock()
 PLANES = {"incidence": 0.0, "perpendicular": 90.0}
@@ -117,12 +118,12 @@ def polar_plot(
     vmax = vmax if vmax > 0 else 1.0  # an all-zero curve still gets a unit circle
     if log:
         rmax, guides = 1.0, [1.0 - k / decades for k in range(int(decades))]
-        caption = f"log: circles every decade, outer {fmt_value(vmax)}"
+        caption = f"max {fmt_value(vmax)} · log, circles every decade"
     else:
         step = nice_step(vmax)
         guides = list(step * np.arange(1, int(np.floor(vmax / step + 1e-9)) + 1))
         rmax = max(vmax, guides[-1] if guides else vmax)
-        caption = f"circles every {fmt_value(step)}, max {fmt_value(vmax)}"
+        caption = f"max {fmt_value(vmax)} · circles every {fmt_value(step)}"
     # equal aspect: one data unit spans the same physical length in x and y
     span = rmax * 1.08
     k = max(2 * span / width, span / (CELL_ASPECT * height))
@@ -198,5 +199,6 @@ def section_view(
                                theta_i_deg=theta_i_deg if plane == "incidence" else None)
     what = "f·cosθr" if cosine else "f"
     sides = "φ 180°|0°" if plane == "incidence" else "φ 270°|90°"
-    title = f"{model.name}  θi={theta_i_deg:g}°  {plane} ({sides})  {what}  {caption}"
-    return Group(Text(title[:width], no_wrap=True), plot_body(text, color))
+    head = title([(model.name, 2), (f"θi={theta_i_deg:g}°", 3), (plane, 0), (f"({sides})", 4),
+                  (what, 1), (caption, 0)], width)
+    return Group(head, plot_body(text, color))

@@ -160,6 +160,6 @@ def solid_view(
     what = "f·cosθr·wo" if cosine else "f·wo"
     if log:
         what += f" (log, {LOG_DECADES:g} decades)"
-    title = title_line(model, theta_i_deg, f"solid {what}, max {fmt_value(rmax)}  "
-                       f"az {azimuth_deg:g}° el {elevation_deg:g}°", width)
+    title = title_line(model, theta_i_deg, f"solid {what}, max {fmt_value(rmax)}", width,
+                       f"az {azimuth_deg:g}° el {elevation_deg:g}°")
     return Group(title, HalfBlockImage(index, pal, color_system=color))

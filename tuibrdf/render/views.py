@@ -30,14 +30,16 @@ import numpy as np
 from rich.console import Group, RenderableType
 from rich.text import Text
 
+from ..core.frame import incident
 from ..core.models import get_model
 from ..core.params import Model
-from .colormap import CMAPS, DEFAULT_LEVELS, check_cmap, colorbar, colorize, fmt_value
+from .colormap import CMAPS, DEFAULT_LEVELS, Scale, check_cmap, colorbar, colorize, fmt_value
 from .halfblock import COLOR_SYSTEMS, HalfBlockImage, Mark
-from .hemimap import DEFAULT_METHOD, dir_to_uv, geometry, map_values
+from .hemimap import DEFAULT_METHOD, MapInfo, dir_to_uv, geometry, map_values
+from .text import title
 
 VIEWS: tuple[str, ...] = ("map", "incidence", "perpendicular", "solid", "albedo")
-__all__ = ["CMAPS", "VIEWS", "render_view", "map_view", "title_line"]
+__all__ = ["CMAPS", "VIEWS", "render_view", "map_view", "map_picture", "title_line"]
 
 #: colour of the horizon ring drawn just outside the disc (not in any colour map's range of
 #: greys, so "outside" never reads as a value)
@@ -107,10 +109,11 @@ def render_view(
     return albedo_view(model, values, theta_i, width, height, color=color)
 
 
-def title_line(model: Model, theta_i_deg: float, what: str, width: int) -> Text:
-    """``phong  θi=30°  <what>`` cut to ``width``."""
-    s = f"{model.name}  θi={theta_i_deg:g}°  {what}"
-    return Text(s[:width], no_wrap=True, overflow="crop")
+def title_line(model: Model, theta_i_deg: float, what: str, width: int,
+               extra: str = "") -> Text:
+    """``phong  θi=30°  <what>  <extra>`` fitted to ``width``: ``extra`` goes first, then
+    θi, then the model name; ``what`` (the numbers) stays."""
+    return title([(model.name, 2), (f"θi={theta_i_deg:g}°", 3), (what, 0), (extra, 4)], width)
 
 
 @lru_cache(maxsize=16)
@@ -144,26 +147,52 @@ def map_view(
     rgb_mode: str = "auto",
 ) -> Group:
     """Title, half-block map (``height − 3`` rows) and colour bar."""
-    px_w, px_h = width, 2 * (height - 3)
-    data, info = map_values(model, values, theta_i_deg, px_w, px_h, method=method,
+    data, info = map_values(model, values, theta_i_deg, width, 2 * (height - 3), method=method,
                             cosine=cosine)
+    return map_picture(data, info, theta_i_deg, width, label=model.name, color=color,
+                       cmap=cmap, log=log, cosine=cosine, levels=levels, rgb_mode=rgb_mode)
+
+
+def map_picture(
+    data: np.ndarray,
+    info: MapInfo,
+    theta_i_deg: float,
+    width: int,
+    *,
+    label: str,
+    color: str = "truecolor",
+    cmap: str = "grey",
+    log: bool = False,
+    cosine: bool = False,
+    levels: int = DEFAULT_LEVELS,
+    rgb_mode: str = "auto",
+    scale: Scale | None = None,
+) -> Group:
+    """Title, disc and colour bar from :func:`~.hemimap.map_values`' output (``data`` is
+    ``width`` pixels wide).  ``scale`` imposes a colour scale (compare mode: two maps on one
+    scale); by default the data's own."""
+    px_h, px_w = data.shape[:2]
     if rgb_mode == "auto":
         rgb_mode = "color" if cmap == "grey" else "luminance"
-    col = colorize(data, cmap, levels=levels, log=log, rgb_mode=rgb_mode)
+    col = colorize(data, cmap, levels=levels, log=log, rgb_mode=rgb_mode, scale=scale)
     ring_index = len(col.palette)
     index = np.where(ring_mask(px_w, px_h), ring_index, col.index)
     pal = np.concatenate([col.palette, np.array([RING_RGB], dtype=np.uint8)])
     marks = [Mark(info.mirror_px[0] // 2, info.mirror_px[1], **MIRROR_MARK)]
-    wi_uv = dir_to_uv(np.array([-np.sin(np.radians(theta_i_deg)), 0.0,
-                                np.cos(np.radians(theta_i_deg))]))
+    wi_uv = dir_to_uv(incident(theta_i_deg))
     r, c = geometry(px_w, px_h).nearest_inside(wi_uv)
     if (r // 2, c) != (marks[0].row, marks[0].col):
         marks.append(Mark(r // 2, c, **INCIDENT_MARK))
     image = HalfBlockImage(index, pal, marks, color_system=color)
     what = "f·cosθr" if cosine else "f"
     unit = "sr⁻¹" if not cosine else "sr⁻¹·cos"
-    peak = (f"{what} peak {fmt_value(info.peak_value)} {unit} at θ={info.peak_theta_deg:.0f}° "
-            f"φ={info.peak_phi_deg:.0f}°  × mirror")
+    if info.vmin >= info.peak_value * (1.0 - 1e-12):  # Lambert: no direction is "the" peak
+        peak = f"{what} = {fmt_value(info.peak_value)} {unit} everywhere"
+    else:  # ints: never "φ=-0°"
+        th, ph = round(info.peak_theta_deg), round(info.peak_phi_deg)
+        peak = f"{what} peak {fmt_value(info.peak_value)} {unit} at θ={th}° φ={ph}°"
     bar_cmap = "grey" if (data.ndim == 3 and rgb_mode == "color") else cmap
     bar = colorbar(col.scale, bar_cmap, width, levels=levels, unit=unit, color_system=color)
-    return Group(title_line(model, theta_i_deg, peak, width), image, bar)
+    head = title([(label, 2), (f"θi={theta_i_deg:g}°", 3), (peak, 0),
+                  ("× mirror  o light", 4)], width)
+    return Group(head, image, bar)

@@ -1,0 +1,35 @@
+"""Title lines that fit their width: the least important parts go first, never the numbers.
+
+A title is a list of parts in display order, each with a rank (0 = always kept).  When the
+joined title is wider than the view, the part with the highest rank goes, then the next; what
+remains of rank 0 is cropped at the end.  A narrow 80×24 pane thus still shows
+``incidence  max 6.14 · circles every 2`` instead of ``cook-torrance  θi=60°  incidence (φ``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from rich.cells import cell_len, set_cell_size
+from rich.text import Text
+
+SEP = "  "
+
+
+def fit_parts(parts: Sequence[tuple[str, int]], width: int) -> str:
+    """Join the non-empty ``(text, rank)`` parts with two spaces, dropping the highest ranks
+    (the last of equals first) until the line is at most ``width`` cells; rank 0 parts stay,
+    and the line is cropped as a last resort."""
+    kept = [(i, s, r) for i, (s, r) in enumerate(parts) if s]
+    while cell_len(SEP.join(s for _, s, _ in kept)) > width:
+        worst = max(range(len(kept)), key=lambda k: (kept[k][2], kept[k][0]), default=None)
+        if worst is None or kept[worst][2] == 0:  # rank 0 parts are never dropped
+            break
+        del kept[worst]
+    line = SEP.join(s for _, s, _ in kept)
+    return line if cell_len(line) <= width else set_cell_size(line, max(width, 0)).rstrip()
+
+
+def title(parts: Sequence[tuple[str, int]], width: int, style: str = "") -> Text:
+    """:func:`fit_parts` as a one-row Rich ``Text``."""
+    return Text(fit_parts(parts, width), style=style, no_wrap=True, overflow="crop")
