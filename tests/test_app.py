@@ -177,6 +177,19 @@ def test_view_command_line_is_validated_before_textual(capsys):
     assert [s.model for s in state.sides] == ["phong", "cook-torrance"]
 
 
+def test_view_checks_a_measured_file_before_textual(capsys, tmp_path):
+    from tuibrdf.cli import main
+
+    bad = tmp_path / "short.binary"
+    bad.write_bytes(b"\x5a\x00\x00\x00" * 3 + b"\x00" * 80)  # header (90,90,90): wrong
+    for argv, expected in ((["view", str(bad)], "wrong header"),
+                           (["view", str(tmp_path / "none.binary")], "no such file"),
+                           (["view", "merl"], "no file given")):
+        assert main(argv) == 2
+        err = capsys.readouterr().err
+        assert expected in err and err.count("\n") == 1 and "Traceback" not in err
+
+
 async def test_command_palette_runs_an_action():
     app = make()
     async with app.run_test(size=(100, 30)) as pilot:
@@ -203,3 +216,53 @@ def test_plain_tuibrdf_without_a_terminal_prints_help(capsys):
 
     assert main([]) == 0  # pytest captures stdout: not a terminal, so no viewer
     assert "view" in capsys.readouterr().out
+
+
+# -- measured data ------------------------------------------------------------------------
+def constant_merl(path, value=0.1, nan=False):
+    """A MERL file whose every bin holds ``value`` sr⁻¹ (one NaN bin when ``nan``)."""
+    import numpy as np
+    from merl_writer import write_merl
+
+    table = np.full((3, 90, 90, 180), value)
+    if nan:
+        table[1, 10, 20, 30] = np.nan
+    return write_merl(path, table)
+
+
+async def wait_for(pilot, cond, rounds=200):
+    for _ in range(rounds):
+        if cond():
+            return True
+        await pilot.pause(0.02)
+    return False
+
+
+async def test_measured_file_loads_in_the_background_then_draws(tmp_path):
+    from tuibrdf.core import merl
+
+    merl.clear_cache()
+    path = str(constant_merl(tmp_path / "grey.binary", 0.1))
+    app = make("merl", file=path)
+    async with app.run_test(size=(100, 30)) as pilot:
+        # the loader runs in a worker; when it is done the map is drawn from the data:
+        # a constant BRDF of 0.1 sr⁻¹ in every channel gives the albedo 0.1·π at any θi
+        assert await wait_for(pilot, lambda: not app._loading and app.rebuilds > 0)
+        assert await wait_for(pilot, lambda: "a(θi)=(0.314,0.314,0.314)" in status(app))
+        assert app.state.side.model == "merl" and f"loaded {path}" in status(app)
+
+
+async def test_a_bad_measured_file_is_a_message_not_a_crash(tmp_path):
+    from tuibrdf.core import merl
+
+    merl.clear_cache()
+    # header and size are right (what `tuibrdf view` checks up front); a NaN inside is only
+    # found by the full read in the viewer
+    path = str(constant_merl(tmp_path / "nan.binary", nan=True))
+    app = make("merl", file=path)
+    async with app.run_test(size=(100, 30)) as pilot:
+        assert await wait_for(pilot, lambda: app.state.side.model == "lambert")
+        await pilot.pause()
+        assert "NaN value in channel G" in app.message and "showing lambert" in status(app)
+        await pilot.press("right")  # still running, keys work
+        assert app.state.theta_i == 31.0

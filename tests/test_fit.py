@@ -163,3 +163,23 @@ def test_cli_fit_json_and_errors(files, tmp_path, capsys):
         out, err = capsys.readouterr()
         assert rc == 2 and out == "" and len(err.strip().splitlines()) == 1, (argv, err)
         assert words in err, (argv, err)
+
+
+def test_fit_saves_a_comparison_preset_for_the_viewer(files, tmp_path, monkeypatch, capsys):
+    # A = the measured file, B = the fitted model: `tuibrdf view --preset NAME` compares them
+    from tuibrdf.app.presets import load_preset
+
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path))
+    rc = main(["fit", str(files["gltf"]), "--model", "gltf", "--stride", "3,6,30",
+               "--save-preset", "gltf-fit"])
+    out, err = capsys.readouterr()
+    assert rc == 0, err
+    assert "tuibrdf view --preset gltf-fit" in out
+    theta, sides = load_preset("gltf-fit")
+    assert [s.model for s in sides] == ["merl", "gltf"]
+    assert sides[0].values["file"] == str(files["gltf"].resolve())
+    assert sides[1].values["roughness"] == pytest.approx(GLTF["roughness"], rel=1e-3)
+    # a scalar model fitted per channel has three parameter sets: one line, exit 2, no fit run
+    rc = main(["fit", str(files["ggx"]), "--model", "ggx", "--save-preset", "x"])
+    err = capsys.readouterr().err
+    assert rc == 2 and "--mean" in err and len(err.strip().splitlines()) == 1

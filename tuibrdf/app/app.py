@@ -19,10 +19,11 @@ from textual.containers import Container, Horizontal, Vertical, VerticalScroll
 from textual.screen import ModalScreen
 from textual.widgets import Footer, Input, Static
 
+from ..core import merl
 from ..render import views
 from . import scene
 from .presets import PresetError, apply_loaded, load_preset, save_preset
-from .state import COMPARE_PRESETS, VIEW_TITLES, ViewerState
+from .state import COMPARE_PRESETS, VIEW_TITLES, Side, ViewerState
 from .widgets import ParamPanel, Picture, StatusLine
 
 MIN_W, MIN_H = 60, 18
@@ -140,6 +141,12 @@ class SaveScreen(ModalScreen[str | None]):
         self.dismiss(event.value.strip() or None)
 
 
+def side_files(side: Side) -> list[str]:
+    """The data files (``path`` parameters, i.e. MERL files) a side needs in memory."""
+    return [str(side.values[p.name]) for p in side.spec.params
+            if p.kind == "path" and side.values.get(p.name)]
+
+
 class BrdfApp(App):
     """``BrdfApp(state, color=None)``; ``color`` ∈ truecolor/256/none overrides detection."""
 
@@ -161,6 +168,7 @@ class BrdfApp(App):
         self._scheduled = False
         self._stats_running = False
         self.rebuilds = 0  # how many heavy rebuilds ran (tests, benchmarks)
+        self._loading: dict[str, float] = {}  # measured-data file → fraction read so far
 
     # -- layout ------------------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -272,8 +280,13 @@ class BrdfApp(App):
         self._dirty = False
         if self.screen.has_class("small"):
             return
-        self.rebuilds += 1
         panes = self.visible_panes()
+        if not self._files_ready():  # measured data still loading: its panes say so
+            for pane in panes:
+                pic = self.query_one(f"#{pane}", Picture)
+                pic.show(Text("loading measured data …", justify="center"), None)
+            return
+        self.rebuilds += 1
         main, plots = panes[:-2], panes[-2:]
         for pane in main:
             self._draw(pane)
@@ -303,6 +316,16 @@ class BrdfApp(App):
         key = (pane, w, h, look, t, tuple(x.key() for x in sides), s.azimuth, s.elevation)
         if pic.shown_for == key:
             return
+        try:
+            r = self._renderable(pane, w, h)
+        except (ValueError, OSError) as e:  # e.g. a data file that changed on disk
+            pic.show(Text(f"cannot draw {pane}: {e}"), None)
+            return
+        pic.show(r, key)
+
+    def _renderable(self, pane: str, w: int, h: int):
+        s, look = self.state, self.look
+        t, sides = s.theta_i, s.sides
         k = 1 if pane.endswith("-b") else 0
         if pane in ("map-a", "map-b"):
             r = scene.compare_map(sides, k, t, w, h, look) if s.compare else \
@@ -317,7 +340,7 @@ class BrdfApp(App):
             r = scene.compare_section(sides, t, pane, w, h, look)
         else:
             r = scene.view_pane(pane, sides[0], t, w, h, look)
-        pic.show(r, key)
+        return r
 
     def _legend(self) -> Text:
         s = self.state
@@ -339,17 +362,74 @@ class BrdfApp(App):
     def _compute_stats(self) -> None:
         """Albedo and peak of every side (cached), off the event loop; then the status line."""
         wanted = self._stats_wanted()
-        for side, t, cos in wanted:
-            scene.stats(side, t, cos)
+        try:
+            for side, t, cos in wanted:
+                scene.stats(side, t, cos)
+        except (ValueError, OSError) as e:  # a data file that vanished or changed on disk
+            self.call_from_thread(self._do, f"no albedo: {e}")
+            return
         self.call_from_thread(self._status)
+
+    # -- measured data: read off the event loop, progress on the status line ---------------
+    def _files_ready(self) -> bool:
+        """Whether every side's data file is in memory; starts a loader for each missing one
+        (a worker thread: the 35 MB read never blocks a key) and answers False meanwhile."""
+        ready = True
+        for side in self.state.sides:
+            for path in side_files(side):
+                try:
+                    if merl.is_loaded(path):
+                        continue
+                except merl.MerlError as e:
+                    self._load_failed(path, str(e))
+                    return False
+                ready = False
+                if path not in self._loading:
+                    self._loading[path] = 0.0
+                    self.run_worker(partial(self._load_file, path), thread=True,
+                                    group="load", exit_on_error=False)
+        return ready
+
+    def _load_file(self, path: str) -> None:
+        def progress(fraction: float) -> None:
+            self.call_from_thread(self._load_progress, path, fraction)
+
+        try:
+            merl.load_cached(path, progress)
+        except (merl.MerlError, OSError) as e:
+            self.call_from_thread(self._load_failed, path, str(e))
+            return
+        self.call_from_thread(self._load_done, path)
+
+    def _load_progress(self, path: str, fraction: float) -> None:
+        if path in self._loading:
+            self._loading[path] = fraction
+            self._status()
+
+    def _load_done(self, path: str) -> None:
+        self._loading.pop(path, None)
+        self._changed(f"loaded {path}")
+
+    def _load_failed(self, path: str, error: str) -> None:
+        """A side whose file cannot be read shows Lambert instead; the message says why."""
+        self._loading.pop(path, None)
+        s = self.state
+        s.sides = [Side.of("lambert") if path in side_files(x) else x for x in s.sides]
+        self._changed(f"{error} — showing lambert", relayout=True)
 
     def _status(self) -> None:
         s = self.state
         line = Text()
         line.append(f"θi {s.theta_i:g}°", style="bold")
+        ready = self._files_ready()  # no stats from a file still being read
         pending = False
         for i, side in enumerate(s.sides):
             tag = f"  {'AB'[i]}:" if s.compare else " "
+            files = [f for f in side_files(side) if f in self._loading]
+            if files:
+                line.append(f"{tag} loading {files[0]} {self._loading[files[0]]:.0%}",
+                            style="bold yellow")
+                continue
             if scene.stats_key(side, s.theta_i, s.cosine) not in scene.STATS:
                 line.append(f"{tag} a(θi) …")
                 pending = True
@@ -374,6 +454,8 @@ class BrdfApp(App):
         if self.message:
             second.append(f"  {self.message}", style="bold yellow")
         self.query_one("#status", StatusLine).update(Text("\n").join([line, second]))
+        if pending and not ready:
+            return  # the stats start when the data is in memory (_load_done)
         if pending and self.sync_stats:
             for side, t, cos in self._stats_wanted():
                 scene.stats(side, t, cos)

@@ -13,7 +13,7 @@ import json
 
 from ..core.fit import STRIDE, albedo_table, fit_file
 from ..core.models import get_model
-from .common import fmt, fmt_params, json_params, parse_params
+from .common import UsageError, fmt, fmt_params, json_params, parse_params
 
 OBJECTIVE = "rms of log(1 + f*cos(theta_i)*cos(theta_o)) - log(1 + f_data*cos*cos) over bins"
 
@@ -32,6 +32,10 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         help="fit a scalar model once, to the mean of R, G, B (one parameter "
                              "set) instead of once per channel")
     parser.add_argument("--json", action="store_true", help="print JSON instead of text")
+    parser.add_argument("--save-preset", metavar="NAME",
+                        help="save data (A) and fit (B) as a viewer preset: then "
+                             "'tuibrdf view --preset NAME' compares them (needs one parameter "
+                             "set: an RGB model, or --mean)")
 
 
 def stride_type(text: str) -> tuple[int, int, int]:
@@ -46,10 +50,19 @@ def stride_type(text: str) -> tuple[int, int, int]:
 
 
 def run(args: argparse.Namespace) -> int:
-    fixed = parse_params(get_model(args.model), args.param)
+    model = get_model(args.model)
+    fixed = parse_params(model, args.param)
+    if args.save_preset:
+        from ..app.presets import preset_path  # plain Python, no Textual
+
+        preset_path(args.save_preset)  # a bad name fails now, not after the fit
+        if not model.rgb and not args.mean:
+            raise UsageError(f"--save-preset: a preset holds one parameter set and {model.name} "
+                             "is fitted per channel: add --mean (or fit an RGB model, e.g. gltf)")
     data, result = fit_file(args.file, args.model, stride=args.stride, mean=args.mean,
                             fixed=fixed)
     albedo = albedo_table(data, result)
+    saved = save_comparison(args.save_preset, data.path, result) if args.save_preset else None
     if args.json:
         doc = {
             "file": data.path,
@@ -65,6 +78,8 @@ def run(args: argparse.Namespace) -> int:
             "albedo": albedo,
             "invalid_bins": list(data.n_invalid),
         }
+        if saved:
+            doc["preset"] = str(saved)
         print(json.dumps(doc, indent=2, allow_nan=False))
         return 0
     print(f"# fit {result.model.name} to {data.path}")
@@ -78,4 +93,18 @@ def run(args: argparse.Namespace) -> int:
     for row in albedo:
         print(f"{fmt(row['theta_i']):>7}  {fmt(tuple(row['data'])):>26}  "
               f"{fmt(tuple(row['fit'])):>26}")
+    if saved:
+        print(f"saved {saved}: tuibrdf view --preset {args.save_preset}")
     return 0
+
+
+def save_comparison(name: str, path: str, result):
+    """Preset ``name``: A the measured file (absolute path), B the fitted model, θi 45°."""
+    import os
+
+    from ..app.presets import save_preset
+    from ..app.state import Side, ViewerState
+
+    sides = [Side.of("merl", {"file": os.path.abspath(path)}),
+             Side.of(result.model.name, result.params[0])]
+    return save_preset(ViewerState(sides=sides, theta_i=45.0), name)

@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import os
 
+from ..core.merl import check_file
 from ..core.models import MODELS
 from .common import UsageError, add_theta_i, choices_type, parse_params
 
@@ -76,6 +77,10 @@ def build_state(args: argparse.Namespace):
             msg = state.apply_preset(args.preset)
             if msg:
                 raise UsageError(msg)
+    for side in state.sides:  # a bad MERL file is one line here, not a message in the viewer
+        for p in side.spec.params:
+            if p.kind == "path":
+                check_file(side.values[p.name])
     return state
 
 

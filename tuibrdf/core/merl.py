@@ -52,6 +52,7 @@ import threading
 from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -95,6 +96,45 @@ class MerlData:
 CHUNK_BYTES = 3 * N_SAMPLES * 8 // 32
 
 
+NO_FILE = "merl: no file given: pass -p file=PATH.binary (or tuibrdf view PATH.binary)"
+
+
+def _bad(name: str, problem: str) -> MerlError:
+    return MerlError(f"{name}: not a MERL .binary file: {problem}")
+
+
+def _check_open(f, name: str) -> None:
+    """Check the header and size of an open MERL file (left positioned after the header).
+    Raises :class:`MerlError`."""
+    bad = partial(_bad, name)
+    size = os.fstat(f.fileno()).st_size
+    head = f.read(HEADER_BYTES)
+    if len(head) < HEADER_BYTES:
+        raise bad(f"truncated header ({size} bytes, expected {FILE_BYTES:,})")
+    dims = tuple(int(v) for v in np.frombuffer(head, dtype="<i4"))
+    if dims != HEADER:
+        raise bad(f"wrong header {dims}, expected {HEADER} (θh, θd, φd bins)")
+    if size < FILE_BYTES:
+        raise bad(f"truncated data ({size:,} bytes, expected {FILE_BYTES:,})")
+    if size > FILE_BYTES:
+        raise bad(f"wrong size ({size:,} bytes, expected {FILE_BYTES:,}: "
+                  f"{size - FILE_BYTES:,} trailing bytes)")
+
+
+def check_file(path: str | os.PathLike) -> None:
+    """The cheap part of :func:`load`'s validation (the file opens, header, size) without
+    reading the data: what ``tuibrdf view FILE.binary`` checks before the viewer opens.
+    Raises :class:`MerlError`."""
+    name = os.fspath(path)
+    if not name:
+        raise MerlError(NO_FILE)
+    try:
+        with open(name, "rb") as f:
+            _check_open(f, name)
+    except OSError as e:
+        raise MerlError(f"{name}: cannot read: {e.strerror or e}") from None
+
+
 def load(path: str | os.PathLike,
          progress: Callable[[float], None] | None = None) -> MerlData:
     """Read and validate a MERL ``.binary`` file.
@@ -111,25 +151,11 @@ def load(path: str | os.PathLike,
     """
     name = os.fspath(path)
     report = progress or (lambda fraction: None)
-
-    def bad(problem: str) -> MerlError:
-        return MerlError(f"{name}: not a MERL .binary file: {problem}")
-
+    bad = partial(_bad, name)
     report(0.0)
     try:
-        size = os.path.getsize(name)
         with open(name, "rb") as f:
-            head = f.read(HEADER_BYTES)
-            if len(head) < HEADER_BYTES:
-                raise bad(f"truncated header ({size} bytes, expected {FILE_BYTES:,})")
-            dims = tuple(int(v) for v in np.frombuffer(head, dtype="<i4"))
-            if dims != HEADER:
-                raise bad(f"wrong header {dims}, expected {HEADER} (θh, θd, φd bins)")
-            if size < FILE_BYTES:
-                raise bad(f"truncated data ({size:,} bytes, expected {FILE_BYTES:,})")
-            if size > FILE_BYTES:
-                raise bad(f"wrong size ({size:,} bytes, expected {FILE_BYTES:,}: "
-                          f"{size - FILE_BYTES:,} trailing bytes)")
+            _check_open(f, name)
             data = np.empty(3 * N_SAMPLES, dtype="<f8")  # the one copy
             raw = memoryview(data).cast("B")
             done = 0
@@ -355,6 +381,25 @@ CACHE_SIZE = 2
 _CACHE_LOCK = threading.Lock()  # the app loads in a worker thread
 
 
+def _cache_key(name: str) -> tuple:
+    """(real path, mtime, size): a file changed on disk is a new key."""
+    if not name:
+        raise MerlError(NO_FILE)
+    try:
+        st = os.stat(name)
+    except OSError as e:
+        raise MerlError(f"{name}: cannot read: {e.strerror or e}") from None
+    return (os.path.realpath(name), st.st_mtime_ns, st.st_size)
+
+
+def is_loaded(path: str | os.PathLike) -> bool:
+    """Whether :func:`load_cached` would answer from memory (no reading).  Raises
+    :class:`MerlError` when the file cannot be found."""
+    key = _cache_key(os.fspath(path))
+    with _CACHE_LOCK:
+        return key in _CACHE
+
+
 def load_cached(path: str | os.PathLike,
                 progress: Callable[[float], None] | None = None) -> MerlData:
     """:func:`load` through a small LRU keyed by (real path, mtime, size): the model kernel
@@ -362,13 +407,7 @@ def load_cached(path: str | os.PathLike,
     changed on disk is read again.  The app calls this (with ``progress``) in a worker thread,
     so the kernel's later calls are cache hits."""
     name = os.fspath(path)
-    if not name:
-        raise MerlError("merl: no file given: pass -p file=PATH.binary")
-    try:
-        st = os.stat(name)
-    except OSError as e:
-        raise MerlError(f"{name}: cannot read: {e.strerror or e}") from None
-    key = (os.path.realpath(name), st.st_mtime_ns, st.st_size)
+    key = _cache_key(name)
     with _CACHE_LOCK:
         hit = _CACHE.get(key)
         if hit is not None:
@@ -390,5 +429,5 @@ def clear_cache() -> None:
 
 
 __all__ = ["FILE_BYTES", "LOOKUPS", "MERL", "MerlData", "MerlError", "SCALES",
-           "bin_coordinates", "bin_index", "clear_cache", "evaluate", "flat_index",
-           "from_half_diff", "half_diff", "load", "load_cached"]
+           "bin_coordinates", "bin_index", "check_file", "clear_cache", "evaluate",
+           "flat_index", "from_half_diff", "half_diff", "is_loaded", "load", "load_cached"]
