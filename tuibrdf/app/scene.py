@@ -24,7 +24,7 @@ from ..render.colormap import CMAPS as CMAPS  # re-exported for the app
 from ..render.colormap import Scale, fmt_value, luminance
 from ..render.halfblock import HalfBlockImage
 from ..render.hemimap import map_values
-from ..render.polar import plot_body, polar_plot, section_curves
+from ..render.polar import caption_parts, plot_body, polar_plot, section_curves
 from ..render.text import title
 from .state import Side
 
@@ -174,7 +174,8 @@ def compare_section(sides: list[Side], theta_i: float, plane: str, w: int, h: in
             curves.append((f"{SIDE_LABELS[k]}:{s.model}" if label == s.model else label, th, v))
     text, caption = polar_plot(curves, w, h - 1, log=look.log, color=look.color,
                                theta_i_deg=theta_i if plane == "incidence" else None)
-    head = title([(plane, 0), (f"A {sides[0].model} vs B {sides[1].model}", 2), (caption, 0)], w)
+    head = title([(plane, 0), (f"A {sides[0].model} vs B {sides[1].model}", 2),
+                  *caption_parts(caption)], w)
     return Group(head, plot_body(text, look.color))
 
 

@@ -157,6 +157,13 @@ def polar_plot(
     return text, caption
 
 
+def caption_parts(caption: str) -> list[tuple[str, int]]:
+    """A caption as title parts: the maximum stays, the circle spacing may go (as a whole:
+    a cropped "circles every 0.1" would read "circles every 0")."""
+    first, *rest = caption.split(" · ")
+    return [(first, 0), *((r, 1) for r in rest)]
+
+
 def finish_plot(color: str) -> str:
     """``plt.build()`` then ``plt.clf()`` (call under :data:`PLOT_LOCK`): the figure's text
     without plotext's final newline, without colours when ``color == "none"``."""
@@ -200,5 +207,5 @@ def section_view(
     what = "f·cosθr" if cosine else "f"
     sides = "φ 180°|0°" if plane == "incidence" else "φ 270°|90°"
     head = title([(model.name, 2), (f"θi={theta_i_deg:g}°", 3), (plane, 0), (f"({sides})", 4),
-                  (what, 1), (caption, 0)], width)
+                  (what, 1), *caption_parts(caption)], width)
     return Group(head, plot_body(text, color))
