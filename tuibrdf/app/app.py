@@ -20,15 +20,17 @@ from textual.screen import ModalScreen
 from textual.widgets import Footer, Input, Static
 
 from ..core import merl
+from ..core.models import MODELS
 from ..render import views
 from . import scene
 from .presets import PresetError, apply_loaded, load_preset, save_preset
-from .state import COMPARE_PRESETS, VIEW_TITLES, Side, ViewerState
+from .state import COMPARE_PRESETS, VIEW_TITLES, Side, ViewerState, panel_rows
 from .widgets import ParamPanel, Picture, StatusLine
 
 MIN_W, MIN_H = 60, 18
 BOTH_PANELS_H = 40  # compare mode shows both parameter panels from this height
 RETRY_S = 0.02  # re-check a busy writer after this long
+STEADY_PANEL_H = max(len(panel_rows(m)) for m in MODELS.values()) + 2  # rows + border
 
 B = Binding
 BINDINGS = [
@@ -236,6 +238,12 @@ class BrdfApp(App):
         both = s.compare and h >= BOTH_PANELS_H
         self.query_one("#panel-a").display = not s.compare or both or s.active == 0
         self.query_one("#panel-b").display = both or (s.compare and s.active == 1)
+        # tall terminals: panels as tall as the longest model's, so cycling models never
+        # resizes the plots below (a steady picture, and no whole-screen re-layout on `m`);
+        # short ones keep every row for the plots
+        steady = STEADY_PANEL_H if h >= BOTH_PANELS_H else None
+        for panel in self.query(ParamPanel):
+            panel.styles.min_height = steady
         if s.compare:
             self.query_one("#map-a").border_title = f"A: {s.sides[0].model}"
             self.query_one("#map-b").border_title = f"B: {s.sides[1].model}"
