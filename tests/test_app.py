@@ -266,3 +266,22 @@ async def test_a_bad_measured_file_is_a_message_not_a_crash(tmp_path):
         assert "NaN value in channel G" in app.message and "showing lambert" in status(app)
         await pilot.press("right")  # still running, keys work
         assert app.state.theta_i == 31.0
+
+
+async def test_albedo_curve_is_computed_off_the_loop_then_drawn():
+    # a sharp lobe's curve takes ~0.5 s: the pane says so at once, then shows the curve
+    from tuibrdf.app import scene
+
+    app = BrdfApp(ViewerState(sides=[Side.of("cook-torrance", {"m": 0.05, "kd": 0.1})]))
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("v", "v")
+        assert app.state.view == "albedo"
+        pane = app.query_one("#albedo")
+
+        def shown() -> str:
+            return "\n".join(pane.render_line(y).text for y in range(pane.size.height))
+
+        assert await wait_for(pilot, lambda: scene.albedo_curve_ready(app.state.side), 500)
+        assert await wait_for(pilot, lambda: "a(θi)" in shown() and "computing" not in shown())
+        await pilot.press("right")  # keys still work
+        assert app.state.theta_i == 31.0

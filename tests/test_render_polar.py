@@ -3,6 +3,7 @@
 import numpy as np
 import plotext
 import pytest
+from rich.console import Console
 
 from tuibrdf.core.models import MODELS
 from tuibrdf.render import polar
@@ -90,3 +91,23 @@ def test_rgb_model_gives_channel_curves():
     m = MODELS["gltf"]
     curves = section_curves(m, m.resolve({}), 20, "incidence")
     assert [c[0] for c in curves] == ["R", "G", "B"]
+
+
+def test_both_planes_share_one_scale():
+    # Cook-Torrance m = 0.07 at θi = 60°: in the perpendicular plane the half vector stays
+    # ≥ 30° from the normal, so D ≈ exp(−tan²30°/m²) = exp(−68) ≈ 1e-30 — nothing to see, and
+    # the plot must not magnify it: its circles are the incidence plane's (max 6.14 → every 2)
+    from tuibrdf.render.views import render_view
+
+    m = MODELS["cook-torrance"]
+    v = m.resolve({"kd": 0, "f0": 0.04, "m": 0.07})
+    titles = {}
+    for plane in ("incidence", "perpendicular"):
+        con = Console(width=100, color_system=None)
+        with con.capture() as cap:
+            con.print(render_view(plane, m, v, 60, 100, 16, color="none"))
+        titles[plane] = cap.get().split("\n")[0]
+    assert "max 6.14" in titles["incidence"] and "circles every 2" in titles["incidence"]
+    assert "circles every 2" in titles["perpendicular"]
+    vmax = float(titles["perpendicular"].split("max ")[1].split()[0])
+    assert 0 < vmax < 1e-25

@@ -130,7 +130,7 @@ def test_uniform_map_says_everywhere_and_no_negative_zero():
     # Lambert kd=0.8: f = 0.8/π = 0.2546 in every direction, so no direction is "the" peak
     m = MODELS["lambert"]
     head = to_text(render_view("map", m, m.resolve({"kd": 0.8}), 30, 80, 20, color="none"))
-    assert "f = 0.255 sr⁻¹ everywhere" in head.split("\n")[0]
+    assert "f = 0.255 sr⁻¹  everywhere" in head.split("\n")[0]
     for theta in (0, 30, 60, 89):  # φ of a peak in the plane of incidence is 0, never -0
         m = MODELS["cook-torrance"]
         out = to_text(render_view("map", m, m.resolve({"kd": 0, "m": 0.07}), theta, 80, 20,

@@ -171,6 +171,7 @@ class BrdfApp(App):
         self._stats_running = False
         self.rebuilds = 0  # how many heavy rebuilds ran (tests, benchmarks)
         self._loading: dict[str, float] = {}  # measured-data file → fraction read so far
+        self._curves_running = False
 
     # -- layout ------------------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -329,6 +330,9 @@ class BrdfApp(App):
         except (ValueError, OSError) as e:  # e.g. a data file that changed on disk
             pic.show(Text(f"cannot draw {pane}: {e}"), None)
             return
+        if r is None:  # computed in a worker, which asks for a redraw when done
+            pic.show(Text("computing a(θi) over 0–90° …", justify="center"), None)
+            return
         pic.show(r, key)
 
     def _renderable(self, pane: str, w: int, h: int):
@@ -343,6 +347,9 @@ class BrdfApp(App):
         elif pane in ("solid-a", "solid-b"):
             r = scene.view_pane("solid", sides[k], t, w, h, look, s.azimuth, s.elevation)
         elif pane == "albedo":
+            if not self.sync_stats and not all(scene.albedo_curve_ready(x) for x in sides):
+                self._compute_curves()
+                return None  # drawn when the worker is done
             r = scene.albedo_pane(sides, t, w, h, look)
         elif s.compare:
             r = scene.compare_section(sides, t, pane, w, h, look)
@@ -377,6 +384,26 @@ class BrdfApp(App):
             self.call_from_thread(self._do, f"no albedo: {e}")
             return
         self.call_from_thread(self._status)
+
+    def _compute_curves(self) -> None:
+        """The albedo curves of the sides (0.01–0.6 s each) in a worker; then a redraw.  (The
+        tests' ``sync_stats`` draws them on the loop instead, deterministically.)"""
+        if self._curves_running:
+            return
+        self._curves_running = True
+        sides = list(self.state.sides)
+
+        def work() -> None:
+            try:
+                for side in sides:
+                    scene.albedo_curve(side)
+            except (ValueError, OSError) as e:
+                self.call_from_thread(self._do, f"no albedo curve: {e}")
+            finally:
+                self._curves_running = False
+            self.call_from_thread(self.request_rebuild)
+
+        self.run_worker(work, thread=True, group="curves", exit_on_error=False)
 
     # -- measured data: read off the event loop, progress on the status line ---------------
     def _files_ready(self) -> bool:

@@ -19,21 +19,18 @@ from rich.text import Text
 
 from ..core import quadrature
 from ..render import views
-from ..render.albedo_plot import albedo_plot
+from ..render.albedo_plot import THETAS, albedo_plot, cached_curve
+from ..render.albedo_plot import albedo_curve as render_albedo_curve
 from ..render.colormap import CMAPS as CMAPS  # re-exported for the app
 from ..render.colormap import Scale, fmt_value, luminance
 from ..render.halfblock import HalfBlockImage
 from ..render.hemimap import map_values
-from ..render.polar import caption_parts, plot_body, polar_plot, section_curves
+from ..render.polar import caption_parts, plot_body, polar_plot, section_curves, sections_max
 from ..render.text import title
 from .state import Side
 
 #: colour levels of the maps: 32 keeps a full 160×48 map update near 50 KiB (docs/app.md)
 LEVELS = 32
-#: the albedo curve: every 3° on the uniform level-5 mesh (≈ 20 ms for a sharp lobe; a curve
-#: on screen, the status line's number uses the accurate default)
-CURVE_THETAS = np.arange(0.0, 91.5, 3.0)
-CURVE_LEVEL = 5
 #: diverging palette of the difference map: blue (B larger) – grey – red (A larger)
 DIVERGING = ((59, 76, 192), (221, 221, 221), (180, 4, 38))
 SIDE_LABELS = ("A", "B")
@@ -82,7 +79,6 @@ class Stats:
 
 
 STATS = LRU(64)
-_curves = LRU(16)
 _values = LRU(8)
 
 
@@ -172,8 +168,10 @@ def compare_section(sides: list[Side], theta_i: float, plane: str, w: int, h: in
         for label, th, v in section_curves(s.spec, s.values, theta_i, plane,
                                            cosine=look.cosine):
             curves.append((f"{SIDE_LABELS[k]}:{s.model}" if label == s.model else label, th, v))
+    vmax = max(sections_max(s.spec, s.values, theta_i, look.cosine) for s in sides)
     text, caption = polar_plot(curves, w, h - 1, log=look.log, color=look.color,
-                               theta_i_deg=theta_i if plane == "incidence" else None)
+                               theta_i_deg=theta_i if plane == "incidence" else None,
+                               vmax=vmax)
     head = title([(plane, 0), (f"A {sides[0].model} vs B {sides[1].model}", 2),
                   *caption_parts(caption)], w)
     return Group(head, plot_body(text, look.color))
@@ -181,8 +179,12 @@ def compare_section(sides: list[Side], theta_i: float, plane: str, w: int, h: in
 
 # --------------------------------------------------------------------------- albedo curve
 def albedo_curve(side: Side) -> np.ndarray:
-    return _curves.get(side.key(), lambda: np.asarray(quadrature.albedo_curve_resolved(
-        side.spec, side.values, CURVE_THETAS, level=CURVE_LEVEL, method="uniform")))
+    """The side's a(θi) curve (:func:`tuibrdf.render.albedo_plot.albedo_curve`, cached)."""
+    return render_albedo_curve(side.spec, side.values)[1]
+
+
+def albedo_curve_ready(side: Side) -> bool:
+    return cached_curve(side.spec, side.values) is not None
 
 
 def albedo_pane(sides: list[Side], theta_i: float, w: int, h: int, look: Look):
@@ -192,6 +194,6 @@ def albedo_pane(sides: list[Side], theta_i: float, w: int, h: int, look: Look):
         c = albedo_curve(s)
         label = f"{SIDE_LABELS[k]}: {s.model}" if len(sides) > 1 else s.model
         curves.append((label, luminance(c) if c.ndim == 2 else c))
-    text = albedo_plot(CURVE_THETAS, curves, w, h - 1, theta_i_deg=theta_i, color=look.color)
+    text = albedo_plot(THETAS, curves, w, h - 1, theta_i_deg=theta_i, color=look.color)
     head = title([("directional albedo a(θi) = ∫ f cos θr dω", 0), ("(line: a = 1)", 1)], w)
     return Group(head, plot_body(text, look.color))

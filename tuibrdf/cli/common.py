@@ -88,19 +88,20 @@ def bounded(name: str, lo: float, hi: float, unit: str = "°") -> Callable[[str]
     return parse
 
 
-def at_least(name: str, minimum: int) -> Callable[[str], int]:
-    """An argparse ``type`` for an integer size ``>= minimum``."""
+def int_in(name: str, lo: int, hi: int) -> Callable[[str], int]:
+    """An argparse ``type`` for an integer in ``[lo, hi]`` (a size: the upper end keeps a typo
+    like ``--width 80000`` from allocating gigabytes)."""
 
     def parse(text: str) -> int:
         try:
             v = int(text)
         except ValueError:
             raise argparse.ArgumentTypeError(
-                f"{name} = {text!r} is not an integer: expected at least {minimum}"
+                f"{name} = {text!r} is not an integer: expected {lo} to {hi}"
             ) from None
-        if v < minimum:
-            raise argparse.ArgumentTypeError(f"{name} = {v} is too small: expected at least "
-                                             f"{minimum}")
+        if not lo <= v <= hi:
+            raise argparse.ArgumentTypeError(f"{name} = {v} is out of range: expected {lo} "
+                                             f"to {hi}")
         return v
 
     parse.__name__ = name

@@ -1,13 +1,122 @@
-"""``tuibrdf render`` (placeholder until tuibrdf/render lands)."""
+"""``tuibrdf render``: a picture of the BRDF on stdout, the same bytes on any machine.
+
+``tuibrdf render MODEL [-p NAME=VALUE ...] [--theta-i DEG] [--view VIEW] [--width W]
+[--height H] [--color auto|truecolor|256|none | --no-color] [--cmap NAME] [--log] [--cosine]``
+
+Views: ``map`` (Lambert equal-area map, the default), ``incidence`` and ``perpendicular`` (polar
+cross-sections), ``solid`` (3D photometric solid), ``albedo`` (a(θi) over 0–90°), or ``all``:
+map, both cross-sections and the albedo curve one below the other, each ``W × H`` cells, with
+a blank line between them.
+
+Determinism: the size never comes from the terminal (default 80×24), and the console is built
+with every setting Rich would otherwise read from the environment (width, colour system,
+``NO_COLOR``, ``FORCE_COLOR``, ``TERM``).  ``--color auto`` is the only setting that looks at
+the environment: plain text when ``NO_COLOR`` is set, ``TERM=dumb`` or stdout is not a
+terminal (so ``tuibrdf render ... > file`` is readable), else truecolor when ``COLORTERM`` says
+so, else 256 colours.  Plain text has no trailing spaces.
+"""
 
 from __future__ import annotations
 
 import argparse
+import io
+import os
+import sys
+from typing import Any
+
+from .common import add_model_args, add_theta_i, bounded, choices_type, int_in, resolve
+
+#: the picture views of ``tuibrdf.render.views.VIEWS`` (kept here so ``--help`` stays light;
+#: tests check they agree), plus ``all``
+VIEWS = ("map", "incidence", "perpendicular", "solid", "albedo")
+ALL = ("map", "incidence", "perpendicular", "albedo")
+CMAPS = ("grey", "viridis", "inferno")
+COLORS = ("auto", "truecolor", "256", "none")
+MIN_WIDTH, MIN_HEIGHT = 12, 6  # tuibrdf.render.views.MIN_WIDTH / MIN_HEIGHT
+MAX_SIZE = 1000
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
-    pass
+    add_model_args(parser)
+    add_theta_i(parser, default=30.0)
+    views = (*VIEWS, "all")
+    parser.add_argument("--view", type=choices_type("view", views), default="map",
+                        metavar="|".join(views),
+                        help="what to draw (default: map); all = map, both cross-sections "
+                             "and the albedo curve")
+    parser.add_argument("--width", type=int_in("width", MIN_WIDTH, MAX_SIZE), default=80,
+                        metavar="W", help=f"width in cells (default 80, {MIN_WIDTH} to "
+                                          f"{MAX_SIZE})")
+    parser.add_argument("--height", type=int_in("height", MIN_HEIGHT, MAX_SIZE), default=24,
+                        metavar="H", help=f"height in cells of each view (default 24, "
+                                          f"{MIN_HEIGHT} to {MAX_SIZE})")
+    parser.add_argument("--color", type=choices_type("color mode", COLORS), default="auto",
+                        metavar="|".join(COLORS),
+                        help="auto (default): plain text unless stdout is a colour terminal "
+                             "(NO_COLOR and TERM=dumb respected)")
+    parser.add_argument("--no-color", dest="color", action="store_const", const="none",
+                        help="plain text, the same as --color none")
+    parser.add_argument("--cmap", type=choices_type("colour map", CMAPS), default="grey",
+                        metavar="|".join(CMAPS), help="colour map of the map and the solid "
+                                                      "(default grey, as in the source "
+                                                      "document)")
+    parser.add_argument("--log", action="store_true",
+                        help="logarithmic scale (3 decades below the maximum)")
+    parser.add_argument("--cosine", action="store_true",
+                        help="show f·cos θr (reflected intensity) instead of f")
+    parser.add_argument("--azimuth", type=bounded("azimuth", -360.0, 360.0), default=-60.0,
+                        metavar="DEG", help="3D solid: view azimuth in degrees (default -60)")
+    parser.add_argument("--elevation", type=bounded("elevation", -90.0, 90.0), default=25.0,
+                        metavar="DEG", help="3D solid: view elevation in degrees (default 25)")
+
+
+def color_system(choice: str, environ: os._Environ | dict = os.environ,
+                 stream: Any = sys.stdout) -> str:
+    """The colour system ``--color choice`` means here (``auto`` looks at the environment)."""
+    if choice != "auto":
+        return choice
+    if "NO_COLOR" in environ or environ.get("TERM") == "dumb":
+        return "none"
+    if not (hasattr(stream, "isatty") and stream.isatty()):
+        return "none"
+    return "truecolor" if environ.get("COLORTERM") in ("truecolor", "24bit") else "256"
+
+
+def picture(model, values, args: argparse.Namespace, color: str) -> str:
+    """The text ``run`` prints (ANSI escapes unless ``color == "none"``)."""
+    from rich.console import Console
+
+    from ..render.views import render_view
+
+    kw: dict[str, Any] = dict(color=color, cosine=args.cosine)
+    views = ALL if args.view == "all" else (args.view,)
+    buf = io.StringIO()
+    con = Console(file=buf, width=args.width, color_system=None if color == "none" else color,
+                  force_terminal=color != "none", no_color=False, highlight=False,
+                  markup=False, emoji=False, legacy_windows=False, soft_wrap=False,
+                  force_jupyter=False, force_interactive=False, _environ={})
+    for i, view in enumerate(views):
+        opts = dict(kw)
+        if view in ("map", "solid"):
+            opts.update(cmap=args.cmap, log=args.log)
+        if view in ("incidence", "perpendicular"):
+            opts.update(log=args.log)
+        if view == "solid":
+            opts.update(azimuth_deg=args.azimuth, elevation_deg=args.elevation)
+        if view == "albedo":
+            opts.pop("cosine")  # a(θi) is the integral of f·cos already
+        if i:
+            con.print()
+        con.print(render_view(view, model, values, args.theta_i, args.width, args.height,
+                              **opts))
+    text = buf.getvalue()
+    if color == "none":  # for logs and docs: no trailing spaces
+        text = "\n".join(line.rstrip() for line in text.split("\n"))
+    return text
 
 
 def run(args: argparse.Namespace) -> int:
+    model, values = resolve(args)
+    sys.stdout.write(picture(model, values, args, color_system(args.color)))
+    sys.stdout.flush()
     return 0

@@ -75,6 +75,13 @@ def section_curves(
     return [(label, thetas, v) for label, v in channel_curves(model.name, f)]
 
 
+def sections_max(model: Model, values: dict[str, Any], theta_i_deg: float,
+                 cosine: bool = False) -> float:
+    """The largest value over both planes (every channel): the common scale of the plots."""
+    return max(float(np.max(v)) for plane in PLANES
+               for _, _, v in section_curves(model, values, theta_i_deg, plane, cosine=cosine))
+
+
 def curve_color(label: str, j: int) -> str:
     """Channel curves R, G, B in their own colour, other curves in :data:`CURVE_COLORS` order."""
     return {"R": "red", "G": "green", "B": "blue"}.get(label, CURVE_COLORS[j % len(CURVE_COLORS)])
@@ -110,20 +117,23 @@ def polar_plot(
     log: bool = False,
     decades: float = LOG_DECADES,
     color: str = "truecolor",
+    vmax: float | None = None,
 ) -> tuple[str, str]:
     """Build the plot; returns ``(text, caption)``.  ``text`` is plotext's output (ANSI colours
-    unless ``color == "none"``), exactly ``height`` lines of ``width`` cells; ``caption`` says
-    what the guide circles are."""
-    vmax = max((float(np.max(v)) for _, _, v in curves), default=0.0)
+    unless ``color == "none"``), exactly ``height`` lines of ``width`` cells; ``caption`` gives
+    the curves' maximum and what the guide circles are.  ``vmax`` sets the scale (the outer
+    circle) when several plots must be read on one scale; by default the curves' maximum."""
+    own = max((float(np.max(v)) for _, _, v in curves), default=0.0)
+    vmax = max(own, vmax or 0.0)
     vmax = vmax if vmax > 0 else 1.0  # an all-zero curve still gets a unit circle
     if log:
         rmax, guides = 1.0, [1.0 - k / decades for k in range(int(decades))]
-        caption = f"max {fmt_value(vmax)} · log, circles every decade"
+        caption = f"max {fmt_value(own)} · log, circles every decade below {fmt_value(vmax)}"
     else:
         step = nice_step(vmax)
         guides = list(step * np.arange(1, int(np.floor(vmax / step + 1e-9)) + 1))
         rmax = max(vmax, guides[-1] if guides else vmax)
-        caption = f"max {fmt_value(vmax)} · circles every {fmt_value(step)}"
+        caption = f"max {fmt_value(own)} · circles every {fmt_value(step)}"
     # equal aspect: one data unit spans the same physical length in x and y
     span = rmax * 1.08
     k = max(2 * span / width, span / (CELL_ASPECT * height))
@@ -200,10 +210,15 @@ def section_view(
     log: bool = False,
     cosine: bool = False,
 ) -> Group:
-    """Title line + polar plot of ``model`` in ``plane`` (``height − 1`` rows)."""
+    """Title line + polar plot of ``model`` in ``plane`` (``height − 1`` rows).
+
+    Both planes are drawn on one scale, the larger of their maxima, so the two plots compare
+    at a glance (a sharp lobe at θi = 60° leaves almost nothing in the perpendicular plane,
+    and the plot shows that instead of magnifying 1e-30 to full size)."""
     curves = section_curves(model, values, theta_i_deg, plane, cosine=cosine)
     text, caption = polar_plot(curves, width, height - 1, log=log, color=color,
-                               theta_i_deg=theta_i_deg if plane == "incidence" else None)
+                               theta_i_deg=theta_i_deg if plane == "incidence" else None,
+                               vmax=sections_max(model, values, theta_i_deg, cosine))
     what = "f·cosθr" if cosine else "f"
     sides = "φ 180°|0°" if plane == "incidence" else "φ 270°|90°"
     head = title([(model.name, 2), (f"θi={theta_i_deg:g}°", 3), (plane, 0), (f"({sides})", 4),

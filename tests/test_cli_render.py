@@ -1,0 +1,192 @@
+"""``tuibrdf albedo`` and ``tuibrdf render``: values from closed forms, pictures from goldens
+checked by eye, and one line + exit 2 for every kind of bad input.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import sys
+from pathlib import Path
+
+import pytest
+from rich.cells import cell_len
+
+from tuibrdf.cli import main
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "scripts"))
+from update_goldens import GOLDENS  # noqa: E402
+
+ANSI = re.compile(r"\x1b\[[0-9;]*m")
+
+
+def run(capsys, *argv):
+    rc = main(list(argv))
+    out, err = capsys.readouterr()
+    return rc, out, err
+
+
+# -- albedo ---------------------------------------------------------------------------------
+def test_albedo_lambert_is_kd_at_every_angle(capsys):
+    # ∫ kd/π cos θ dω = kd: the table prints 4 decimals, JSON every digit (quadrature ≲ 1e-4)
+    rc, out, _ = run(capsys, "albedo", "lambert", "-p", "kd=0.5")
+    assert rc == 0
+    rows = [ln.split() for ln in out.splitlines() if not ln.startswith("#")][1:]
+    assert [r[0] for r in rows] == ["0", "15", "30", "45", "60", "75", "89"]
+    assert all(r[1] == "0.5000" and len(r) == 2 for r in rows)
+    rc, out, _ = run(capsys, "albedo", "lambert", "-p", "kd=0.5", "--theta-i", "0", "70",
+                     "--json")
+    doc = json.loads(out)
+    assert rc == 0 and doc["model"] == "lambert" and doc["params"] == {"kd": 0.5}
+    assert [v["theta_i"] for v in doc["values"]] == [0.0, 70.0]
+    for v in doc["values"]:
+        assert v["albedo"] == pytest.approx(0.5, abs=1e-4) and v["energy_conserving"]
+
+
+def test_albedo_phong_lobe_closed_form(capsys):
+    # modified Phong, kd = 0, ks = 1: ∫ (n+2)/(2π) cos^n α cos θ dω = cos θi while the whole
+    # lobe is above the horizon (n = 200: lobe width ~10°, so θi = 0..60 qualify)
+    rc, out, _ = run(capsys, "albedo", "phong", "-p", "kd=0", "-p", "ks=1", "-p", "n=200",
+                     "--theta-i", "0", "60", "--json")
+    vals = [v["albedo"] for v in json.loads(out)["values"]]
+    assert rc == 0
+    assert vals == pytest.approx([1.0, 0.5], abs=1e-3)
+
+
+def test_albedo_rgb_model_prints_three_channels(capsys):
+    # glTF with a red base colour and metallic = 1: the specular is coloured by the base, so
+    # R > G = B (G, B come from base 0.1)
+    rc, out, _ = run(capsys, "albedo", "gltf", "-p", "base_color=0.9,0.1,0.1", "-p",
+                     "metallic=1", "--theta-i", "30")
+    assert rc == 0 and "a_R" in out and "a_G" in out and "a_B" in out
+    r, g, b = (float(x) for x in out.splitlines()[-1].split()[1:])
+    assert r > g == b > 0
+
+
+def test_albedo_above_one_is_flagged(capsys):
+    # ggx with kd = 1: the Lambert term alone returns everything (albedo exactly 1), so any
+    # specular on top (f0 = 0.5) exceeds 1; with kd = 0.5 and f0 = 0.04 it stays below
+    rc, out, _ = run(capsys, "albedo", "ggx", "-p", "kd=1", "-p", "f0=0.5", "--theta-i", "0",
+                     "--json")
+    value = json.loads(out)["values"][0]
+    assert rc == 0 and value["albedo"] > 1.1 and not value["energy_conserving"]
+    rc, out, _ = run(capsys, "albedo", "ggx", "-p", "kd=1", "-p", "f0=0.5", "--theta-i", "0")
+    assert rc == 0 and out.splitlines()[-1].endswith("> 1: not energy-conserving")
+    rc, out, _ = run(capsys, "albedo", "ggx", "-p", "kd=0.5", "--theta-i", "0", "45")
+    assert rc == 0 and "not energy" not in out
+
+
+# -- render ---------------------------------------------------------------------------------
+@pytest.mark.parametrize("name", sorted(GOLDENS))
+def test_render_goldens(capsys, name):
+    """Goldens (``python scripts/update_goldens.py``), each checked by eye when written:
+
+    - lambert-map-24x12: the title says the value is the same everywhere (0.8/π = 0.255); the
+      disc is uniformly the brightest glyph '@'; 'o' (light, θi = 30°) left of centre, 'X'
+      (mirror) at the same distance right of it; colour bar 0 … 0.255.
+    - phong-map-32x14: n = 200, ks = 1 at θi = 45°: peak (n+2)/(2π) = 32.1 at θ = 45° φ = 0°;
+      the only bright pixels are at the 'X', right of centre.
+    - cook-torrance-incidence-48x16: the seed's example at 60°: the light's line up and to the
+      left, the lobe on the right beyond the mirror direction (peak 6.14 at θ ≈ 62°).
+    - phong-map-16x8-truecolor: 24-bit escapes, peak (50+2)/(2π) = 8.28.
+    """
+    rc, out, err = run(capsys, *GOLDENS[name])
+    assert rc == 0, err
+    assert out == (ROOT / "tests" / "golden" / name).read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize("view", ["map", "incidence", "perpendicular", "solid", "albedo", "all"])
+@pytest.mark.parametrize("model", ["phong", "oren-nayar", "gltf"])
+def test_render_every_view_is_deterministic_and_fits(capsys, view, model):
+    argv = ["render", model, "--theta-i", "45", "--view", view, "--width", "40",
+            "--height", "12"]
+    outs = []
+    for color in ("none", "truecolor", "256"):
+        rc, out, err = run(capsys, *argv, "--color", color)
+        assert rc == 0 and err == ""
+        again = run(capsys, *argv, "--color", color)[1]
+        assert out == again  # the same bytes twice
+        plain = ANSI.sub("", out)
+        assert max(cell_len(ln) for ln in plain.splitlines()) <= 40
+        outs.append(out)
+    none, true, c256 = outs
+    assert "\x1b" not in none and not any(ln != ln.rstrip() for ln in none.splitlines())
+    assert "\x1b[" in true and "\x1b[" in c256
+    if view in ("map", "solid", "all"):
+        assert "\x1b[38;2;" in true and "\x1b[38;5;" in c256
+
+
+def test_render_all_stacks_the_four_views(capsys):
+    rc, out, _ = run(capsys, "render", "cook-torrance", "-p", "kd=0", "-p", "f0=0.04", "-p",
+                     "m=0.07", "--theta-i", "60", "--view", "all", "--color", "none")
+    assert rc == 0
+    titles = [ln for ln in out.splitlines() if ln.startswith("cook-torrance")]
+    assert len(titles) == 4
+    assert "peak 6.14" in titles[0] and "incidence" in titles[1]
+    assert "perpendicular" in titles[2] and "a(θi=60°)" in titles[3]
+    assert len(out.splitlines()) == 4 * 24 + 3  # four 80×24 views, blank lines between
+
+
+def test_render_auto_color(capsys, monkeypatch):
+    from tuibrdf.cli.render import color_system
+
+    class Tty:
+        def isatty(self):
+            return True
+
+    assert color_system("auto", {}, Tty()) == "256"
+    assert color_system("auto", {"COLORTERM": "truecolor"}, Tty()) == "truecolor"
+    assert color_system("auto", {"COLORTERM": "truecolor", "NO_COLOR": ""}, Tty()) == "none"
+    assert color_system("auto", {"TERM": "dumb"}, Tty()) == "none"
+    assert color_system("auto", {"COLORTERM": "truecolor"}, object()) == "none"
+    assert color_system("256", {"NO_COLOR": "1"}, object()) == "256"  # explicit wins
+    # under pytest stdout is not a terminal: auto is plain text
+    rc, out, _ = run(capsys, "render", "lambert", "--width", "20", "--height", "8")
+    assert rc == 0 and "\x1b" not in out
+    rc, out2, _ = run(capsys, "render", "lambert", "--width", "20", "--height", "8",
+                      "--no-color")
+    assert out2 == out
+
+
+def test_render_constants_match_the_renderer():
+    # the CLI keeps its choices without importing rich (fast --help); they must agree
+    from tuibrdf.cli import render as cli_render
+    from tuibrdf.render import views
+    from tuibrdf.render.colormap import CMAPS
+
+    assert cli_render.VIEWS == views.VIEWS and cli_render.CMAPS == CMAPS
+    assert (cli_render.MIN_WIDTH, cli_render.MIN_HEIGHT) == (views.MIN_WIDTH, views.MIN_HEIGHT)
+
+
+# -- bad input ------------------------------------------------------------------------------
+BAD = [
+    (["render", "cook-torance"], "did you mean 'cook-torrance'"),
+    (["render", "phong", "-p", "nn=3"], "unknown parameter 'nn'"),
+    (["render", "phong", "-p", "kd=2"], "expected in [0, 1]"),
+    (["render", "phong", "-p", "kd=nan"], "expected in [0, 1]"),
+    (["render", "phong", "-p", "kd=inf"], "expected in [0, 1]"),
+    (["render", "phong", "-p", "kd"], "missing value"),
+    (["render", "phong", "-p", "kd=abc"], "kd = 'abc'"),
+    (["render", "phong", "-p", "kd=0.8", "-p", "ks=0.5"], "kd + ks"),
+    (["render", "phong", "--width", "5"], "width = 5 is out of range"),
+    (["render", "phong", "--height", "3"], "height = 3 is out of range"),
+    (["render", "phong", "--width", "100000"], "expected 12 to 1000"),
+    (["render", "phong", "--width", "wide"], "not an integer"),
+    (["render", "phong", "--view", "mapp"], "did you mean 'map'"),
+    (["render", "phong", "--cmap", "viridys"], "did you mean 'viridis'"),
+    (["render", "phong", "--color", "true"], "unknown color mode"),
+    (["render", "phong", "--theta-i", "95"], "expected [0, 90]"),
+    (["render", "phong", "--theta-i", "nan"], "out of range"),
+    (["albedo", "phong", "--theta-i", "-1"], "expected [0, 90]"),
+    (["albedo", "lamberd"], "did you mean 'lambert'"),
+    (["albedo", "phong", "-p", "ks=1.5"], "expected in [0, 1]"),
+]
+
+
+@pytest.mark.parametrize("argv, words", BAD, ids=[" ".join(a[1:]) for a, _ in BAD])
+def test_bad_input_is_one_line_and_exit_2(capsys, argv, words):
+    rc, out, err = run(capsys, *argv)
+    assert rc == 2 and out == ""
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err, err
+    assert words in err, err
