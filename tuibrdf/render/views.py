@@ -109,6 +109,12 @@ def render_view(
     return albedo_view(model, values, theta_i, width, height, color=color)
 
 
+def mark_legend(color: str) -> str:
+    """``× mirror  o light`` with the glyphs the picture uses (ASCII ones in plain text)."""
+    key = "ascii" if color == "none" else "glyph"
+    return f"{MIRROR_MARK[key]} mirror  {INCIDENT_MARK[key]} light"
+
+
 def title_line(model: Model, theta_i_deg: float, what: str, width: int,
                extra: str = "") -> Text:
     """``phong  θi=30°  <what>  <extra>`` fitted to ``width``: ``extra`` goes first, then
@@ -195,5 +201,5 @@ def map_picture(
     bar_cmap = "grey" if (data.ndim == 3 and rgb_mode == "color") else cmap
     bar = colorbar(col.scale, bar_cmap, width, levels=levels, unit=unit, color_system=color)
     head = title([(label, 2), (f"θi={theta_i_deg:g}°", 3), (peak, 0),
-                  ("everywhere" if uniform else "", 1), ("× mirror  o light", 4)], width)
+                  ("everywhere" if uniform else "", 1), (mark_legend(color), 4)], width)
     return Group(head, image, bar)
