@@ -20,3 +20,18 @@ def test_readme_opens_with_the_two_commands():
     code = [ln for ln in lines[:12] if "pip install" in ln]
     assert any("tuibrdf" in ln and "[test]" not in ln for ln in code)
     assert any("[test]" in ln and "pytest" in ln for ln in code)
+
+
+def test_readme_picture_is_the_commands_real_output():
+    # the README shows `$ tuibrdf render ...` and its output: they must stay the same
+    import shlex
+
+    sys.path.insert(0, str(ROOT / "scripts"))
+    from gen_docs import run_cli
+
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    block = text.split("```text\n", 1)[1].split("```", 1)[0]
+    first, _, shown = block.partition("\n")
+    assert first.startswith("$ tuibrdf render ")
+    rc, out = run_cli(" ".join(shlex.split(first[2:])))
+    assert rc == 0 and out == shown
