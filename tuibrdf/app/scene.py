@@ -157,7 +157,7 @@ def diff_map(sides: list[Side], theta_i: float, w: int, h: int, look: Look):
     pal = np.stack([np.interp(x, [0, 0.5, 1], stops[:, c]) for c in range(3)], -1)
     img = HalfBlockImage(idx, np.rint(pal).astype(np.uint8), (), color_system=look.color)
     head = title([("A − B", 1), (f"max |Δ| {fmt_value(m)}", 0)], w)
-    return Group(head, img, title([("blue B > A · red A > B", 0)], w))
+    return Group(head, img, title([("red: A>B  blue: B>A", 0)], w))
 
 
 def compare_section(sides: list[Side], theta_i: float, plane: str, w: int, h: int,

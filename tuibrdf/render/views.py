@@ -194,12 +194,12 @@ def map_picture(
     unit = "sr⁻¹" if not cosine else "sr⁻¹·cos"
     uniform = info.vmin >= info.peak_value * (1.0 - 1e-12)  # Lambert: no "the" peak
     if uniform:
-        peak = f"{what} = {fmt_value(info.peak_value)} {unit}"
+        peak, where = f"{what} = {fmt_value(info.peak_value)} {unit}", "everywhere"
     else:  # ints: never "φ=-0°"
         th, ph = round(info.peak_theta_deg), round(info.peak_phi_deg)
-        peak = f"{what} peak {fmt_value(info.peak_value)} {unit} at θ={th}° φ={ph}°"
+        peak, where = f"{what} peak {fmt_value(info.peak_value)} {unit}", f"at θ={th}° φ={ph}°"
     bar_cmap = "grey" if (data.ndim == 3 and rgb_mode == "color") else cmap
     bar = colorbar(col.scale, bar_cmap, width, levels=levels, unit=unit, color_system=color)
     head = title([(label, 2), (f"θi={theta_i_deg:g}°", 3), (peak, 0),
-                  ("everywhere" if uniform else "", 1), (mark_legend(color), 4)], width)
+                  (where, 1), (mark_legend(color), 4)], width)
     return Group(head, image, bar)
