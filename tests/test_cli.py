@@ -289,3 +289,11 @@ def test_fuzz_main_exits_0_or_2(capsys, tokens, command):
     assert "Traceback" not in err
     if rc == 2:
         assert len(err.strip().splitlines()) == 1, (argv, err)
+
+
+def test_version(capsys):
+    import tuibrdf
+    from tuibrdf.cli import main
+
+    assert main(["--version"]) == 0
+    assert capsys.readouterr().out.strip() == f"tuibrdf {tuibrdf.__version__}"

@@ -10,6 +10,7 @@ import argparse
 import os
 import sys
 
+from .. import __version__
 from ..core.params import unknown_message
 from . import albedo as _albedo
 from . import eval as _eval
@@ -32,6 +33,7 @@ SUBCOMMANDS = [
 
 def build_parser() -> argparse.ArgumentParser:
     parser = Parser(prog="tuibrdf", description="A terminal BRDF viewer.")
+    parser.add_argument("--version", action="version", version=f"tuibrdf {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND",
                                 parser_class=Parser)
     for name, module, help_text in SUBCOMMANDS:
