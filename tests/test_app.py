@@ -122,6 +122,28 @@ async def test_preset_round_trip_restores_every_value(config_home):
         assert (s.values["kd"], s.values["f0"], s.values["m"]) == (0.3, 0.2, 0.15)
 
 
+async def test_saved_presets_load_from_the_keyboard(config_home):
+    # `P` with nothing saved says where presets live; then it cycles the saved ones by name
+    app = make("phong", kd=0.1)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("P")
+        assert "no saved presets" in app.message
+        for name, kd, theta in (("a-first", 0.3, 40.0), ("b-second", 0.4, 50.0)):
+            app.state.sides[0].values["kd"] = kd
+            app.state.theta_i = theta
+            await pilot.press("s")
+            await pilot.pause()
+            await pilot.press(*name, "enter")
+            await pilot.pause()
+        await pilot.press("P")
+        assert app.message == "loaded preset a-first"
+        assert app.state.theta_i == 40.0 and app.state.side.values["kd"] == 0.3
+        await pilot.press("P")
+        assert app.state.theta_i == 50.0 and app.state.side.values["kd"] == 0.4
+        titles = [c.title for c in app.get_system_commands(app.screen)]
+        assert "Load preset a-first" in titles and "Load preset b-second" in titles
+
+
 async def test_malformed_preset_is_reported(config_home):
     d = config_home / "tuibrdf" / "presets"
     d.mkdir(parents=True)

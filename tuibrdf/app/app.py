@@ -23,7 +23,7 @@ from ..core import merl
 from ..core.models import MODELS
 from ..render import views
 from . import scene
-from .presets import PresetError, apply_loaded, load_preset, save_preset
+from .presets import PresetError, apply_loaded, list_presets, load_preset, preset_dir, save_preset
 from .state import COMPARE_PRESETS, VIEW_TITLES, Side, ViewerState, panel_rows
 from .widgets import ParamPanel, Picture, StatusLine
 
@@ -60,6 +60,7 @@ BINDINGS = [
     B("tab", "side", "side", priority=True, show=False),
     B("p", "preset", "preset"),
     B("s", "save", "save", show=False),
+    B("P", "load_next", "load preset", show=False),
     B("question_mark", "help", "help", key_display="?"),
     B("q", "quit", "quit"),
 ]
@@ -121,7 +122,8 @@ HELP = {
     "log": "linear / log colour scale", "cmap": "next colour map",
     "cosine": "show f or f·cos θr", "compare": "compare two models (B starts as A)",
     "side": "compare: keys act on A or B", "preset": "next seed comparison (diffuse, specular)",
-    "save": "save θi and parameters as a preset (load: tuibrdf --preset NAME)",
+    "save": "save θi and parameters as a preset (TOML file)",
+    "load_next": "load the next saved preset (also: tuibrdf view --preset NAME)",
     "help": "this screen", "quit": "quit",
 }
 
@@ -172,6 +174,7 @@ class BrdfApp(App):
         self.rebuilds = 0  # how many heavy rebuilds ran (tests, benchmarks)
         self._loading: dict[str, float] = {}  # measured-data file → fraction read so far
         self._curves_running = False
+        self._loaded = ""  # the saved preset `P` loaded last
 
     # -- layout ------------------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -568,6 +571,20 @@ class BrdfApp(App):
 
         self.push_screen(SaveScreen(), done)
 
+    def action_load_next(self) -> None:
+        names = list_presets()
+        if not names:
+            self._do(f"no saved presets in {preset_dir()} (s saves one)")
+            return
+        i = names.index(self._loaded) if self._loaded in names else -1
+        self.load_and_show(names[(i + 1) % len(names)])
+
+    def load_and_show(self, name: str) -> None:
+        msg = self.load(name)
+        if msg is None:
+            self._loaded = name
+        self._do(msg or f"loaded preset {name}", relayout=True)
+
     def load(self, name: str) -> str | None:
         """Load a saved preset into the viewer; a message if it cannot be."""
         try:
@@ -579,6 +596,9 @@ class BrdfApp(App):
 
     def get_system_commands(self, screen):
         yield from super().get_system_commands(screen)
+        for name in list_presets():
+            yield SystemCommand(f"Load preset {name}", f"{preset_dir() / name}.toml",
+                                partial(self.load_and_show, name))
         for b in BINDINGS:
             if b.action in ("help", "quit"):
                 continue
