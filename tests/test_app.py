@@ -307,3 +307,26 @@ async def test_albedo_curve_is_computed_off_the_loop_then_drawn():
         assert await wait_for(pilot, lambda: "a(θi)" in shown() and "computing" not in shown())
         await pilot.press("right")  # keys still work
         assert app.state.theta_i == 31.0
+
+
+async def test_a_failing_picture_is_a_message_not_a_crash(monkeypatch):
+    # kernels raise on a floating-point exception (core/numerics.py); should one ever escape,
+    # the pane says so and the viewer keeps running
+    from tuibrdf.app import scene
+
+    real = scene.view_pane
+
+    def broken(view, *args, **kw):
+        if view == "map":
+            raise FloatingPointError("overflow encountered in multiply")
+        return real(view, *args, **kw)
+
+    monkeypatch.setattr(scene, "view_pane", broken)
+    app = make()
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.pause()
+        pane = app.query_one("#map-a")
+        text = "\n".join(pane.render_line(y).text for y in range(pane.size.height))
+        assert "cannot draw map-a: overflow" in text
+        await pilot.press("right")
+        assert app.state.theta_i == 31.0

@@ -30,6 +30,11 @@ from .widgets import ParamPanel, Picture, StatusLine
 MIN_W, MIN_H = 60, 18
 BOTH_PANELS_H = 40  # compare mode shows both parameter panels from this height
 RETRY_S = 0.02  # re-check a busy writer after this long
+#: what a pane or a worker shows as a message instead of stopping the viewer: bad data
+#: (ValueError, OSError) and a floating-point exception from a kernel (the kernels raise on
+#: one, core/numerics.py; the stability suite has never seen one, but a picture is not worth
+#: losing the session over)
+DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
 STEADY_PANEL_H = max(len(panel_rows(m)) for m in MODELS.values()) + 2  # rows + border
 
 B = Binding
@@ -330,7 +335,7 @@ class BrdfApp(App):
             return
         try:
             r = self._renderable(pane, w, h)
-        except (ValueError, OSError) as e:  # e.g. a data file that changed on disk
+        except DRAW_ERRORS as e:  # e.g. a data file that changed on disk
             pic.show(Text(f"cannot draw {pane}: {e}"), None)
             return
         if r is None:  # computed in a worker, which asks for a redraw when done
@@ -383,7 +388,7 @@ class BrdfApp(App):
         try:
             for side, t, cos in wanted:
                 scene.stats(side, t, cos)
-        except (ValueError, OSError) as e:  # a data file that vanished or changed on disk
+        except DRAW_ERRORS as e:  # a data file that vanished or changed on disk
             self.call_from_thread(self._do, f"no albedo: {e}")
             return
         self.call_from_thread(self._status)
@@ -400,7 +405,7 @@ class BrdfApp(App):
             try:
                 for side in sides:
                     scene.albedo_curve(side)
-            except (ValueError, OSError) as e:
+            except DRAW_ERRORS as e:
                 self.call_from_thread(self._do, f"no albedo curve: {e}")
             finally:
                 self._curves_running = False
