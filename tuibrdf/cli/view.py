@@ -3,11 +3,11 @@
 ``tuibrdf view [MODEL | FILE] [-p NAME=VALUE ...] [--theta-i DEG] [--preset NAME]
 [--color auto|truecolor|256|none]``.  A ``.binary`` path opens the measured MERL material
 (model ``merl`` with ``file=PATH``); a ``.brdf``, ``.bparam``, ``.py`` or ``.bsdf`` file opens
-through the model registry (:mod:`tuibrdf.core.userfiles`).  ``--preset NAME`` loads a saved preset (``s`` in the viewer
-saves one) or, when no file has that name, one of the seed's comparisons (``diffuse``,
-``specular``).  Everything is validated before Textual is imported, so bad input is one line on
-stderr and exit status 2; ``--color`` and ``NO_COLOR`` are handed to Textual through its
-environment variables (``TEXTUAL_COLOR_SYSTEM``, ``NO_COLOR``).
+through the model registry (:mod:`tuibrdf.core.userfiles`).  ``--preset NAME`` loads a saved
+preset (``s`` in the viewer saves one) or, when no file has that name, one of the seed's
+comparisons (``diffuse``, ``specular``).  Everything is validated before Textual is imported,
+so bad input is one line on stderr and exit status 2; ``--color`` and ``NO_COLOR`` are handed
+to Textual through its environment variables (``TEXTUAL_COLOR_SYSTEM``, ``NO_COLOR``).
 """
 
 from __future__ import annotations
