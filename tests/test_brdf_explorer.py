@@ -539,3 +539,22 @@ def test_evaluate_resolved_handles_shapes():
     wi, wo = pairs(24)
     f = evaluate_resolved(m, m.defaults(), wi.reshape(4, 6, 3), wo.reshape(4, 6, 3))
     assert f.shape == (4, 6, 3)
+
+
+def test_fit_a_brdf_file_model_to_measured_data(tmp_path, capsys):
+    # `tuibrdf fit FILE --model X.brdf`: data written from ggx.brdf itself (kd 0.2, f0 0.6,
+    # α 0.2), so those parameters are a global minimum with residual 0 and the fit finds them
+    from merl_writer import table_from_directions, write_merl
+
+    truth = {"kd": 0.2, "f0": 0.6, "alpha": 0.2}
+    model = str(DATA / "ggx.brdf")
+    f = write_merl(tmp_path / "g.binary",
+                   table_from_directions(lambda wi, wo: tuibrdf.evaluate(model, truth, wi, wo)))
+    rc = main(["fit", str(f), "--model", model, "--stride", "2,4,20", "--json"])
+    out, err = capsys.readouterr()
+    assert rc == 0, err
+    import json
+
+    fitted = json.loads(out)["fits"][0]["params"]
+    for k, v in truth.items():
+        assert fitted[k] == pytest.approx(v, rel=1e-3), (k, fitted)
