@@ -223,15 +223,17 @@ def _kernel(shader: Shader, params: tuple[Param, ...], *args, **values):
     with shader_errstate():  # the user's arithmetic: IEEE, made finite below
         out = shader.fn(L, V, *uniforms)
         if shader.returns == "vec3":
-            f = np.stack([np.broadcast_to(np.asarray(c, dtype=float), shape) for c in out],
-                         axis=-1)
+            f = np.empty(shape + (3,))
+            for k, c in enumerate(out):
+                f[..., k] = c
         else:
-            f = np.broadcast_to(np.asarray(out, dtype=float), shape)
-        good = np.isfinite(f) & (f > 0.0)
-    above = (wi[..., 2] >= 0.0) & (wo[..., 2] >= 0.0)
-    if shader.returns == "vec3":
-        above = above[..., None]
-    return np.where(good & above, f, 0.0)
+            f = np.array(np.broadcast_to(out, shape), dtype=float)
+        np.fmax(f, 0.0, out=f)  # negative → 0, and NaN → 0 (fmax ignores NaN)
+        np.putmask(f, f == np.inf, 0.0)  # overflow → 0
+    below = (wi[..., 2] < 0.0) | (wo[..., 2] < 0.0)
+    if below.any():
+        f[np.broadcast_to(below, shape)] = 0.0
+    return f
 
 
 def model_from_text(path: str, parsed: Parsed, title: str, name: str) -> Model:

@@ -558,11 +558,19 @@ def rt_inversesqrt(x):
 
 
 def rt_pow(x, y):
-    """``x^y`` for ``x > 0``, else 0 (GLSL: undefined for x < 0, and for x = 0, y ≤ 0)."""
+    """``x^y`` for ``x > 0``, else 0 (GLSL: undefined for x < 0, and for x = 0, y ≤ 0).
+    Lanes with ``x ≤ 0`` may compute NaN/inf before being replaced (shader errstate)."""
     pos = np.greater(x, 0.0)
     if np.ndim(pos) == 0 and np.ndim(y) == 0:
         return np.power(np.float64(x), y) if pos else 0.0
-    return np.where(pos, np.power(np.where(pos, x, 1.0), y), 0.0)
+    if np.ndim(y) == 0 and y in (2.0, 3.0, 4.0, 5.0):  # small integer powers: products
+        p = x * x
+        if y >= 4.0:
+            p = p * p
+        if y in (3.0, 5.0):
+            p = p * x
+        return np.where(pos, p, 0.0)
+    return np.where(pos, np.power(x, y), 0.0)
 
 
 def rt_log(x, fn=np.log):
@@ -691,6 +699,8 @@ class FuncInfo:
     node: Func
     pyname: str
     sig: tuple
+    #: parameter index → constant components: a copy specialised for constant arguments
+    consts: dict = field(default_factory=dict)
 
 
 @dataclass
@@ -702,6 +712,7 @@ class Ctx:
     path: Comp = True  # lane mask of the current branch
     depth: int = 0
     done: bool = False  # a masked return happened before this point
+    grey: bool = True  # every return so far had equal components (vec3(x))
     outs: list = field(default_factory=list)  # [(param name, Sym)]
 
 
@@ -727,6 +738,11 @@ class Compiler:
         self.prologue: list[str] = []
         for f in funcs:
             self.add_function(f)
+        #: specialised copies of functions (constant arguments folded), by key, and those
+        #: still to be compiled
+        self.specials: dict[tuple, FuncInfo] = {}
+        self.pending: list[FuncInfo] = []
+        self._assigned: dict[int, set[str]] = {}
         #: user functions with out/inout parameters (their arguments may be assigned)
         self.out_funcs = {f.name for f in funcs
                           if any(q in ("out", "inout") for q, _, _ in f.params)}
@@ -780,6 +796,8 @@ class Compiler:
         for infos in self.funcs.values():
             for info in infos:
                 bodies.extend(self.function(info, entry=info is entry))
+        while self.pending:  # copies specialised for constant arguments, found on the way
+            bodies.extend(self.function(self.pending.pop(), entry=False))
         args = ", ".join(f"u_{n}" for n in self.uniforms)
         src = ["def _shader(L, V" + (", " + args if args else "") + "):"]
         for name, ty in self.uniforms.items():
@@ -871,6 +889,9 @@ class Compiler:
                     else:
                         head += [f"{n} = {_py(c)}" for n, c in zip(names, vec, strict=True)]
                     scope[name] = sym
+                    continue
+                if k in info.consts:  # specialised copy: this argument is a constant
+                    scope[name] = Sym(ty, list(info.consts[k]), 0, "param", const=True)
                     continue
                 pn = self.fresh("a_" + name + "_")
                 if qual == "out":
@@ -1009,10 +1030,21 @@ class Compiler:
             v = self.convert(self.expr(s.value, ctx), rt, s.line, "the returned value")
             comps = [_py(c) for c in v.comps]
         rets = self.ret_names(ctx)
+        grey = ctx.grey and len(set(comps)) <= 1  # every return so far has R = G = B
+        ctx.grey = grey
+
+        def set_rets(code):
+            """``_retK = code(_retK, component K)``, computed once when all are equal."""
+            if grey and len(rets) == 3:
+                self.emit(ctx, f"{rets[0]} = {code(rets[0], comps[0])}")
+                self.emit(ctx, f"{rets[1]} = {rets[2]} = {rets[0]}")
+                return
+            for r, c in zip(rets, comps, strict=True):
+                self.emit(ctx, f"{r} = {code(r, c)}")
+
         if ctx.path is True:  # every remaining lane returns here
             if ctx.done:
-                for r, c in zip(rets, comps, strict=True):
-                    self.emit(ctx, f"{r} = _sel(_done, {r}, {c})")
+                set_rets(lambda r, c: f"_sel(_done, {r}, {c})")
                 for _, sym in ctx.outs:
                     for n in sym.names:
                         self.emit(ctx, f"_out_{n} = _sel(_done, _out_{n}, {n})")
@@ -1023,8 +1055,7 @@ class Compiler:
         p = ctx.path
         zero = "False" if rt == "bool" else "0.0"
         if not ctx.done:
-            for r, c in zip(rets, comps, strict=True):
-                self.emit(ctx, f"{r} = _sel({p}, {c}, {zero})")
+            set_rets(lambda r, c: zero if c == zero else f"_sel({p}, {c}, {zero})")
             for _, sym in ctx.outs:
                 for n in sym.names:
                     self.emit(ctx, f"_out_{n} = {n}")
@@ -1032,8 +1063,7 @@ class Compiler:
             ctx.done = True
         else:
             act = self.tmp(ctx, f"_and({p}, _not(_done))")
-            for r, c in zip(rets, comps, strict=True):
-                self.emit(ctx, f"{r} = _sel({act}, {c}, {r})")
+            set_rets(lambda r, c: f"_sel({act}, {c}, {r})")
             for _, sym in ctx.outs:
                 for n in sym.names:
                     self.emit(ctx, f"_out_{n} = _sel({act}, {n}, _out_{n})")
@@ -1289,11 +1319,36 @@ class Compiler:
                                 f"defined: {have}", e.line)
         return self.builtin(name, arg_vals, e.line, ctx)
 
+    def specialise(self, info: FuncInfo, vals: list[Value]) -> FuncInfo:
+        """The copy of ``info`` with its constant ``in`` arguments folded (partial
+        evaluation: ``dot(N, v)`` inside a helper called with ``N`` becomes ``v.z``)."""
+        key_id = id(info.node)
+        if key_id not in self._assigned:
+            self._assigned[key_id] = _assigned_names(info.node.body, self.out_funcs)
+        assigned = self._assigned[key_id]
+        consts = {k: tuple(v.comps) for k, ((qual, _, name), v)
+                  in enumerate(zip(info.node.params, vals, strict=True))
+                  if qual == "in" and v.const and name not in assigned}
+        if not consts:
+            return info
+        key = (info.pyname, tuple(sorted(consts.items())))
+        spec = self.specials.get(key)
+        if spec is None:
+            spec = FuncInfo(info.node, self.fresh(info.pyname.lstrip("_") + "_c"), info.sig,
+                            consts)
+            self.specials[key] = spec
+            self.pending.append(spec)
+        return spec
+
     def user_call(self, info: FuncInfo, e: Call, vals: list[Value], ctx: Ctx,
                   statement: bool) -> Value:
+        info = self.specialise(info, vals)
         passed = []
         outs = []
-        for (qual, ty, pname), a, v in zip(info.node.params, e.args, vals, strict=True):
+        for k, ((qual, ty, pname), a, v) in enumerate(zip(info.node.params, e.args, vals,
+                                                         strict=True)):
+            if k in info.consts:
+                continue
             if qual in ("out", "inout"):
                 if self._ternary_depth:
                     raise GlslError(f"unsupported construct: a call of '{e.name}' with out "
