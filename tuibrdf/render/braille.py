@@ -144,6 +144,13 @@ class BrailleCanvas:
         seg_ok = finite[:-1] & finite[1:]
         x0, y0 = cx[:-1][seg_ok], ry[:-1][seg_ok]
         dx, dy = cx[1:][seg_ok] - x0, ry[1:][seg_ok] - y0
+        # clip each segment to the canvas (one dot of slack): a point far outside (a value
+        # 1e30 times the axis) must not become 1e30 samples
+        t0, t1 = clip_segments(x0, y0, dx, dy, (-1.0, self.dot_w), (-1.0, self.dot_h))
+        inside = t0 <= t1
+        x0, y0 = x0 + t0 * dx, y0 + t0 * dy
+        dx, dy = (t1 - t0) * dx, (t1 - t0) * dy
+        x0, y0, dx, dy = (np.where(inside, a, 0.0) for a in (x0, y0, dx, dy))
         # each segment sampled at ≤ 1 dot steps along its major axis; at least one sample
         steps = np.maximum(np.ceil(np.maximum(np.abs(dx), np.abs(dy))), 1.0)
         n = steps.astype(np.int64)
@@ -154,9 +161,10 @@ class BrailleCanvas:
         # the last point of each run of valid segments (the samples stop short of it)
         ok_next = np.zeros_like(seg_ok)
         ok_next[:-1] = seg_ok[1:]
-        ends = seg_ok & ~ok_next
-        xs = np.concatenate([x0[seg] + frac * dx[seg], cx[1:][ends]])
-        ys = np.concatenate([y0[seg] + frac * dy[seg], ry[1:][ends]])
+        ends = (seg_ok & ~ok_next)[seg_ok]
+        drawn = np.repeat(inside, n)  # samples of clipped-away segments are dropped
+        xs = np.concatenate([(x0[seg] + frac * dx[seg])[drawn], (x0 + dx)[ends & inside]])
+        ys = np.concatenate([(y0[seg] + frac * dy[seg])[drawn], (y0 + dy)[ends & inside]])
         touched = np.zeros(cx.size, dtype=bool)  # points on a valid segment
         touched[:-1] |= seg_ok
         touched[1:] |= seg_ok
@@ -245,6 +253,22 @@ class BrailleCanvas:
 
     def __rich_measure__(self, console: Console, options: ConsoleOptions) -> Measurement:
         return Measurement(self.width, self.width)
+
+
+def clip_segments(x0, y0, dx, dy, xlim, ylim) -> tuple[np.ndarray, np.ndarray]:
+    """Liang-Barsky, vectorised: the parameter range ``[t0, t1]`` ⊂ [0, 1] of each segment
+    ``(x0, y0) + t (dx, dy)`` inside the box; ``t0 > t1`` where it misses the box."""
+    t0 = np.zeros_like(x0)
+    t1 = np.ones_like(x0)
+    for p, q in ((-dx, x0 - xlim[0]), (dx, xlim[1] - x0), (-dy, y0 - ylim[0]),
+                 (dy, ylim[1] - y0)):
+        par = p == 0.0
+        # parallel to this edge: inside if q ≥ 0, else the whole segment is out
+        t1 = np.where(par & (q < 0), -1.0, t1)
+        r = np.divide(q, p, out=np.zeros_like(q), where=~par)  # p = 0 handled above
+        t0 = np.where(~par & (p < 0), np.maximum(t0, r), t0)
+        t1 = np.where(~par & (p > 0), np.minimum(t1, r), t1)
+    return t0, t1
 
 
 def legend_sample(pattern: str, charset: str, marker: str, n: int = 3) -> str:
