@@ -287,9 +287,10 @@ def legend_sample(pattern: str, charset: str, marker: str, n: int = 3) -> str:
 
 
 def charset_for(encoding: str | None) -> str:
-    """``braille`` when ``encoding`` can encode U+2800, else ``ascii`` (a non-UTF terminal)."""
+    """``braille`` when ``encoding`` can encode U+2800, else ``ascii`` (a non-UTF terminal).
+    No encoding (an in-memory text stream) means text, which Python writes as UTF-8."""
     try:
-        chr(BRAILLE_BASE + 0xFF).encode(encoding or "ascii")
+        chr(BRAILLE_BASE + 0xFF).encode(encoding or "utf-8")
     except (LookupError, UnicodeEncodeError):
         return "ascii"
     return "braille"

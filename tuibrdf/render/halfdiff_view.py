@@ -81,13 +81,15 @@ def axis_line(width: int, positions: list[float], labels: list[str], name: str) 
     return Text(head + "".join(line).rstrip(), no_wrap=True, overflow="crop")
 
 
-def scale_note(f: np.ndarray, valid: np.ndarray, vmax: float) -> str:
-    """``max 0.65 sr⁻¹``, or ``scale 0.65 (θ≤85°), max 1e+32`` when grazing values clip."""
+def scale_note(f: np.ndarray, valid: np.ndarray, vmax: float) -> list[tuple[str, int]]:
+    """Title parts: ``max 0.65 sr⁻¹``, or ``scale 0.65 sr⁻¹ (θ≤85°)`` and (less important)
+    ``max 1e+32`` when grazing values clip."""
     v = f[valid] if f.ndim == valid.ndim else f[valid].max(axis=-1)
     peak = float(v.max()) if v.size else 0.0
     if peak > vmax * (1 + 1e-9):
-        return f"scale {fmt_value(vmax)} (θ≤{SCALE_LIMIT_DEG:g}°), max {fmt_value(peak)} sr⁻¹"
-    return f"max {fmt_value(peak)} sr⁻¹"
+        return [(f"scale {fmt_value(vmax)} sr⁻¹ (θ≤{SCALE_LIMIT_DEG:g}°)", 1),
+                (f"max {fmt_value(peak)}", 3)]
+    return [(f"max {fmt_value(peak)} sr⁻¹", 1)]
 
 
 def slice_view(
@@ -135,7 +137,7 @@ def slice_view(
     bar_cmap = "grey" if (data.ndim == 3 and rgb_mode == "color") else cmap
     bar = colorbar(col.scale, bar_cmap, int(width), levels=levels, color_system=color)
     head = title([(model.name, 2), (f"θh×θd at φd={phi_d_deg:g}°", 0),
-                  (scale_note(f, valid, vmax), 1),
+                  *scale_note(f, valid, vmax),
                   ("√θh axis" if sqrt_h else "linear θh", 3)], int(width))
     return Group(head, LeftLabelled(image, labels, color), axis, bar)
 
@@ -194,7 +196,7 @@ def line_view(
             labels[r] = s
     axis = axis_line(plot_w, [t / 90.0 for t in TICKS_DEG], [f"{t}°" for t in TICKS_DEG],
                      xlabel)
-    parts = [*title_parts, (scale_note(f_raw, valid, scale), 1)]
+    parts = [*title_parts, *scale_note(f_raw, valid, scale)]
     if log:
         parts.append((f"log, {decades:g} decades", 4))
     return Group(title(parts, int(width)), LeftLabelled(canvas, labels), axis)

@@ -76,9 +76,10 @@ def lit_view(
     lum = rad.max(axis=-1)
     peak = float(lum.max()) if lum.size else 0.0
     clipped = int(np.count_nonzero(lum * exposure >= 1.0))
-    what = "lit sphere" if kind == "sphere" else f"lit plane (view at mirror, fov {fov_deg:g}°)"
+    what = "lit sphere" if kind == "sphere" else "lit plane"
+    how = "" if kind == "sphere" else f"(mirror view, fov {fov_deg:g}°)"
     clip = f"{100.0 * clipped / max(n_surface, 1):.0f}% clipped" if clipped else ""
-    head = title([(model.name, 2), (f"θi={theta_i_deg:g}°", 3), (what, 0),
-                  (f"L max {fmt_value(peak)}", 1), (f"exp {exposure:g} γ {gamma:g}", 4),
+    head = title([(model.name, 1), (f"θi={theta_i_deg:g}°", 3), (what, 0), (how, 6),
+                  (f"L max {fmt_value(peak)}", 2), (f"exp {exposure:g} γ {gamma:g}", 4),
                   (clip, 5)], width)
     return Group(head, image)

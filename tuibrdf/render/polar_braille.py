@@ -177,9 +177,10 @@ def peak_section_view(
     name = "perpendicular" if azimuth_deg == PERPENDICULAR else f"section ψ={azimuth_deg:g}°"
     t, v = curves[0][1], np.sum([c[2] for c in curves], axis=0)
     width_s = fwhm_text(t, v)
-    head = title([(model.name, 2), (f"θi={theta_i_deg:g}°", 3),
-                  (f"{name} through peak θ={abs(peak):.1f}°", 0), (width_s, 1), (what, 4),
-                  *caption_parts(caption)], width)
+    (first, _), *rest = caption_parts(caption)
+    head = title([(model.name, 2), (f"θi={theta_i_deg:g}°", 4),
+                  (f"{name} through peak θ={abs(peak):.1f}°", 0), (width_s, 1), (what, 5),
+                  (first, 0), *((r, 3) for r, _ in rest)], width)
     return Group(head, canvas)
 
 
