@@ -177,12 +177,18 @@ class BrailleCanvas:
     def circle(self, cx: float, cy: float, r: float, layer: int,
                t0_deg: float = 0.0, t1_deg: float = 360.0) -> None:
         """An arc of radius ``r`` (data units, x and y scaled alike) from angle ``t0`` to
-        ``t1`` measured from +y toward +x (the polar plots' θ), sampled at ≤ ½-dot chords."""
+        ``t1`` measured from +y toward +x (the polar plots' θ), in chords of about one dot."""
+        self.polyline(*self.arc_points(cx, cy, r, t0_deg, t1_deg), layer)
+
+    def arc_points(self, cx: float, cy: float, r: float, t0_deg: float = 0.0,
+                   t1_deg: float = 360.0) -> tuple[np.ndarray, np.ndarray]:
+        """The points :meth:`circle` joins: chords of about one dot (several arcs can be drawn
+        in one :meth:`polyline` call, separated by NaN)."""
         (x0, x1) = self.xlim
         r_dots = abs(r) * self.dot_w / (x1 - x0)  # x1 > x0
         n = int(np.clip(np.ceil(np.radians(abs(t1_deg - t0_deg)) * r_dots), 8, 20000))
         t = np.radians(np.linspace(t0_deg, t1_deg, n + 1))
-        self.polyline(cx + r * np.sin(t), cy + r * np.cos(t), layer)
+        return cx + r * np.sin(t), cy + r * np.cos(t)
 
     def text(self, row: int, col: int, s: str, color: str | None = None) -> None:
         """Text over the cells from ``(row, col)`` (cropped at the right edge)."""
@@ -209,7 +215,7 @@ class BrailleCanvas:
             chars = markers[top]  # top = −1 picks the trailing " "
         else:
             chars = BRAILLE_CHARS[codes]  # code 0 is the blank braille cell: a space instead
-        chars = chars.astype(object)
+        chars = np.ascontiguousarray(chars, dtype="<U1")
         # colour ids: layer colours, then overlay colours; −1 (and code 0) = no colour
         palette: list[str | None] = [ly.color for ly in self.layers]
         cid = np.where(codes == 0, -1, top).astype(np.int64)
@@ -232,11 +238,13 @@ class BrailleCanvas:
         cid = np.take_along_axis(cid, cols, axis=1)
         starts_all = np.ones(cid.shape, dtype=bool)
         starts_all[:, 1:] = cid[:, 1:] != cid[:, :-1]
+        # one character per cell: each row of the contiguous U1 array read as one string
+        lines = chars.view(f"<U{self.width}")[:, 0].tolist()
         out: list[list[Segment]] = []
         for r in range(self.height):
-            line = "".join(chars[r])  # one character per cell
+            line = lines[r]
             starts = np.flatnonzero(starts_all[r]).tolist() + [self.width]
-            row_ids = cid[r]
+            row_ids = cid[r].tolist()
             out.append([Segment(line[a:b], _style(palette[row_ids[a]]))
                         for a, b in zip(starts[:-1], starts[1:], strict=True)])
         return out

@@ -85,9 +85,13 @@ def polar_canvas(
     canvas = BrailleCanvas(width, height, (-xr, xr), (y0, y0 + k * CELL_ASPECT * height),
                            color=color, charset=charset)
     guide = canvas.layer(GUIDE, "sparse", ".")
+    # every guide in one polyline call (NaN between pieces): one pass of numpy, not one each
+    xs, ys = [np.array([-rmax, rmax])], [np.zeros(2)]
     for g in guides:
-        canvas.circle(0.0, 0.0, float(g), guide, -90.0, 90.0)
-    canvas.polyline(np.array([-rmax, rmax]), np.zeros(2), guide)
+        x, y = canvas.arc_points(0.0, 0.0, float(g), -90.0, 90.0)
+        xs += [np.array([np.nan]), x]
+        ys += [np.array([np.nan]), y]
+    canvas.polyline(np.concatenate(xs), np.concatenate(ys), guide)
     if theta_i_deg is not None:
         s, c = sincos_deg(float(theta_i_deg))
         light = canvas.layer(INCIDENT, "solid", "#")
