@@ -191,3 +191,16 @@ def test_rgb_sections_have_a_legend_and_are_deterministic(charset):
     if charset == "ascii":
         assert all(ord(ch) < 128 for ln in a[1:] for ch in ln)
         assert a[1][:3] == "***" and a[2][:3] == "ooo" and a[3][:3] == "+++"
+
+
+def test_points_far_outside_are_clipped_not_sampled():
+    # a value 1e30 times the axis (a grazing microfacet value) must draw the visible part of
+    # its segment, not allocate 1e30 samples: the segment from (0.5, 0.5) to (0.5, 1e30) is
+    # the left dot column, all 8 rows of a 1 × 2 cell canvas over 0..2 × 0..8
+    cv = BrailleCanvas(1, 2, (0.0, 2.0), (0.0, 8.0), color="none")
+    cv.polyline(np.array([0.5, 0.5]), np.array([0.5, 1e30]), cv.layer(None))
+    assert lit_dots(cv) == {(r, 0) for r in range(8)}
+    # a segment entirely outside draws nothing
+    cv2 = BrailleCanvas(1, 2, (0.0, 2.0), (0.0, 8.0), color="none")
+    cv2.polyline(np.array([5.0, 9.0]), np.array([1e10, 1e30]), cv2.layer(None))
+    assert lit_dots(cv2) == set()

@@ -146,11 +146,16 @@ class BrailleCanvas:
         dx, dy = cx[1:][seg_ok] - x0, ry[1:][seg_ok] - y0
         # clip each segment to the canvas (one dot of slack): a point far outside (a value
         # 1e30 times the axis) must not become 1e30 samples
-        t0, t1 = clip_segments(x0, y0, dx, dy, (-1.0, self.dot_w), (-1.0, self.dot_h))
-        inside = t0 <= t1
-        x0, y0 = x0 + t0 * dx, y0 + t0 * dy
-        dx, dy = (t1 - t0) * dx, (t1 - t0) * dy
-        x0, y0, dx, dy = (np.where(inside, a, 0.0) for a in (x0, y0, dx, dy))
+        fx, fy = cx[finite], ry[finite]
+        if fx.size and (fx.min() >= -1.0 and fx.max() <= self.dot_w and fy.min() >= -1.0
+                        and fy.max() <= self.dot_h):
+            inside = np.ones(x0.size, dtype=bool)  # every point on the canvas: nothing to clip
+        else:
+            t0, t1 = clip_segments(x0, y0, dx, dy, (-1.0, self.dot_w), (-1.0, self.dot_h))
+            inside = t0 <= t1
+            x0, y0 = x0 + t0 * dx, y0 + t0 * dy
+            dx, dy = (t1 - t0) * dx, (t1 - t0) * dy
+            x0, y0, dx, dy = (np.where(inside, a, 0.0) for a in (x0, y0, dx, dy))
         # each segment sampled at ≤ 1 dot steps along its major axis; at least one sample
         steps = np.maximum(np.ceil(np.maximum(np.abs(dx), np.abs(dy))), 1.0)
         n = steps.astype(np.int64)
