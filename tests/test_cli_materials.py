@@ -88,3 +88,45 @@ def test_material_parameter_from_the_command_line(capsys):
     rc, _, err = run(capsys, "render", "abc", "-p", "material=gold-metalic-paint")
     assert rc == 2 and err.count("\n") == 1
     assert "did you mean 'gold-metallic-paint'" in err and "tuibrdf materials" in err
+
+
+# ------------------------------------------------------------------ tuibrdf view --material
+
+
+def view_state(*argv):
+    from tuibrdf.cli import build_parser
+    from tuibrdf.cli.view import build_state
+
+    return build_state(build_parser().parse_args(["view", *argv]))
+
+
+def test_view_material_opens_a_fit_and_compare_modes():
+    s = view_state("--material", "gold-metallic-paint", "--theta-i", "45")
+    assert [(x.model, x.values) for x in s.sides] == [("abc", {"material": "gold-metallic-paint"})]
+    assert s.theta_i == 45.0 and not s.compare
+    s = view_state("--material", "metallic-gold", "--fit", "sgd")  # SGD's name for it
+    assert [(x.model, x.values) for x in s.sides] == [("sgd", {"material": "gold-metallic-paint"})]
+    s = view_state("--material", "blue-fabric", "--compare-fit")
+    assert s.compare and [(x.model, x.values["material"]) for x in s.sides] == [
+        ("abc", "blue-fabric"), ("sgd", "blue-fabric")]
+    s = view_state("--material", "blue-fabric", "--fit", "sgd", "--compare-material",
+                   "fabric-beige")
+    assert s.compare and [(x.model, x.values["material"]) for x in s.sides] == [
+        ("sgd", "blue-fabric"), ("sgd", "beige-fabric")]
+
+
+@pytest.mark.parametrize(("argv", "expected"), [
+    (["--fit", "sgd"], "--fit needs --material"),
+    (["--compare-fit"], "--compare-fit needs --material"),
+    (["phong", "--material", "blue-fabric"], "not both"),
+    (["--material", "blue-fabric", "--preset", "diffuse"], "give one"),
+    (["--material", "blue-fabric", "--compare-fit", "--compare-material", "red-fabric"],
+     "give one"),
+    (["--material", "blue-fabirc"], "did you mean 'blue-fabric'"),
+    (["--material", "blue-fabric", "--compare-material", "nope"], "unknown choice 'nope'"),
+    (["--material", "blue-fabric", "--fit", "ggx"], "unknown fit"),
+])
+def test_view_material_errors_are_one_line(capsys, argv, expected):
+    rc = main(["view", *argv])
+    err = capsys.readouterr().err
+    assert rc == 2 and expected in err and err.count("\n") == 1 and "Traceback" not in err
