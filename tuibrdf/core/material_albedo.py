@@ -12,11 +12,13 @@ H = N, so this rule integrates over the half vector, where the lobe is compact:
   φh about the plane of incidence), with ``sin θh dθh = (1 − cos θh) ds``;
 * for each φh the domain ends where wo reaches the horizon, ``θh,max = ½·atan2(cos θi,
   sin θi·cos φh)`` (from wo·N = cos θi cos 2θh − sin θi cos φh sin 2θh = 0), so the integrand has
-  no cut inside it; s starts at ln(1e-16) (the lobe's mass below that is < 1e-10 of it).
+  no cut inside it; s starts at ln(1e-16) (the lobe's mass below that is < 1e-10 of it);
+* the s range is split where ABC's V-cavity G changes branch (2 cosθh cosθ = cosθd, for wi and
+  for wo; found numerically per φh), so each segment's integrand is smooth.
 
-Gauss–Legendre in both variables (:data:`N_S` × :data:`N_PHI` nodes).  Accuracy: measured
-against the mesh quadrature and against twice as many nodes in ``tests/test_material_albedo.py``
-and docs/materials.md.
+Gauss–Legendre in each segment and in φh (``n_s`` × 3 × ``n_phi`` nodes).  Accuracy, measured
+against twice the nodes, a 1D integral at normal incidence and the mesh quadrature: see
+``tests/test_material_albedo.py`` and docs/materials.md.
 """
 
 from __future__ import annotations
@@ -31,7 +33,7 @@ from .frame import incident
 from .materials import material_names, table
 from .models import get_model
 
-N_S = 64
+N_S = 32  # per segment: three segments in s (see _nodes)
 N_PHI = 32
 S_MIN = float(np.log(1e-16))
 #: the Lambert part of each fit: (table, column)
@@ -39,25 +41,68 @@ DIFFUSE = {"abc": "kd", "sgd": "rho_d"}
 THETAS = (0.0, 60.0)
 
 
+def _half(theta_h: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    """Unit half vectors ``(..., 3)`` at polar ``theta_h`` and azimuth ``phi`` (broadcast)."""
+    st, ct = np.sin(theta_h), np.cos(theta_h)
+    return np.stack(np.broadcast_arrays(st * np.cos(phi), st * np.sin(phi), ct), axis=-1)
+
+
+def _kinks(wi: np.ndarray, phi: np.ndarray, th_max: np.ndarray, n: int = 256) -> np.ndarray:
+    """``(n_phi, 2)`` θh where the V-cavity G changes branch (``2 cosθh cosθ = cosθd`` for wi
+    and for wo), or ``th_max`` where it does not: found by a sign change on ``n`` points and
+    60 bisections.  G's kink would cost the product rule its fast convergence (ABC)."""
+    def g(th):
+        h = _half(th, phi[:, None])
+        cd = h @ wi
+        co = 2.0 * cd * h[..., 2] - wi[2]
+        return np.stack([2.0 * h[..., 2] * wi[2] - cd, 2.0 * h[..., 2] * co - cd], axis=-1)
+
+    x = np.linspace(0.0, 1.0, n + 1)[1:-1]
+    th = th_max[:, None] * x[None, :]  # (n_phi, n - 1)
+    v = g(th)  # (n_phi, n - 1, 2)
+    change = np.signbit(v[:, :-1]) != np.signbit(v[:, 1:])  # between th[j] and th[j + 1]
+    has = change.any(axis=1)  # (n_phi, 2)
+    j = np.argmax(change, axis=1)  # first sign change
+    rows = np.arange(len(phi))[:, None]
+    lo, hi = th[rows, j], th[rows, j + 1]
+    f_lo = np.take_along_axis(v[:, :, :], j[:, None, :], axis=1)[:, 0, :]
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        f_mid = np.stack([g(mid[:, k:k + 1])[:, 0, k] for k in range(2)], axis=-1)
+        same = np.signbit(f_mid) == np.signbit(f_lo)
+        lo, f_lo = np.where(same, mid, lo), np.where(same, f_mid, f_lo)
+        hi = np.where(same, hi, mid)
+    return np.where(has, 0.5 * (lo + hi), th_max[:, None])
+
+
 @cache
 def _nodes(theta_i_deg: float, n_s: int, n_phi: int):
     """``(wo (n, 3), weight (n,))`` with ``∫ g(wo) dωo ≈ Σ w·g`` over the upper hemisphere
-    (the Jacobian 4 H·wi and the φh symmetry folded into the weights)."""
+    (the Jacobian 4 H·wi and the φh symmetry folded into the weights).  For each φh the s range
+    is split at G's kinks into three segments of ``n_s`` nodes each (a missing kink gives an
+    empty segment, of weight 0)."""
+    if not 0.0 <= theta_i_deg < 90.0:
+        raise ValueError(f"theta_i = {theta_i_deg} is invalid: expected in [0, 90)°")
     wi = incident(theta_i_deg)
     xs, ws = np.polynomial.legendre.leggauss(n_s)
     xp, wp = np.polynomial.legendre.leggauss(n_phi)
     phi = 0.5 * np.pi * (xp + 1.0)  # [0, π]
     w_phi = 0.5 * np.pi * wp
     si, ci = -wi[0], wi[2]
-    th_max = 0.5 * np.arctan2(ci, si * np.cos(phi))  # wo on the horizon
-    s_max = np.log(-np.expm1(np.log(np.cos(th_max))))  # ln(1 − cos θh,max)
-    half = 0.5 * (s_max - S_MIN)
-    s = S_MIN + half[:, None] * (xs[None, :] + 1.0)  # (n_phi, n_s)
-    w = 2.0 * w_phi[:, None] * half[:, None] * ws[None, :]  # ×2: φh ∈ [−π, 0] by symmetry
+    th_max = 0.5 * np.arctan2(ci, si * np.cos(phi))  # wo on the horizon; > 0 for θi < 90°
+    # ln(1 − cos θ) without cancellation: 1 − cos θ = 2 sin²(θ/2)
+    edges = np.concatenate([np.sort(_kinks(wi, phi, th_max), axis=1), th_max[:, None]], axis=1)
+    s_edges = np.concatenate([np.full((n_phi, 1), S_MIN),
+                              np.log(2.0 * np.sin(0.5 * edges) ** 2)], axis=1)
+    s_edges = np.maximum.accumulate(np.maximum(s_edges, S_MIN), axis=1)
+    half = 0.5 * np.diff(s_edges, axis=1)  # (n_phi, 3) half-lengths
+    s = s_edges[:, :-1, None] + half[..., None] * (xs + 1.0)  # (n_phi, 3, n_s)
+    w = 2.0 * w_phi[:, None, None] * half[..., None] * ws  # ×2: φh ∈ [−π, 0] by symmetry
     u = np.exp(s)  # 1 − cos θh
     cos_h = 1.0 - u
     sin_h = np.sqrt(u * (2.0 - u))  # sin²θh = u(2 − u), no cancellation
-    h = np.stack([sin_h * np.cos(phi)[:, None], sin_h * np.sin(phi)[:, None], cos_h], axis=-1)
+    p = phi[:, None, None]
+    h = np.stack(np.broadcast_arrays(sin_h * np.cos(p), sin_h * np.sin(p), cos_h), axis=-1)
     hw = h @ wi  # > 0 inside the domain
     wo = 2.0 * hw[..., None] * h - wi
     wo[..., 2] = np.maximum(wo[..., 2], 0.0)  # rounding at θh,max must not dip below 0
@@ -87,7 +132,7 @@ def albedo(model: str, material: str, theta_i_deg: float, *, n_s: int = N_S,
 #: nodes below); ``scripts/gen_material_albedo.py`` writes it, and ``tests/test_material_albedo
 #: .py`` recomputes entries and checks them
 STORED = Path(__file__).resolve().parent / "data" / "material_albedo.tsv"
-STORED_NODES = (128, 64)
+STORED_NODES = (64, 64)
 COLUMNS = tuple(f"{m}_{t:g}_{c}" for m in ("abc", "sgd") for t in THETAS for c in "rgb")
 
 
