@@ -130,3 +130,15 @@ def test_view_material_errors_are_one_line(capsys, argv, expected):
     rc = main(["view", *argv])
     err = capsys.readouterr().err
     assert rc == 2 and expected in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_materials_doc_outputs_are_current():
+    # every "$ tuibrdf ..." block of docs/materials.md is the command's real output
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parent.parent
+    r = subprocess.run([sys.executable, "scripts/gen_materials_doc.py", "--check"], cwd=root,
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
