@@ -32,9 +32,10 @@ black-obsidian would overflow ``exp``, and t^k with k up to 856 would overflow `
 in log space; D is 0 where ``exp(−a)`` underflows, and ``a^p`` is taken only where it does not.
 
 Horizon: abc returns the V-cavity limit where one of θi, θo is 90° and specular 0 where both are
-(as cook-torrance); sgd's specular term diverges like 1/cos θ toward the horizon wherever the
-fitted G1 does not vanish there (the tables' G1 reaches 0 only through its clamp), so it has no
-limit: on the horizon the specular term is 0 and the diffuse term ρd/π remains.
+(as cook-torrance).  sgd's G1 reaches 0 only through its clamp, which the fits put at or just
+below 90° for most materials; where G1(90°) > 0 (89 materials in some channel, near 1 for 10)
+the specular term diverges like 1/cos θ toward the horizon: no limit.  On the horizon the
+specular term is 0 and the diffuse term ρd/π remains (the limit where G1 reaches 0 first).
 
 Negative values: sgd's F goes below 0 for a few materials (f1 > f0 near cos θd = 1, e.g.
 white-fabric2).  The table was fitted with that F, so the model's value is kept where the total is
@@ -160,7 +161,7 @@ ABC = Model(
 SGD = Model(
     "sgd", "Shifted Gamma fit of a MERL material", (MATERIAL,), sgd, rgb=True,
     summary="Bagher et al. 2012: (ρd + ρs·F·D_SGD·G1·G1/(cosθi cosθo))/π, per-material fit",
-    horizon="diffuse ρd/π; the specular term diverges toward 90° (no limit) and is 0 there",
+    horizon="diffuse ρd/π; the specular term is 0 there (it diverges toward 90° where G1 > 0)",
     notes=("numbers: dj_brdf.h (public domain), table djb::sgd::s_data; docs/materials.md",
            "F < 0 for a few materials: f = max(0, ...) where the specular term outweighs ρd"),
 )
