@@ -15,6 +15,7 @@ from ..core.params import unknown_message
 from . import albedo as _albedo
 from . import eval as _eval
 from . import fit as _fit
+from . import materials as _materials
 from . import models as _models
 from . import render as _render
 from . import view as _view
@@ -23,6 +24,7 @@ from .common import Parser, UsageError
 #: (name, module, one-line help) — the order of ``tuibrdf --help``
 SUBCOMMANDS = [
     ("models", _models, "list the models and their parameters"),
+    ("materials", _materials, "list the 100 MERL materials of the abc and sgd fits"),
     ("eval", _eval, "print BRDF values for given directions"),
     ("albedo", _albedo, "print the directional albedo a(θi)"),
     ("render", _render, "print a picture of the BRDF (deterministic, for docs and tests)"),
