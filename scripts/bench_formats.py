@@ -2,11 +2,12 @@
 
     python scripts/bench_formats.py [--repeat N]
 
-For each pair, the best-of-N time (ms) of ``map_values`` (the Lambert equal-area map, exact
-per-pixel evaluation, as the viewer draws it) at the main map's pixel size for a 160×48 and an
-80×24 terminal (``2·(h − 3)`` pixel rows, as scripts/bench_render.py), and the ratio
-file/built-in.  Also the one-off costs: loading (parsing + compiling) a ``.brdf`` file and
-loading a synthetic ``.bsdf``.  Prints a Markdown table (docs/formats.md quotes it).
+For each pair, the best-of-N time (ms; the two timed alternately, so both see the same load)
+of ``map_values`` (the Lambert equal-area map, exact per-pixel evaluation, as the viewer draws
+it) at the main map's pixel size for a 160×48 and an 80×24 terminal (``2·(h − 3)`` pixel rows,
+as scripts/bench_render.py), and the ratio file/built-in.  Also the one-off costs: loading
+(parsing + compiling) a ``.brdf`` file and loading a synthetic ``.bsdf``.  Prints Markdown
+tables (docs/formats.md quotes them).
 """
 
 from __future__ import annotations
@@ -46,6 +47,19 @@ def ms(fn, repeat: int) -> float:
     return min(out)  # best of N: the machine is shared, the minimum is the least disturbed
 
 
+def ms_pair(fa, fb, repeat: int) -> tuple[float, float]:
+    """Best-of-N of two functions timed alternately, so both see the same machine load."""
+    fa()
+    fb()
+    ta, tb = [], []
+    for _ in range(repeat):
+        for fn, out in ((fa, ta), (fb, tb)):
+            t0 = time.perf_counter()
+            fn()
+            out.append((time.perf_counter() - t0) * 1e3)
+    return min(ta), min(tb)
+
+
 def bench_maps(repeat: int) -> None:
     print("| file | built-in | cells | file ms | built-in ms | ratio |")
     print("|---|---|---|---|---|---|")
@@ -54,13 +68,15 @@ def bench_maps(repeat: int) -> None:
         fv = fm.resolve(fparams)
         for w, h in SIZES:
             px_w, px_h = w, 2 * (h - 3)
-            tf = ms(lambda m=fm, v=fv, a=px_w, b=px_h: map_values(m, v, 30.0, a, b), repeat)
             if bname is None:
+                tf = ms(lambda m=fm, v=fv, a=px_w, b=px_h: map_values(m, v, 30.0, a, b), repeat)
                 print(f"| {fname} | — | {w}×{h} | {tf:.2f} | — | — |")
                 continue
             bm = get_model(bname)
             bv = bm.resolve(bparams)
-            tb = ms(lambda m=bm, v=bv, a=px_w, b=px_h: map_values(m, v, 30.0, a, b), repeat)
+            tf, tb = ms_pair(lambda m=fm, v=fv, a=px_w, b=px_h: map_values(m, v, 30.0, a, b),
+                             lambda m=bm, v=bv, a=px_w, b=px_h: map_values(m, v, 30.0, a, b),
+                             repeat)
             print(f"| {fname} | {bname} | {w}×{h} | {tf:.2f} | {tb:.2f} | {tf / tb:.2f} |")
 
 

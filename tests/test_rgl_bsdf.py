@@ -209,3 +209,18 @@ def test_cli_error_is_one_line(tmp_path, capsys):
     rc = main(["view", str(tmp_path / "bad.bsdf")])
     _, err = capsys.readouterr()
     assert rc == 2 and err.count("\n") == 1 and "truncated header" in err
+
+
+def test_one_light_for_many_views_equals_per_direction(tmp_path):
+    # a map evaluates one wi against many wo: the parameter slices are mixed once, which must
+    # give what per-direction interpolation gives (every lookup is linear in the slices)
+    f = write_tensor(tmp_path / "one.bsdf", material(n_phi=5, n_theta=4, k=0.1))
+    data = rgl_bsdf.load(f)
+    _, wo = pairs(500)
+    wi = np.array([-0.3, 0.2, 0.9])
+    wi /= np.linalg.norm(wi)
+    one = rgl_bsdf.evaluate(data, wi, wo)
+    many = rgl_bsdf.evaluate(data, np.broadcast_to(wi, wo.shape), wo)
+    np.testing.assert_allclose(one, many, rtol=1e-13)
+    np.testing.assert_allclose(one, expected(np.broadcast_to(wi, wo.shape), wo, k=0.1),
+                               rtol=1e-12)
