@@ -224,3 +224,15 @@ def test_one_light_for_many_views_equals_per_direction(tmp_path):
     np.testing.assert_allclose(one, many, rtol=1e-13)
     np.testing.assert_allclose(one, expected(np.broadcast_to(wi, wo.shape), wo, k=0.1),
                                rtol=1e-12)
+
+
+def test_grazing_views_divide_by_at_most_1_over_cos_89_9(tmp_path):
+    # f·cos θo is stored; within 0.1° of the horizon cos θo is held at cos 89.9° (the synthetic
+    # material's f·cos θo does not vanish there, as noisy grazing measurements need not)
+    f = write_tensor(tmp_path / "graze.bsdf", material())
+    t = np.radians(89.95)
+    wi = np.array([[-0.5, 0.0, np.sqrt(0.75)]])
+    wo = np.array([[np.sin(t), 0.0, np.cos(t)]])
+    got = tuibrdf.evaluate(str(f), {}, wi, wo)
+    want = expected(wi, wo) * np.cos(t) / np.cos(np.radians(89.9))
+    np.testing.assert_allclose(got, want, rtol=1e-12)

@@ -32,8 +32,9 @@ are read as information.  Float fields may be f32 or f64 (converted to f64).
    linear in φi and θi (clamped at the grid's ends);
 5. if the file's ``jacobian`` flag is set, times ``ndf(u(wm)) / (4 σ(u(wi)))`` (Mitsuba 3
    applies this factor only when the flag is set; powitacq always does — RGL files set it);
-6. that is ``f·cos θo``: tuibrdf divides by ``cos θo``, floored at 1e-9 (so a value measured
-   a hair above the horizon stays finite).
+6. that is ``f·cos θo``: tuibrdf divides by ``cos θo``, held at ``cos 89.9°`` within 0.1° of
+   the horizon (measured values there are noisy and need not vanish: the division amplifies
+   them at most 573×); on the horizon itself the value is 0, as powitacq.
 
 Negative RGB values (out-of-gamut spectra) are clamped to 0 for display.  The ``valid`` mask is
 not applied (powitacq and Mitsuba ignore it); the count of invalid entries is reported.
@@ -63,8 +64,8 @@ DTYPE_NAMES = {1: "uint8", 2: "int8", 3: "uint16", 4: "int16", 5: "uint32", 6: "
                7: "uint64", 8: "int64", 9: "float16", 10: "float32", 11: "float64"}
 MAX_FIELDS = 256
 MAX_NDIM = 8
-#: ``cos θo`` floor of step 6
-COS_FLOOR = 1e-9
+#: ``cos θo`` floor of step 6: cos 89.9°
+COS_FLOOR = float(np.cos(np.radians(89.9)))
 
 
 class BsdfError(UserFileError):
@@ -504,7 +505,7 @@ def load_model(path: str, name: str) -> Model:
     return Model(
         name, title, (), partial(_kernel, data), rgb=True, reciprocal=False,
         summary="RGL-EPFL measured material (Dupuy & Jakob 2018), evaluated as powitacq",
-        horizon="0 on the horizon (as powitacq); cos θo floored at 1e-9 above it",
+        horizon="0 on the horizon (as powitacq); cos θo held at cos 89.9° within 0.1° of it",
         notes=tuple(notes),
     )
 
