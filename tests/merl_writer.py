@@ -5,8 +5,8 @@ writer bug: header of 3 little-endian int32 ``(90, 90, 180)``, then all R, all G
 little-endian float64, sample ``(iθh, iθd, iφd)`` at ``iφd + 180·(iθd + 90·iθh)``, file values
 equal to the BRDF divided by the channel scale (R 1/1500, G 1.15/1500, B 1.66/1500).
 
-Sample ``i`` of each axis sits at the lower edge of its bin: θh = (i/90)²·90°, θd = i°,
-φd = i° (the inverse of the SPEC's bin formulas).
+Sample ``i`` of each axis sits at the centre of its bin (SPEC §6: bin coordinate i + ½):
+θh = ((i + ½)/90)²·90°, θd = (i + ½)°, φd = (i + ½)° (the SPEC's bin formulas inverted).
 """
 
 from __future__ import annotations
@@ -21,10 +21,10 @@ SCALES = np.array([1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0])
 
 def sample_angles() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(θh, θd, φd)`` in radians of the samples, broadcastable to ``(90, 90, 180)``."""
-    i = np.arange(90.0)
+    i = np.arange(90.0) + 0.5
     theta_h = (i / 90.0) ** 2 * (np.pi / 2)
     theta_d = i / 90.0 * (np.pi / 2)
-    phi_d = np.arange(180.0) / 180.0 * np.pi
+    phi_d = (np.arange(180.0) + 0.5) / 180.0 * np.pi
     return theta_h[:, None, None], theta_d[None, :, None], phi_d[None, None, :]
 
 

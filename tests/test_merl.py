@@ -81,16 +81,33 @@ def test_table_is_the_only_copy_and_read_only(coded):
 
 @pytest.mark.parametrize("mode", merl.LOOKUPS)
 def test_nearest_bin_at_bin_centres(coded, mode):
-    """At bin centres ``t = i + 1/2`` nearest returns bin i; trilinear the mean of i and i+1."""
+    """At bin centres ``t = i + 1/2`` both lookups return bin i's own value (SPEC §6)."""
     rng = np.random.default_rng(1)
     h, d, p = above(rng.integers(0, 89, 800), rng.integers(0, 89, 800),
                     rng.integers(0, 179, 800))
     assert len(h) > 200
     got = lookup_at(coded, h + 0.5, d + 0.5, p + 0.5, mode)
-    shift = 0.0 if mode == "nearest" else 0.5
     for c in range(3):
-        np.testing.assert_allclose(got[:, c], expected(c, h + shift, d + shift, p + shift),
-                                   rtol=1e-9)
+        np.testing.assert_allclose(got[:, c], expected(c, h, d, p), rtol=1e-9)
+
+
+def test_steep_theta_h_profile_trilinear_equals_the_bin_at_its_centre(tmp_path):
+    """A table varying steeply along θh only (value e^(iθh/4) in bin iθh: ×1.28 per bin):
+    at every bin centre, trilinear returns the bin's own value, as nearest does.  With samples
+    at the lower edges (the earlier rule) trilinear was half a bin off there: e^(1/8) − 1 =
+    13 % here (7.5 % for the profile of the issue)."""
+    ih = np.arange(90.0)[:, None, None]
+    table = np.broadcast_to(np.exp(ih / 4.0) * 1e-3, (3, 90, 90, 180))
+    path = write_merl(tmp_path / "steep.binary", table)
+    data = merl.load(path)
+    h, d, p = above(np.arange(90.0), np.full(90, 2.0), np.full(90, 40.0))
+    assert len(h) > 80  # θh bins 0 … 8x with both directions above the horizon
+    for mode in merl.LOOKUPS:
+        got = lookup_at(data, h + 0.5, d + 0.5, p + 0.5, mode)[:, 0]
+        np.testing.assert_allclose(got, np.exp(h / 4.0) * 1e-3, rtol=1e-9)
+    # just inside the outer half of the last θh bin the value is held, not extrapolated
+    end = lookup_at(data, np.array([89.9]), np.array([0.1]), np.array([40.5]), "trilinear")
+    assert end[0, 0] == pytest.approx(np.exp(89 / 4.0) * 1e-3, rel=1e-12)
 
 
 @pytest.mark.parametrize("axis", [0, 1, 2])
@@ -119,20 +136,22 @@ def test_sqrt_theta_h_mapping(coded):
 
 
 def test_trilinear_reproduces_a_linear_function(coded):
-    """The coded table is linear in the bin indices, so trilinear lookup is exact inside the
-    grid (away from the clamped last θh/θd samples and the φd wrap 179 → 0)."""
+    """The coded table is linear in the bin indices and bin i's value sits at t = i + ½, so
+    trilinear lookup gives expected(t − ½) exactly between the first and last bin centres
+    (away from the clamped outer halves and the φd wrap 179 → 0)."""
     rng = np.random.default_rng(2)
-    t_h, t_d, t_p = above(rng.uniform(0, 89, 4000), rng.uniform(0, 89, 4000),
-                          rng.uniform(0, 179, 4000))
+    t_h, t_d, t_p = above(rng.uniform(0.5, 89.5, 4000), rng.uniform(0.5, 89.5, 4000),
+                          rng.uniform(0.5, 179.5, 4000))
     got = lookup_at(coded, t_h, t_d, t_p, "trilinear")
-    np.testing.assert_allclose(got[:, 2], expected(2, t_h, t_d, t_p), rtol=1e-9)
+    np.testing.assert_allclose(got[:, 2], expected(2, t_h - 0.5, t_d - 0.5, t_p - 0.5),
+                               rtol=1e-9)
 
 
 def test_lookups_agree_on_the_samples(coded):
-    """Just past sample i (t = i + 1e-6, so rounding cannot drop to bin i−1) both lookups give
-    sample i's value (trilinear to within the 1e-6 step)."""
-    t = [np.array([10.0, 50.0]) + 1e-6, np.array([20.0, 30.0]) + 1e-6,
-         np.array([30.0, 120.0]) + 1e-6]
+    """At sample i (its bin's centre t = i + ½, plus 1e-6) both lookups give sample i's value
+    (trilinear to within the 1e-6 step)."""
+    t = [np.array([10.0, 50.0]) + 0.5 + 1e-6, np.array([20.0, 30.0]) + 0.5 + 1e-6,
+         np.array([30.0, 120.0]) + 0.5 + 1e-6]
     near = lookup_at(coded, *t, "nearest")
     np.testing.assert_allclose(near[:, 0], expected(0, *(np.floor(x) for x in t)), rtol=1e-15)
     np.testing.assert_allclose(lookup_at(coded, *t, "trilinear"), near, rtol=1e-7)
@@ -313,8 +332,8 @@ def test_model_is_registered_and_reciprocal(ggx_file):
 def test_model_matches_its_source_at_the_samples(ggx_file):
     """At sample directions the lookup returns the ggx value the file was written from, and
     channel order survives (f0 0.9 > 0.6 > 0.3 at the specular peak)."""
-    th, td, pd = angles_at(np.array([0.0, 20.0, 40.0]), np.array([10.0, 30.0, 50.0]),
-                           np.array([0.0, 90.0, 45.0]))
+    th, td, pd = angles_at(np.array([0.5, 20.5, 40.5]), np.array([10.5, 30.5, 50.5]),
+                           np.array([0.5, 90.5, 45.5]))  # bin centres: the samples
     wi, wo = merl.from_half_diff(th, td, pd)
     got = evaluate("merl", {"file": str(ggx_file)}, wi, wo)
     for c, f0 in enumerate((0.9, 0.6, 0.3)):
@@ -343,10 +362,11 @@ def test_cli_eval_and_errors(ggx_file, tmp_path, capsys):
 
 
 def test_writer_sample_angles_match_the_spec():
+    # bin centres (SPEC §6): θh = ((i + ½)/90)²·90°, θd = (i + ½)°, φd = (i + ½)°
     th, td, pd = sample_angles()
-    assert np.degrees(th[45, 0, 0]) == pytest.approx(22.5)  # (45/90)²·90°
-    assert np.degrees(td[0, 30, 0]) == pytest.approx(30.0)
-    assert np.degrees(pd[0, 0, 90]) == pytest.approx(90.0)
+    assert np.degrees(th[45, 0, 0]) == pytest.approx((45.5 / 90) ** 2 * 90)
+    assert np.degrees(td[0, 30, 0]) == pytest.approx(30.5)
+    assert np.degrees(pd[0, 0, 90]) == pytest.approx(90.5)
 
 
 def test_special_directions_are_finite_and_reciprocal(coded):

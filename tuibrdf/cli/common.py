@@ -119,7 +119,9 @@ phi_r_deg = bounded("phi_r", -360.0, 360.0)
 
 def add_model_args(parser: argparse.ArgumentParser) -> None:
     """``MODEL`` and ``-p/--param NAME=VALUE`` (repeatable)."""
-    parser.add_argument("model", metavar="MODEL", help="model name (see 'tuibrdf models')")
+    parser.add_argument("model", metavar="MODEL",
+                        help="model name (see 'tuibrdf models') or a file: .brdf, .bparam, "
+                             ".py, .bsdf, .binary")
     parser.add_argument(
         "-p", "--param", action="append", default=[], metavar="NAME=VALUE",
         help="set a parameter (repeatable); RGB as R,G,B or one grey value; "

@@ -1,12 +1,13 @@
 """``tuibrdf view``: open the interactive viewer (also what plain ``tuibrdf`` does).
 
-``tuibrdf view [MODEL | FILE.binary] [-p NAME=VALUE ...] [--theta-i DEG] [--preset NAME]
+``tuibrdf view [MODEL | FILE] [-p NAME=VALUE ...] [--theta-i DEG] [--preset NAME]
 [--color auto|truecolor|256|none]``.  A ``.binary`` path opens the measured MERL material
-(model ``merl`` with ``file=PATH``).  ``--preset NAME`` loads a saved preset (``s`` in the viewer
-saves one) or, when no file has that name, one of the seed's comparisons (``diffuse``,
-``specular``).  Everything is validated before Textual is imported, so bad input is one line on
-stderr and exit status 2; ``--color`` and ``NO_COLOR`` are handed to Textual through its
-environment variables (``TEXTUAL_COLOR_SYSTEM``, ``NO_COLOR``).
+(model ``merl`` with ``file=PATH``); a ``.brdf``, ``.bparam``, ``.py`` or ``.bsdf`` file opens
+through the model registry (:mod:`tuibrdf.core.userfiles`).  ``--preset NAME`` loads a saved
+preset (``s`` in the viewer saves one) or, when no file has that name, one of the seed's
+comparisons (``diffuse``, ``specular``).  Everything is validated before Textual is imported,
+so bad input is one line on stderr and exit status 2; ``--color`` and ``NO_COLOR`` are handed
+to Textual through its environment variables (``TEXTUAL_COLOR_SYSTEM``, ``NO_COLOR``).
 
 ``--material NAME`` opens the published fit of a MERL material (``tuibrdf materials`` lists
 them): model ``abc`` (Löw et al. 2012), or ``sgd`` (Bagher et al. 2012) with ``--fit sgd``.
@@ -29,8 +30,9 @@ FITS = ("abc", "sgd")
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("model", nargs="?", default=None, metavar="MODEL|FILE.binary",
-                        help="model name (see 'tuibrdf models') or a MERL .binary file "
+    parser.add_argument("model", nargs="?", default=None, metavar="MODEL|FILE",
+                        help="model name (see 'tuibrdf models') or a file: .brdf, .bparam "
+                             "(BRDF Explorer), .py (Python model), .bsdf (RGL), .binary (MERL) "
                              "(default: lambert)")
     parser.add_argument("-p", "--param", action="append", default=[], metavar="NAME=VALUE",
                         help="set a parameter (repeatable); RGB as R,G,B; angles in degrees")
@@ -104,10 +106,15 @@ def build_state(args: argparse.Namespace):
         tokens = [f"file={name}", *tokens]
         name = "merl"
     if name not in MODELS:
+        from ..core.models import get_model
         from ..core.params import unknown_message
+        from ..core.userfiles import looks_like_path
 
-        raise UsageError(unknown_message("unknown model", name, list(MODELS)))
-    model = MODELS[name]
+        if not looks_like_path(name):
+            raise UsageError(unknown_message("unknown model", name, list(MODELS)))
+        model = get_model(name)  # a user file (.brdf, .bparam, .py, .bsdf): ValueError → exit 2
+    else:
+        model = MODELS[name]
     values = model.resolve(parse_params(model, tokens))
     state = ViewerState(sides=[Side(model.name, values)], theta_i=float(args.theta_i))
     if args.preset:

@@ -2,9 +2,9 @@
 
 **Samples.**  A fixed, deterministic subset of the MERL bins: every ``stride``-th sample along
 θh, θd and φd (default ``(1, 3, 15)``: all 90 θh samples — the √ mapping already concentrates
-them at the specular peak — 30 θd and 12 φd samples), at each bin's sample position (its lower
-edge, as :mod:`tuibrdf.core.merl` defines it), keeping those where both directions are strictly
-above the horizon: 25 085 samples.  The data values are the table entries themselves (no
+them at the specular peak — 30 θd and 12 φd samples), at each bin's sample position (its centre,
+as :mod:`tuibrdf.core.merl` defines it), keeping those where both directions are strictly
+above the horizon: 24 772 samples.  The data values are the table entries themselves (no
 interpolation), so a file written from a model is matched exactly by that model.
 
 **Objective** (Löw et al. 2012 "E2"; Ngan et al. 2005 compress the same way with a cube root)::
@@ -90,9 +90,10 @@ def sample_set(data: MerlData, stride: tuple[int, int, int] = STRIDE) -> Samples
     ih, idd, ip = np.meshgrid(np.arange(0, n_h, stride[0]), np.arange(0, n_d, stride[1]),
                               np.arange(0, n_p, stride[2]), indexing="ij")
     ih, idd, ip = ih.ravel(), idd.ravel(), ip.ravel()
-    # each sample's position: t = i (theta_h = (i/90)^2 * 90 deg, theta_d = i deg, phi_d = i deg)
-    wi, wo = from_half_diff((ih / n_h) ** 2 * (np.pi / 2), idd / n_d * (np.pi / 2),
-                            ip / n_p * np.pi)
+    # each sample's position: its bin's centre t = i + 1/2
+    # (theta_h = ((i + 1/2)/90)^2 * 90 deg, theta_d = (i + 1/2) deg, phi_d = (i + 1/2) deg)
+    wi, wo = from_half_diff(((ih + 0.5) / n_h) ** 2 * (np.pi / 2), (idd + 0.5) / n_d * (np.pi / 2),
+                            (ip + 0.5) / n_p * np.pi)
     keep = (wi[:, 2] > 0) & (wo[:, 2] > 0)
     values = data.table[:, ih[keep], idd[keep], ip[keep]].T
     wi, wo = wi[keep], wo[keep]

@@ -18,16 +18,17 @@ pole) gives ``θd``, ``φd``.  Bin coordinates (continuous; the bin is their flo
     tθd = 90·θd / (π/2)
     tφd = 180·φd / π             φd folded to [0, π)
 
-Sample ``i`` of an axis sits at bin coordinate ``t = i`` (the bin's lower edge: θh = (i/90)²·90°,
-θd = i°, φd = i°): the inverse of the bin formulas, so that a sample's own angles look up that
-sample with either rule.  Lookups:
+Bin ``i`` of an axis covers bin coordinates ``[i, i + 1)`` and its value sits at the bin's
+centre, ``t = i + ½`` (SPEC §6): θh = ((i + ½)/90)²·90°, θd = (i + ½)°, φd = (i + ½)°.
+Lookups:
 
 * ``nearest``: the bin that contains the direction, ``⌊t⌋`` clamped — the rule of
   ``BRDFRead.cpp`` (and pbrt-v2's ``RegularHalfangleBRDF``);
-* ``trilinear``: linear in each of ``tθh, tθd, tφd`` between samples ``⌊t⌋`` and ``⌊t⌋+1``;
-  beyond the last sample of θh or θd the value is held constant (clamped); φd is periodic
-  (sample 180 is sample 0, since φd ≡ φd + π), so bins 179 and 0 interpolate with each other.
-  Both lookups agree on the samples (up to the rounding of t near an integer).
+* ``trilinear``: linear in each of ``tθh, tθd, tφd`` between the centres of bins ``⌊t − ½⌋``
+  and ``⌊t − ½⌋ + 1``.  Ends: in the outer half of the first and last bins of θh and θd
+  (``t < ½`` or ``t > n − ½``) the bin's value is held constant (clamped); φd is periodic
+  (φd ≡ φd + π), so the outer halves of bins 179 and 0 interpolate with each other.
+  At a bin's centre both lookups give the bin's own value: they agree there.
 
 Reciprocity.  Swapping ``wi`` and ``wo`` keeps H and maps ``d → (-dx, -dy, dz)``, i.e.
 ``φd → φd + π``: that is the folding.  Here ``d``'s horizontal part is computed from ``wi - wo``
@@ -322,18 +323,21 @@ def evaluate(data: MerlData, wi: np.ndarray, wo: np.ndarray,
 
 
 def _linear_weights(t: np.ndarray, n: int, periodic: bool):
-    """Samples ``(i0, i1)`` and weights ``(1 - w, w)`` for linear interpolation at coordinate
-    ``t`` between samples at integer coordinates; clamped (or wrapped, if periodic) at the end."""
-    i0 = np.floor(t).astype(np.intp)
-    w = t - i0
+    """Samples ``(i0, i1)`` and weights ``(1 - w, w)`` for linear interpolation at bin
+    coordinate ``t`` between bin centres (sample ``i`` at ``t = i + ½``); clamped to the first
+    or last sample in the outer half of the end bins, or wrapped if ``periodic``."""
+    s = t - 0.5  # coordinate in units of samples: sample i at s = i
+    i0 = np.floor(s).astype(np.intp)
+    w = s - i0
     if periodic:
         i0 = np.mod(i0, n)
         i1 = np.mod(i0 + 1, n)
     else:
-        past = i0 >= n - 1  # at or beyond the last sample: hold its value
-        i0 = np.minimum(i0, n - 1)
+        before = i0 < 0  # t < ½: the first bin's outer half holds its value
+        past = i0 >= n - 1  # t ≥ n − ½: the last bin's outer half holds its value
+        i0 = np.clip(i0, 0, n - 1)
         i1 = np.minimum(i0 + 1, n - 1)
-        w = np.where(past, 0.0, w)
+        w = np.where(before | past, 0.0, w)
     return (i0, i1), (1.0 - w, w)
 
 

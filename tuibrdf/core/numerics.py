@@ -45,3 +45,15 @@ def safe_sqrt(x: np.ndarray) -> np.ndarray:
     """``sqrt(max(x, 0))``: rounding can push a quantity that is ≥ 0 in exact arithmetic
     (``1 - cos²``, ``n² - sin²``) a few ulps below zero."""
     return np.sqrt(np.maximum(x, 0.0))
+
+
+#: User shaders (BRDF Explorer ``.brdf`` files) were written for a GPU's IEEE arithmetic: both
+#: sides of a branch run on every direction and a formula may overflow on directions whose value
+#: is then discarded.  Their translated code runs under this policy (no exception, no warning);
+#: the shader model replaces any NaN, ±inf or negative result by 0 (core/brdf_explorer.py).
+SHADER_ERRSTATE = {"divide": "ignore", "over": "ignore", "invalid": "ignore", "under": "ignore"}
+
+
+def shader_errstate() -> np.errstate:
+    """Context manager applying :data:`SHADER_ERRSTATE` (translated user shaders only)."""
+    return np.errstate(**SHADER_ERRSTATE)

@@ -34,10 +34,20 @@ register(fitted.ABC, fitted.SGD)  # the published fits of the 100 MERL materials
 
 
 def get_model(name: str | Model) -> Model:
-    """Look a model up by registry name, with a close match in the error for a typo."""
+    """Look a model up by registry name, with a close match in the error for a typo; a path to
+    a user file (``.brdf``, ``.bparam``, ``.py``, ``.bsdf``, ``.binary``) or the name of an
+    installed plugin model resolves too (:mod:`tuibrdf.core.userfiles`)."""
     if isinstance(name, Model):
         return name
     try:
         return MODELS[name]
-    except KeyError:
-        raise ValueError(unknown_message("unknown model", str(name), list(MODELS))) from None
+    except (KeyError, TypeError):
+        pass
+    from .. import userfiles
+
+    if userfiles.looks_like_path(name):
+        return userfiles.load_model_file(name)
+    plugin = userfiles.plugin_model(name) if isinstance(name, str) else None
+    if plugin is not None:
+        return plugin
+    raise ValueError(unknown_message("unknown model", str(name), list(MODELS)))
