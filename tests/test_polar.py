@@ -15,6 +15,7 @@ from tuibrdf.core.frame import from_degrees
 from tuibrdf.core.models import MODELS, get_model
 from tuibrdf.core.params import Model
 from tuibrdf.core.quadrature import (
+    DEFAULT_RTOL,
     AlbedoEstimate,
     albedo,
     albedo_curve_estimate_resolved,
@@ -205,11 +206,12 @@ def test_against_tensor_reference(name, params, theta):
 
 @pytest.mark.parametrize("name", [n for n in MODELS if n != "merl"])
 @pytest.mark.parametrize("theta", [0.0, 60.0, 85.0, 89.0, 89.9, 90.0])
-def test_defaults_error_estimate_within_1e6(name, theta):
-    # the estimate itself is ≤ 1e-6 relative; it bounds the error (checked against the
-    # references above and in docs/accuracy.md)
+def test_defaults_error_estimate_within_tolerance(name, theta):
+    # the estimate reaches the default tolerance at every model's defaults (it bounds the
+    # error: checked against the references above, and in docs/accuracy.md, where the errors
+    # themselves are ≤ 5e-9)
     est = albedo_estimate(name, None, theta)
-    assert np.all(np.asarray(est.error) <= 1e-6 * np.abs(est.value) + 1e-13)
+    assert np.all(np.asarray(est.error) <= DEFAULT_RTOL * np.abs(est.value) + 1e-13)
 
 
 def test_isotropic_model_ignores_the_azimuth():
