@@ -313,7 +313,7 @@ def before_table(rev, refs, after_rows):
         env = dict(os.environ, PYTHONPATH=d)
         res = subprocess.run([sys.executable, "-c", BEFORE_CHILD],
                              input=json.dumps(cases), capture_output=True, text=True,
-                             check=True, env=env)
+                             check=True, env=env, cwd=d)
     got = json.loads(res.stdout)
     after = {(r[0], r[1], r[2]): r for r in after_rows}
     print(f"\nBefore ({rev}) and after: default albedo, error against the same references")

@@ -22,10 +22,12 @@ Three frames (``wi = sin θi·u + cos θi·N``, ``u`` the horizontal unit vector
             ρmax = (π/2 + β)/2 and cos θo = R sin(2(ρmax − ρ)).  J = 4 (wi·h) sin ρ.  A
             microfacet lobe D(h) sits at the pole, round and of width ~α, whatever θi.
             At grazing incidence the horizon passes (π/2 − θi)/2 from the normal; when that
-            is within ``TILT_WITHIN`` lobe widths the axis A is tilted onto it (A = cos t N −
-            sin t u, E1 = sin t N + cos t u): then wi·h = a0 cos ρ + a1 sin ρ and
+            is within ``TILT_WITHIN`` lobe widths (off by default) the axis A may be tilted
+            onto it (A = cos t N − sin t u, E1 = sin t N + cos t u): then
+            wi·h = a0 cos ρ + a1 sin ρ and
             cos θo = 2(wi·h)(N·h) − cos θi = P cos²ρ + Q sin ρ cos ρ + S sin²ρ
-            = (P+S)/2 + (K/2) cos(2ρ − φ0), so ρmax solves cos(2ρ − φ0) = −(P+S)/K and
+                   = (P+S)/2 + (K/2) cos(2ρ − φ0),
+            so ρmax solves cos(2ρ − φ0) = −(P+S)/K and
             cos θo = K sin(ρmax + ρ − φ0) sin(ρmax − ρ) (t = 0 gives the formulas above).
 
 The distance to the horizon ``d = ρmax − ρ`` is carried separately (from the panel's end), so
@@ -89,9 +91,10 @@ FRAMES = ("normal", "mirror", "half")
 GRADING = 4.0
 #: The first radial panel is [0, FIRST_PANEL × lobe width].
 FIRST_PANEL = 1.0
-#: Half frame: tilt the axis onto the horizon when it is within this many lobe widths (measured:
-#: helps at 89.9° for α = 0.2, hurts at 89°, so only where the lobe straddles the horizon).
-TILT_WITHIN = 0.02
+#: Half frame: tilt the axis onto the horizon when it is within this many lobe widths.  Off:
+#: measured at 89.9° it saved up to 65 % of the evaluations (gltf) but converged to 7e-7 where
+#: the normal axis gives 1e-9 for the same tolerance (ggx and gltf defaults).
+TILT_WITHIN = 0.0
 #: Outer grading toward ψ = ±π/2 at grazing incidence: from OUTER_START·cot θi by
 #: OUTER_GRADING up to OUTER_LIMIT (measured: ~25 % fewer evaluations than ratio 4 to π/4).
 OUTER_START, OUTER_GRADING, OUTER_LIMIT = 2.0, 8.0, np.pi / 8
