@@ -11,6 +11,7 @@ import pytest
 
 import tuibrdf
 from tuibrdf.core import polar
+from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.frame import from_degrees
 from tuibrdf.core.models import MODELS, get_model
 from tuibrdf.core.params import Model
@@ -280,3 +281,27 @@ def test_evaluation_budget_bounds_a_discontinuous_integrand():
 def test_albedo_value_is_the_estimates_value():
     assert albedo("ggx", {"alpha": 0.3}, 50.0) == albedo_estimate("ggx", {"alpha": 0.3},
                                                                    50.0).value
+
+
+@pytest.mark.parametrize("theta", [0.0, 60.0, 89.0])
+def test_tilted_half_frame_axis(theta):
+    # the half frame with its axis tilted onto the horizon (off by default) covers the same
+    # domain: Lambert's albedo is kd exactly, and ggx agrees with the untilted axis
+    from tuibrdf.core.frame import sincos_deg
+
+    st, ct = sincos_deg(np.atleast_1d(theta))
+    sp, cp = sincos_deg(np.atleast_1d(180.0))
+    c = polar.cases(st, ct, sp, cp)
+    tilted = polar.Cases(c.st, c.ct, c.u, c.v, 0.5 * np.arctan2(c.ct, c.st))
+    lam = polar.integrate(lambda wi, wo: np.full(len(wo), 0.8 / np.pi), "half", tilted,
+                          scale=0.2, rtol=1e-10)
+    assert lam.value[0] == pytest.approx(0.8, rel=1e-9)
+    m = get_model("ggx")
+    v = m.resolve({"alpha": 0.3})
+
+    def f(wi, wo):
+        return evaluate_resolved(m, v, wi, wo)
+
+    a = polar.integrate(f, "half", tilted, scale=0.3, rtol=1e-9)
+    b = polar.integrate(f, "half", c, scale=0.3, rtol=1e-9)
+    assert abs(a.value[0] - b.value[0]) <= a.error[0] + b.error[0] + 1e-14
