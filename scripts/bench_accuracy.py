@@ -244,7 +244,7 @@ def curve_table():
 
 
 MERL_CHILD = r"""
-import resource, sys, time, json
+import sys, time, json
 import numpy as np
 from tuibrdf.core import merl, quadrature as q
 f, lookup = sys.argv[1], sys.argv[2]
@@ -258,7 +258,10 @@ for th in (0.0, 60.0, 89.0, 90.0):
 t = time.perf_counter()
 q.albedo_curve_resolved(q.get_model("merl"), {"file": f, "lookup": lookup}, np.arange(91.0))
 curve = time.perf_counter() - t
-print(json.dumps([out, curve, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss]))
+# VmHWM: this process's peak resident set (ru_maxrss would include the parent's, kept
+# across fork and exec)
+hwm = [int(x.split()[1]) for x in open("/proc/self/status") if x.startswith("VmHWM")][0]
+print(json.dumps([out, curve, hwm]))
 """
 
 
