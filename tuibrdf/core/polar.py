@@ -273,6 +273,23 @@ class _Integrand:
         return np.concatenate(out)
 
 
+#: A panel whose error is this many times its share is cut in four rather than two: fewer
+#: refinement rounds (each a kernel call with its fixed cost) for a few more evaluations.
+QUARTER_ABOVE = 1e3
+
+
+def _divide(lo: np.ndarray, hi: np.ndarray, owner: np.ndarray, excess: np.ndarray):
+    """Children of panels ``[lo, hi]``: halves, or quarters where ``excess`` (error over its
+    share) is above :data:`QUARTER_ABOVE`."""
+    parts = np.where(excess > QUARTER_ABOVE, 4, 2)
+    k = np.repeat(parts, parts)
+    j = np.arange(len(k)) - np.repeat(np.cumsum(parts) - parts, parts)
+    a, b = np.repeat(lo, parts), np.repeat(hi, parts)
+    w = (b - a) / k
+    # the last child ends exactly at hi (no rounding gap before ρmax)
+    return a + j * w, np.where(j == k - 1, b, a + (j + 1) * w), np.repeat(owner, parts)
+
+
 def _initial_panels(edges: list[np.ndarray], rmax: np.ndarray):
     """Panels ``(lo, hi, node)`` from increasing breakpoints per node, cut at ρmax."""
     n = len(rmax)
@@ -333,10 +350,8 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
                  & (hi - lo > 2 * MIN_WIDTH) & (budget[case[node]] > 0))
         if not split.any():
             break
-        m = 0.5 * (lo[split] + hi[split])
-        new_lo = np.concatenate([lo[split], m])
-        new_hi = np.concatenate([m, hi[split]])
-        new_node = np.concatenate([node[split], node[split]])
+        new_lo, new_hi, new_node = _divide(lo[split], hi[split], node[split],
+                                           esize[split] / (tol_node / npan.clip(1))[node[split]])
         keep = ~split
         lo, hi, node, k_all, e_all = lo[keep], hi[keep], node[keep], k_all[keep], e_all[keep]
     return _sum_by(node, k_all, n), _sum_by(node, e_all, n), tol
@@ -430,10 +445,8 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
                  & (hi - lo > 2 * MIN_WIDTH) & (budget[pc] > 0))
         if not split.any():
             break
-        m = 0.5 * (lo[split] + hi[split])
-        new_lo = np.concatenate([lo[split], m])
-        new_hi = np.concatenate([m, hi[split]])
-        new_pc = np.concatenate([pc[split], pc[split]])
+        new_lo, new_hi, new_pc = _divide(lo[split], hi[split], pc[split],
+                                         _size(e_all[split]) / (tol / npan.clip(1))[pc[split]])
         keep = ~split
         lo, hi, pc, k_all, e_all = lo[keep], hi[keep], pc[keep], k_all[keep], e_all[keep]
     k = 2.0 if symmetric else 1.0
