@@ -1,148 +1,373 @@
-"""Speed against error for the hemisphere quadrature (issue 6; docs/accuracy.md).
+"""Speed against error for the directional albedo (issues 6, 16, 18; docs/accuracy.md).
 
-    python scripts/bench_accuracy.py            # ~1-2 minutes on a shared 2-core machine
+    PYTHONPATH=. python scripts/bench_accuracy.py                 # ~2-3 minutes
+    PYTHONPATH=. python scripts/bench_accuracy.py --before REV    # and the code of git REV
 
-For each model family and each hard case it prints, per way of computing the directional
-albedo (uniform icosahedral level 2…7, adaptive refinement at several tolerances): the time,
-the number of BRDF evaluations and the error against a converged reference.  Then the map
-(barycentric interpolation of a mesh level vs exact per-pixel evaluation), and the formula
-variants: exact Fresnel vs Schlick, Oren-Nayar full vs simple, float64 vs float32.
+For every model's defaults and for the hard cases (sharp lobes down to α = m = 0.001,
+n = 10⁴, roughness 0) at θi from 0° to 90°, it prints the default albedo
+(``quadrature.albedo_estimate_resolved``): the value, its error estimate, its error against
+the reference, evaluations and time; then the speed against error of every way of computing it
+on a few cases (the default rule at several tolerances, the uniform mesh levels, the adaptive
+mesh); the 91-point curve's time per model; MERL data (synthetic file) time and peak memory;
+then the map and the formula variants.  With ``--before REV`` the same albedos by the code of
+git revision REV (run in a subprocess from ``git archive``), against the same references.
 
-References: smooth cases use Richardson extrapolation of uniform levels 8 and 9 (the rule is
-second order, so ``(4·a9 − a8)/3``; the ± printed is a9's own error estimate |a9 − a8|/3, a
-generous bound); sharp lobes use adaptive refinement at tol 1e-8 down to level 13 (0.008°
-edges; 14 at θi = 89°), ± = its change from one level less.  Times are best of 2-3 runs
-with the meshes prebuilt; "auto" is what ``albedo()`` does by default; adaptive rows stop at
-the quadrature's max level (10, up to 13 at grazing incidence).  Numbers depend on the
-machine; errors do not.
+References: the default rule at ``rtol = 1e-13`` (up to 5 million evaluations), itself checked
+here against an independent tensor Gauss-Legendre rule over (θo, φo) with panels graded around
+θo = θi, the horizon and the mirror azimuth (the "ref check" table; tests/test_polar.py checks
+more cases, the closed forms and the 1-D integrals).  Times are best of several runs on a
+shared machine (noisy); errors and evaluation counts do not depend on the machine.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
 
+from tuibrdf.core import quadrature as q
 from tuibrdf.core.evaluate import evaluate_resolved
-from tuibrdf.core.frame import from_degrees, incident, mirror
+from tuibrdf.core.frame import from_degrees, mirror
 from tuibrdf.core.mesh import hemisphere, interpolate, refine_adaptive
-from tuibrdf.core.models import get_model
-from tuibrdf.core.quadrature import (
-    DEFAULT_LEVEL,
-    DEFAULT_TOL,
-    adaptive_max_level,
-    albedo_resolved,
-    peak_resolved,
-)
+from tuibrdf.core.models import MODELS, get_model
 
-FAMILIES = [
-    ("lambert", {}),
-    ("phong", {}),
-    ("cook-torrance", {}),
-    ("ggx", {}),
-    ("oren-nayar", {}),
-    ("disney-diffuse", {}),
-]
+THETAS = [0.0, 30.0, 60.0, 75.0, 85.0, 89.0, 89.9, 90.0]
+HARD_THETAS = [0.0, 60.0, 85.0, 89.0, 89.9, 90.0]
 HARD = [
-    ("cook-torrance", {"m": 0.01, "f0": 1.0}),
-    ("ggx", {"alpha": 0.005, "f0": 1.0}),
-    ("phong", {"kd": 0.0, "ks": 1.0, "n": 5000.0}),
+    ("ggx", {"kd": 0.0, "f0": 1.0, "alpha": 0.001}),
+    ("ggx", {"alpha": 0.01}),
+    ("cook-torrance", {"kd": 0.0, "f0": 1.0, "m": 0.001}),
+    ("cook-torrance", {"m": 0.01}),
+    ("phong", {"kd": 0.0, "ks": 1.0, "n": 10000.0}),
+    ("blinn-phong", {"kd": 0.0, "ks": 1.0, "n": 10000.0}),
+    ("gltf", {"roughness": 0.0, "metallic": 1.0, "base_color": 1.0}),
+    ("ue4", {"roughness": 0.0, "metallic": 1.0, "base_color": 1.0}),
 ]
-HARD_THETAS = [0.0, 60.0, 85.0, 89.0]
-LEVELS = range(2, 8)
-HARD_LEVELS = range(2, 10)  # sharp lobes: uniform up to 1.3 million evaluations
-TOLS = [1e-2, 1e-3, 1e-4, 1e-5]
+DEFAULTS = [(n, {}) for n in MODELS if n != "merl"]
+REF_RTOL = 1e-13
 
 
-def timed(fn, *args, repeat=1):
+def ptext(params):
+    return ",".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
+                    for k, v in params.items()) or "defaults"
+
+
+def timed(fn, *args, repeat=5, **kw):
     best = np.inf
     for _ in range(repeat):
         t = time.perf_counter()
-        out = fn(*args)
+        out = fn(*args, **kw)
         best = min(best, time.perf_counter() - t)
     return out, best
 
 
-def radiance(model, values, wi, wo):
-    f = np.asarray(evaluate_resolved(model, values, np.broadcast_to(wi, wo.shape), wo))
-    if f.ndim == 2:  # RGB: the green channel stands for all three here
-        f = f[:, 1]
-    return f * wo[:, 2]
+def rel(a, ref):
+    a, ref = np.asarray(a, dtype=float), np.asarray(ref, dtype=float)
+    return float(np.max(np.abs(a - ref) / np.maximum(np.abs(ref), 1e-300)))
 
 
-def uniform_albedo(model, values, wi, level):
-    m = hemisphere(level)
-    return float(m.integrate(radiance(model, values, wi, m.vertices))), len(m.vertices)
+def reference(model, values, th):
+    return q.albedo_estimate_resolved(model, values, th, rtol=REF_RTOL, max_evals=5_000_000)
 
 
-def adaptive_albedo(model, values, wi, tol, max_level=None):
-    max_level = max_level or adaptive_max_level(wi[2])
-    a = refine_adaptive(lambda w: radiance(model, values, wi, w), tol, max_level=max_level,
-                        focus=mirror(wi))
-    return float(a.integrate()), a.evaluations
+# ---------------------------------------------------------------------------------------------
+# independent check of the reference
 
 
-def reference(model, values, wi, sharp):
-    """``(reference, uncertainty)``: see the module docstring."""
-    if sharp:
-        hi = max(13, adaptive_max_level(wi[2]) + 2)
-        a_lo = adaptive_albedo(model, values, wi, 1e-8, max_level=hi - 1)[0]
-        a_hi = adaptive_albedo(model, values, wi, 1e-8, max_level=hi)[0]
-        return a_hi, abs(a_hi - a_lo)
-    a8 = uniform_albedo(model, values, wi, 8)[0]
-    a9 = uniform_albedo(model, values, wi, 9)[0]
-    return (4 * a9 - a8) / 3, abs(a9 - a8) / 3
+def _gl(a, b, n):
+    x, w = np.polynomial.legendre.leggauss(n)
+    return 0.5 * (b - a) * x + 0.5 * (b + a), 0.5 * (b - a) * w
 
 
-def auto_albedo(model, values, th):
-    a = albedo_resolved(model, values, th)
-    return float(a[1]) if np.ndim(a) else a  # RGB: green, as radiance() does
+def _composite(breaks, n):
+    rules = [_gl(a, b, n) for a, b in zip(breaks[:-1], breaks[1:], strict=True) if b > a]
+    return np.concatenate([r[0] for r in rules]), np.concatenate([r[1] for r in rules])
 
 
-def albedo_table(cases, sharp):
-    print(f"{'model':<15} {'params':<22} {'θi':>4}  {'method':<11} {'evals':>8} "
-          f"{'time ms':>8} {'|err|':>9}")
-    summary = []
+def _graded(centre, lo, hi):
+    g = 1e-8 * 2.0 ** np.arange(60)
+    g = g[g < hi - lo]
+    return np.unique(np.clip(np.concatenate([np.linspace(lo, hi, 17), centre - g, centre + g,
+                                             [centre]]), lo, hi))
+
+
+def tensor_reference(model, values, th, n=20):
+    """Tensor Gauss-Legendre in (θo, φo), φo ∈ [0, π] doubled (isotropic models)."""
+    ti = math.radians(th)
+    tb = np.unique(np.concatenate([_graded(ti, 0, np.pi / 2), _graded(np.pi / 2, 0, np.pi / 2)]))
+    pb = np.unique(np.concatenate([_graded(0.0, 0.0, np.pi), [np.pi / 2]]))
+    t, wt = _composite(tb, n)
+    p, wp = _composite(pb, n)
+    wi = from_degrees(th, 180.0)
+    total = 0.0
+    for s in range(0, len(t), 64):
+        tt, ww = t[s:s + 64, None], wt[s:s + 64, None]
+        wo = np.stack(np.broadcast_arrays(np.sin(tt) * np.cos(p), np.sin(tt) * np.sin(p),
+                                          np.cos(tt)), -1).reshape(-1, 3)
+        f = np.asarray(evaluate_resolved(model, values, np.broadcast_to(wi, wo.shape), wo))
+        w = (np.cos(tt) * np.sin(tt) * ww * wp).reshape(-1)
+        total = total + np.einsum("n,n...->...", w, f)
+    return 2.0 * total
+
+
+# ---------------------------------------------------------------------------------------------
+# tables
+
+
+def albedo_table(title, cases, thetas, refs):
+    print(f"\n{title}")
+    print(f"{'model':<14} {'params':<30} {'θi':>5} {'albedo':>10} {'est rel':>8} "
+          f"{'err rel':>8} {'evals':>7} {'ms':>7}")
+    rows = []
     for name, params in cases:
         model = get_model(name)
         values = model.resolve(params)
-        thetas = HARD_THETAS if sharp else [30.0, 75.0]
         for th in thetas:
-            wi = incident(th)
-            ref, unc = reference(model, values, wi, sharp)
-            ptxt = ",".join(f"{k}={v:g}" for k, v in params.items()) or "defaults"
-            rows = []
-            for level in (HARD_LEVELS if sharp else LEVELS):
-                (a, n), t = timed(uniform_albedo, model, values, wi, level, repeat=3)
-                rows.append((f"level {level}", n, t, abs(a - ref)))
-            for tol in TOLS:
-                (a, n), t = timed(adaptive_albedo, model, values, wi, tol, repeat=2)
-                rows.append((f"tol {tol:g}", n, t, abs(a - ref)))
-            a, t = timed(auto_albedo, model, values, th, repeat=2)
-            rows.append(("auto", 0, t, abs(a - ref)))
-            for label, n, t, err in rows:
-                print(f"{name:<15} {ptxt:<22} {th:4.0f}  {label:<11} {n or '':>8} "
-                      f"{t * 1e3:8.2f} {err:9.2e}")
-            print(f"{'':<15} {'':<22} {'':>4}  {'reference':<11} {'':>8} {'':>8} {ref:9.6f}"
-                  f"  ± {unc:.1e}")
-            summary.append((name, ptxt, th, rows))
-    return summary
+            ref = reference(model, values, th)
+            refs[(name, ptext(params), th)] = ref
+            est, t = timed(q.albedo_estimate_resolved, model, values, th)
+            n = _evaluations(model, values, th)
+            e_est = float(np.max(np.asarray(est.error) / np.abs(ref.value).clip(1e-300)))
+            e = rel(est.value, ref.value)
+            a = float(np.ravel(est.value)[-1 if np.ndim(est.value) == 0 else 1])
+            print(f"{name:<14} {ptext(params):<30} {th:5.1f} {a:10.7f} {e_est:8.1e} {e:8.1e} "
+                  f"{n:7d} {t * 1e3:7.2f}")
+            rows.append((name, ptext(params), th, e, e_est, n, t))
+    return rows
 
 
-def evals_at_equal_error(summary, target):
-    """Fewest evaluations reaching |err| ≤ target, uniform vs adaptive, per case."""
-    print(f"\nEvaluations to reach |albedo error| ≤ {target:g} (— = not reached by uniform "
-          "level 7, 9 for hard cases / adaptive tol 1e-5)")
-    print(f"{'model':<15} {'params':<22} {'θi':>4} {'uniform':>9} {'adaptive':>9} {'ratio':>7}")
-    for name, ptxt, th, rows in summary:
-        uni = [n for lab, n, _, e in rows if lab.startswith("level") and e <= target]
-        # tol rows ascend in cost
-        ada = [n for lab, n, _, e in rows if lab.startswith("tol") and e <= target]
-        u = min(uni) if uni else None
-        a = min(ada) if ada else None
-        ratio = f"{u / a:7.1f}" if u and a else "      —"
-        print(f"{name:<15} {ptxt:<22} {th:4.0f} {u or '—':>9} {a or '—':>9} {ratio}")
+def _evaluations(model, values, th):
+    from tuibrdf.core import polar
+    from tuibrdf.core.frame import sincos_deg
+
+    hint = q.lobe(model, values)
+    st, ct = sincos_deg(np.atleast_1d(th))
+    sp, cp = sincos_deg(np.atleast_1d(180.0))
+    r = polar.integrate(lambda wi, wo: evaluate_resolved(model, values, wi, wo), hint.frame,
+                        polar.cases(st, ct, sp, cp), scale=hint.scale,
+                        radial_breaks=hint.breaks, symmetric=hint.symmetric, rtol=q.DEFAULT_RTOL,
+                        atol=q.ATOL,
+                        max_evals=min(q.MAX_EVALS, hint.max_evals or q.MAX_EVALS))
+    return int(r.evaluations[0])
+
+
+def summary(rows, label):
+    errs = np.array([r[3] for r in rows])
+    ests = np.array([r[4] for r in rows])
+    times = np.array([r[6] for r in rows])
+    under = sum(1 for r in rows if r[3] > r[4])
+    print(f"{label}: max error {errs.max():.1e}, max estimate {ests.max():.1e}, estimate below "
+          f"the error in {under} of {len(rows)}; time median {np.median(times) * 1e3:.2f} ms, "
+          f"max {times.max() * 1e3:.2f} ms")
+
+
+def ref_check(refs):
+    print("\nReference check: default rule at rtol 1e-13 against the tensor Gauss-Legendre rule"
+          " (orders 20 and 28)")
+    print(f"{'model':<14} {'params':<30} {'θi':>5} {'reference':>12} {'|Δ| rel':>9} "
+          f"{'tensor conv':>11}")
+    for name, params, th in [("ggx", {}, 89.0), ("cook-torrance", {}, 75.0),
+                             ("oren-nayar", {}, 89.9), ("gltf", {}, 60.0),
+                             ("ggx", HARD[0][1], 89.0), ("phong", HARD[4][1], 89.0)]:
+        model = get_model(name)
+        values = model.resolve(params)
+        r = reference(model, values, th)
+        t20 = tensor_reference(model, values, th, 20)
+        t28 = tensor_reference(model, values, th, 28)
+        a = float(np.ravel(r.value)[0])
+        print(f"{name:<14} {ptext(params):<30} {th:5.1f} {a:12.9f} {rel(r.value, t28):9.1e} "
+              f"{rel(t20, t28):11.1e}")
+
+
+def methods_table(refs):
+    print("\nSpeed against error: default rule (rtol), uniform mesh levels, adaptive mesh (tol)")
+    print(f"{'model':<14} {'params':<30} {'θi':>5} {'method':<12} {'evals':>8} {'ms':>8} "
+          f"{'err rel':>8}")
+    cases = [("ggx", {}, 60.0), ("ggx", {}, 89.0), ("cook-torrance", {}, 85.0),
+             ("oren-nayar", {}, 60.0), ("ggx", HARD[0][1], 60.0),
+             ("cook-torrance", HARD[3][1], 85.0), ("phong", HARD[4][1], 30.0)]
+    for name, params, th in cases:
+        model = get_model(name)
+        values = model.resolve(params)
+        ref = refs.get((name, ptext(params), th)) or reference(model, values, th)
+        wi = from_degrees(th, 180.0)
+
+        def radiance(wo, m=model, v=values, wi=wi):
+            f = np.asarray(evaluate_resolved(m, v, np.broadcast_to(wi, wo.shape), wo))
+            return f * (wo[:, 2, None] if f.ndim == 2 else wo[:, 2])
+
+        for rt in (1e-3, 1e-4, 1e-6, 1e-8, 1e-10):
+            est, t = timed(q.albedo_estimate_resolved, model, values, th, rtol=rt, repeat=3)
+            n = _evaluations_rtol(model, values, th, rt)
+            print(f"{name:<14} {ptext(params):<30} {th:5.1f} {'rtol ' + format(rt, 'g'):<12} "
+                  f"{n:8d} {t * 1e3:8.2f} {rel(est.value, ref.value):8.1e}")
+        for level in (5, 6, 7, 8):
+            mesh = hemisphere(level)
+            a, t = timed(lambda m=mesh: m.integrate(radiance(m.vertices)), repeat=3)
+            print(f"{'':<14} {'':<30} {'':>5} {'level ' + str(level):<12} "
+                  f"{len(mesh.vertices):8d} {t * 1e3:8.2f} {rel(a, ref.value):8.1e}")
+        for tol in (1e-3, 1e-5):
+            ad, t = timed(refine_adaptive, radiance, tol, max_level=q.adaptive_max_level(wi[2]),
+                          focus=mirror(wi), repeat=1)
+            print(f"{'':<14} {'':<30} {'':>5} {'adapt ' + format(tol, 'g'):<12} "
+                  f"{ad.evaluations:8d} {t * 1e3:8.2f} {rel(ad.integrate(), ref.value):8.1e}")
+
+
+def _evaluations_rtol(model, values, th, rtol):
+    old = q.DEFAULT_RTOL
+    try:
+        q.DEFAULT_RTOL = rtol
+        return _evaluations(model, values, th)
+    finally:
+        q.DEFAULT_RTOL = old
+
+
+def curve_table():
+    print("\n91-point albedo curve (θi = 0…90° by 1°, one batch)")
+    print(f"{'model':<14} {'params':<30} {'ms':>8} {'max est rel':>11}")
+    for name, params in DEFAULTS + [("ggx", {"alpha": 0.01}), ("cook-torrance", {"m": 0.01}),
+                                    HARD[0], HARD[2]]:
+        model = get_model(name)
+        values = model.resolve(params)
+        est, t = timed(q.albedo_curve_estimate_resolved, model, values, np.arange(91.0),
+                       repeat=3)
+        e = float(np.max(np.asarray(est.error) / np.abs(est.value).clip(1e-300)))
+        print(f"{name:<14} {ptext(params):<30} {t * 1e3:8.1f} {e:11.1e}")
+
+
+MERL_CHILD = r"""
+import sys, time, json
+import numpy as np
+from tuibrdf.core import merl, quadrature as q
+f, lookup = sys.argv[1], sys.argv[2]
+merl.load_cached(f)
+out = []
+for th in (0.0, 60.0, 89.0, 90.0):
+    t = time.perf_counter()
+    est = q.albedo_estimate("merl", {"file": f, "lookup": lookup}, th)
+    out.append((th, float(np.ravel(est.value)[1]), float(np.ravel(est.error)[1]),
+                time.perf_counter() - t))
+t = time.perf_counter()
+q.albedo_curve_resolved(q.get_model("merl"), {"file": f, "lookup": lookup}, np.arange(91.0))
+curve = time.perf_counter() - t
+# VmHWM: this process's peak resident set (ru_maxrss would include the parent's, kept
+# across fork and exec)
+hwm = [int(x.split()[1]) for x in open("/proc/self/status") if x.startswith("VmHWM")][0]
+print(json.dumps([out, curve, hwm]))
+"""
+
+
+def merl_table():
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+    from merl_writer import table_from_directions, write_merl
+
+    import tuibrdf
+
+    print("\nMERL (synthetic file: cook-torrance m = 0.05, kd = 0.3, f0 = 0.5 sampled on the "
+          "MERL grid; green channel)")
+    print(f"{'lookup':<10} {'θi':>5} {'albedo':>9} {'est':>8} {'ms':>8}")
+    with tempfile.TemporaryDirectory() as d:
+        path = Path(d) / "shiny.binary"
+        write_merl(path, table_from_directions(
+            lambda wi, wo: tuibrdf.evaluate("cook-torrance", {"m": 0.05, "kd": 0.3, "f0": 0.5},
+                                            wi, wo)))
+        for lookup in ("trilinear", "nearest"):
+            res = subprocess.run([sys.executable, "-c", MERL_CHILD, str(path), lookup],
+                                 capture_output=True, text=True, check=True, env=os.environ)
+            rows, curve, rss = json.loads(res.stdout)
+            for th, a, e, t in rows:
+                print(f"{lookup:<10} {th:5.1f} {a:9.5f} {e:8.1e} {t * 1e3:8.1f}")
+            print(f"{lookup:<10} 91-point curve {curve:.2f} s; process peak memory "
+                  f"{rss / 1024:.0f} MB (35 MB of it the file)")
+
+
+BEFORE_CHILD = r"""
+import json, sys, time
+import numpy as np
+from tuibrdf.core.models import get_model
+from tuibrdf.core.quadrature import albedo_resolved
+out = []
+for name, params, th in json.loads(sys.stdin.read()):
+    m = get_model(name); v = m.resolve(params)
+    best = float("inf")
+    for _ in range(2 if th < 85 else 1):
+        t = time.perf_counter(); a = albedo_resolved(m, v, th)
+        best = min(best, time.perf_counter() - t)
+    out.append([np.atleast_1d(a).tolist(), best])
+print(json.dumps(out))
+"""
+
+
+def before_table(rev, refs, after_rows):
+    root = Path(__file__).resolve().parent.parent
+    cases = [(n, p, th) for (n, p, th) in _case_list()]
+    with tempfile.TemporaryDirectory() as d:
+        tar = subprocess.run(["git", "-C", str(root), "archive", rev, "tuibrdf"],
+                             capture_output=True, check=True).stdout
+        subprocess.run(["tar", "-x", "-C", d], input=tar, check=True)
+        env = dict(os.environ, PYTHONPATH=d)
+        res = subprocess.run([sys.executable, "-c", BEFORE_CHILD],
+                             input=json.dumps(cases), capture_output=True, text=True,
+                             check=True, env=env, cwd=d)
+    got = json.loads(res.stdout)
+    after = {(r[0], r[1], r[2]): r for r in after_rows}
+    print(f"\nBefore ({rev}) and after: default albedo, error against the same references")
+    print(f"{'model':<14} {'params':<30} {'θi':>5} {'before err':>10} {'ms':>8} "
+          f"{'after err':>10} {'ms':>8}")
+    above = 0
+    for (name, params, th), (a, t) in zip(cases, got, strict=True):
+        ref = refs[(name, ptext(params), th)]
+        ev = np.asarray(ref.value, dtype=float)
+        a = np.asarray(a, dtype=float).reshape(ev.shape)
+        if np.any(a > 1.0 + 1e-9) and np.all(ev <= 1.0 + 1e-9):  # truth 1 to rounding
+            above += 1
+        r = after[(name, ptext(params), th)]
+        print(f"{name:<14} {ptext(params):<30} {th:5.1f} {rel(a, ev):10.1e} {t * 1e3:8.2f} "
+              f"{r[3]:10.1e} {r[6] * 1e3:8.2f}")
+    print(f"before: {above} cases above 1 (by > 1e-9) where the reference is ≤ 1")
+
+
+def _case_list():
+    return ([(n, p, th) for n, p in DEFAULTS for th in THETAS]
+            + [(n, p, th) for n, p in HARD for th in HARD_THETAS])
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--before", metavar="REV", help="also run the albedo of git revision REV")
+    ap.add_argument("--quick", action="store_true", help="albedo tables only")
+    args = ap.parse_args(argv)
+    t0 = time.perf_counter()
+    print(f"defaults: DEFAULT_RTOL = {q.DEFAULT_RTOL:g}, MAX_EVALS = {q.MAX_EVALS}")
+    refs: dict = {}
+    rows = albedo_table("Default albedo at every model's defaults (error: max over channels, "
+                        "relative to the reference)", DEFAULTS, THETAS, refs)
+    summary(rows, "defaults")
+    hard = albedo_table("Default albedo on the hard cases", HARD, HARD_THETAS, refs)
+    summary(hard, "hard cases")
+    if args.before:
+        before_table(args.before, refs, rows + hard)
+    if not args.quick:
+        ref_check(refs)
+        methods_table(refs)
+        curve_table()
+        merl_table()
+        map_table()
+        variants_table()
+    print(f"\ntotal time {time.perf_counter() - t0:.1f} s")
+    return 0
+
+
+# ---------------------------------------------------------------------------------------------
+# map and formula variants (unchanged from issue 6)
 
 
 def equal_area_grid(px):
@@ -163,9 +388,9 @@ def map_table():
     print(f"{'model':<15} {'params':<16} {'method':<9} {'time ms':>8} {'max err':>9} "
           f"{'mean err':>9}")
     dirs = equal_area_grid(160)
-    wi = incident(30.0)
-    cases = FAMILIES[1:4] + [("ggx", {"alpha": 0.05})]
-    for name, params in cases:
+    wi = from_degrees(30.0, 180.0)
+    for name, params in [("phong", {}), ("cook-torrance", {}), ("ggx", {}),
+                         ("ggx", {"alpha": 0.05})]:
         model = get_model(name)
         values = model.resolve(params)
 
@@ -174,8 +399,8 @@ def map_table():
 
         ex, t_ex = timed(exact, repeat=3)
         top = ex.max()
-        ptxt = ",".join(f"{k}={v:g}" for k, v in params.items()) or "defaults"
-        print(f"{name:<15} {ptxt:<16} {'exact':<9} {t_ex * 1e3:8.2f} {0:9.1e} {0:9.1e}")
+        print(f"{name:<15} {ptext(params):<16} {'exact':<9} {t_ex * 1e3:8.2f} {0:9.1e} "
+              f"{0:9.1e}")
         for level in range(3, 8):
             mesh = hemisphere(level)
 
@@ -191,7 +416,7 @@ def map_table():
 
 
 def variants_table():
-    print("\nFormula variants (albedo at level 7 and peak value; differences are absolute for "
+    print("\nFormula variants (default albedo and peak value; differences are absolute for "
           "albedo, relative for the peak)")
     print(f"{'variant':<44} {'θi':>4} {'albedo A':>9} {'albedo B':>9} {'Δalbedo':>9} "
           f"{'Δpeak rel':>9}")
@@ -208,65 +433,12 @@ def variants_table():
         ma, mb = get_model(na), get_model(nb)
         va, vb = ma.resolve(pa), mb.resolve(pb)
         for th in (0.0, 60.0, 85.0):
-            aa = albedo_resolved(ma, va, th, level=7)
-            ab = albedo_resolved(mb, vb, th, level=7)
-            qa = peak_resolved(ma, va, th).value
-            qb = peak_resolved(mb, vb, th).value
+            aa = q.albedo_resolved(ma, va, th)
+            ab = q.albedo_resolved(mb, vb, th)
+            qa = q.peak_resolved(ma, va, th).value
+            qb = q.peak_resolved(mb, vb, th).value
             print(f"{label:<44} {th:4.0f} {aa:9.5f} {ab:9.5f} {ab - aa:9.2e} "
                   f"{(qb - qa) / qa:9.2e}")
-
-    print("\nfloat64 vs float32 (directions and kernel arithmetic in float32, sums in float64; "
-          "level 7, θi = 60°)")
-    print(f"{'model':<15} {'params':<22} {'t64 ms':>8} {'t32 ms':>8} {'Δalbedo rel':>11} "
-          f"{'Δmax rel':>9} {'dtype':>8}")
-    mesh = hemisphere(7)
-    wi = incident(60.0)
-    for name, params in FAMILIES[1:] + HARD:
-        model = get_model(name)
-        values = model.resolve(params)
-        v64 = mesh.vertices
-        v32 = v64.astype(np.float32)
-        w32 = wi.astype(np.float32)
-
-        def run(v, w, m=model, vals=values):
-            return np.asarray(evaluate_resolved(m, vals, np.broadcast_to(w, v.shape), v))
-
-        f64, t64 = timed(run, v64, wi, repeat=3)
-        try:
-            f32, t32 = timed(run, v32, w32, repeat=3)
-        except FloatingPointError as e:  # float32 overflows where float64 does not
-            print(f"{name:<15} {'':<22} {t64 * 1e3:8.2f} {'—':>8}  float32 raised: {e}")
-            continue
-        c = mesh.vertices[:, 2]
-        c = c[:, None] if f64.ndim == 2 else c
-        a64 = mesh.integrate(f64 * c)
-        a32 = mesh.integrate(f32.astype(float) * c)
-        da = float(np.max(np.abs(a32 - a64) / np.maximum(np.abs(a64), 1e-300)))
-        dm = float(np.max(np.abs(f32.max() - f64.max()) / f64.max()))
-        ptxt = ",".join(f"{k}={v:g}" for k, v in params.items()) or "defaults"
-        print(f"{name:<15} {ptxt:<22} {t64 * 1e3:8.2f} {t32 * 1e3:8.2f} {da:11.1e} {dm:9.1e} "
-              f"{str(f32.dtype):>8}")
-
-
-def main(argv=None) -> int:
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--quick", action="store_true", help="hard cases only")
-    args = p.parse_args(argv)
-    t0 = time.perf_counter()
-    for level in range(2, 10):  # build (and cache) the meshes outside the timings
-        hemisphere(level)
-    print(f"defaults: DEFAULT_LEVEL = {DEFAULT_LEVEL}, DEFAULT_TOL = {DEFAULT_TOL:g}\n")
-    print("Directional albedo, model families (θi = 30°, 75°)")
-    fam = [] if args.quick else albedo_table(FAMILIES, sharp=False)
-    print("\nDirectional albedo, hard cases (sharp lobes; f0 = 1 so Fresnel does not hide them)")
-    hard = albedo_table(HARD, sharp=True)
-    evals_at_equal_error(fam + hard, 1e-3)
-    evals_at_equal_error(hard, 1e-4)
-    if not args.quick:
-        map_table()
-        variants_table()
-    print(f"\ntotal time {time.perf_counter() - t0:.1f} s")
-    return 0
 
 
 if __name__ == "__main__":

@@ -1,43 +1,62 @@
-"""Quadrature on the icosahedral hemisphere: albedo, albedo curve, reciprocity error, peak.
+"""Quadrature on the hemisphere: albedo (with an error estimate), albedo curve, reciprocity
+error, peak.
 
-Directional albedo ``a(θi) = ∫ f(wi, wo) cos θo dωo`` is the vertex rule of
-:func:`tuibrdf.core.mesh.hemisphere` (second order: the error falls ~4× per level once the mesh
-resolves the lobe), or, with ``tol=``, the adaptive mesh of
-:func:`tuibrdf.core.mesh.refine_adaptive` focused on the mirror direction (what a sharp lobe
-needs).  :data:`DEFAULT_LEVEL` and :data:`DEFAULT_TOL` were chosen from
-``scripts/bench_accuracy.py`` (``docs/accuracy.md``).
+Directional albedo ``a(wi) = ∫ f(wi, wo) cos θo dωo`` is, by default (``method="auto"``), the
+nested adaptive Gauss–Kronrod rule of :mod:`tuibrdf.core.polar` in polar coordinates about the
+model's lobe: the half vector about the normal for microfacet models (the lobe sits at the pole
+whatever θi), the mirror direction for Phong, the normal for diffuse models (their kinks, at
+θo = θi and Δφ = ±90°, are coordinate lines there).  The frame and the lobe's width come from
+:data:`LOBE_HINTS` for the built-in models; any other model (a user file) gets the half-vector
+frame with the finest grading and no symmetry assumed.  It returns an error estimate with the
+value (:func:`albedo_estimate`); :func:`exceeds_one` is the one energy test (albedo minus its
+error above 1).  ``method="uniform"`` is the vertex rule of
+:func:`tuibrdf.core.mesh.hemisphere` at ``level`` and ``method="adaptive"`` the adaptive mesh of
+:func:`tuibrdf.core.mesh.refine_adaptive` at ``tol``, kept for comparison
+(``scripts/bench_accuracy.py``, ``docs/accuracy.md``).
 
 Every public function takes a model (registry name or :class:`~tuibrdf.core.params.Model`) and
 user parameter values, validated with ``Model.resolve``; the ``*_resolved`` variants take a
 ``Model`` and values that are already resolved (the app and renderers resolve once).  RGB models
-give ``(3,)`` per albedo and ``(n, 3)`` per curve.
+give ``(3,)`` per albedo and ``(n, 3)`` per curve.  The incidence is ``(θi, φi)`` in degrees,
+``φi = 180°`` by default (the viewer's light; for an isotropic model φi changes nothing).
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+import math
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any, NamedTuple
 
 import numpy as np
 
+from . import polar
 from .evaluate import evaluate_resolved
-from .frame import incident, mirror, phi_of, theta_of
-from .mesh import MAX_LEVEL, hemisphere, refine_adaptive
-from .models import get_model
+from .frame import from_degrees, mirror, phi_of, sincos_deg, theta_of
+from .mesh import hemisphere, refine_adaptive
+from .microfacet import alpha_from_roughness
+from .models import MODELS, get_model
 from .params import Model
 
-#: Uniform level of the albedo / peak quadrature: 20,641 vertices; the albedo of a moderately
-#: sharp lobe (phong n = 200, ggx α = 0.1, cook-torrance m = 0.1) is within 1e-3 (measured in
-#: docs/accuracy.md).
+#: Uniform level of the peak search and of ``method="uniform"``: 20,641 vertices.
 DEFAULT_LEVEL = 6
-#: Adaptive tolerance (relative midpoint-interpolation error) for lobes the uniform mesh does
-#: not resolve: ≤ 5e-5 albedo error on phong n = 5000 and cook-torrance m = 0.01 at ≤ 85°.
+#: Adaptive-mesh tolerance of ``method="adaptive"`` (relative integral error per triangle).
 DEFAULT_TOL = 1e-5
+#: Relative tolerance of the default albedo: its error estimate is at most this (or the
+#: evaluation budget ran out, and the estimate says so).  The estimate (|K15 − G7| summed) is
+#: pessimistic: measured errors are ≤ 5e-9 at every model's defaults and ≤ 1e-7 on the hard
+#: cases (docs/accuracy.md); 1e-6 would cost 15-100 % more evaluations for errors that are
+#: already below 1e-8.
+DEFAULT_RTOL = 1e-5
+#: Absolute floor of the tolerance (an albedo of 0 needs no relative accuracy).
+ATOL = 1e-13
+#: Evaluations per incidence after which refinement stops (a discontinuous integrand, e.g.
+#: measured data with nearest-bin lookup): bounds time and memory; the error says how far it
+#: got.  ~0.2 µs per evaluation for the analytic models.
+MAX_EVALS = 200_000
+#: Evaluation budget per incidence for measured data (~2 µs each: ~40 ms per albedo).
+MERL_MAX_EVALS = 20_000
 #: Finest level adaptive refinement reaches in the quadrature (0.06° edges at level 10).
 ADAPTIVE_MAX_LEVEL = 10
-#: "auto" keeps the uniform result when the next coarser level agrees within this (relative);
-#: second order, so the error is then about a third of it.
-RESOLVED_RTOL = 3e-3
 METHODS = ("auto", "uniform", "adaptive")
 #: Below this cos θi (85°) adaptive refinement may go deeper (see adaptive_max_level).
 GRAZING_COS = float(np.cos(np.radians(85.0)))
@@ -54,6 +73,90 @@ class Peak(NamedTuple):
     phi_deg: float
 
 
+class AlbedoEstimate(NamedTuple):
+    """A directional albedo and an estimate of its absolute error (same shape: a float, or
+    ``(3,)`` for an RGB model; ``(n,)``/``(n, 3)`` for a curve)."""
+
+    value: float | np.ndarray
+    error: float | np.ndarray
+
+
+def exceeds_one(estimate: AlbedoEstimate | tuple) -> bool:
+    """The energy test: True when the albedo is above 1 by more than its error estimate
+    (``value − error > 1`` in some channel or at some incidence).  A model that conserves
+    energy is never flagged because of quadrature error."""
+    value, error = estimate
+    return bool(np.any(np.asarray(value, dtype=float) - np.asarray(error, dtype=float) > 1.0))
+
+
+class Lobe(NamedTuple):
+    """How to integrate a model: the :mod:`~tuibrdf.core.polar` frame, the lobe's width about
+    its axis (radians), known radial kinks, and whether the model is isotropic (even in ψ)."""
+
+    frame: str
+    scale: float
+    breaks: Callable[..., list[np.ndarray]] | None = None
+    symmetric: bool = True
+    #: evaluation budget per incidence, if lower than the caller's
+    max_evals: int | None = None
+
+
+def _theta_i_break(st, ct, cpsi, rmax):
+    """Oren-Nayar: max/min(θi, θo) kink at θo = θi (normal frame: ρ = θo)."""
+    return [np.arctan2(st, ct)]
+
+
+def _vcavity_breaks(st, ct, cpsi, rmax):
+    """Cook-Torrance's V-cavity G = min(1, 2 cos θh cos θo / cos ψ, 2 cos θh cos θi / cos ψ)
+    has kinks where the terms cross.  In the half frame (β = atan2(sin θi cos ψ, cos θi)):
+    2 cos ρ cos(2ρ − β) = cos(ρ − β) ⇔ cos(3ρ − β) = 0 ⇔ ρ = (π/2 + β)/3 (masking), and
+    2 cos ρ cos θi = R cos(ρ − β) ⇔ tan ρ = cos θi / (sin θi cos ψ) ⇔ ρ = π/2 − β
+    (shadowing)."""
+    b = np.arctan2(st * cpsi, ct)
+    return [(np.pi / 2 + b) / 3.0, np.pi / 2 - b]
+
+
+def _mirror_kink(st, ct, cpsi, rmax):
+    """Phong's ``max(0, S·wo)ⁿ`` ends at 90° from S (ρ = π/2 in the mirror frame)."""
+    return [np.full(len(st), np.pi / 2)]
+
+
+def _power_width(n: float) -> float:
+    """Width of cosⁿρ ≈ exp(−nρ²/2): 1/√n, at most π/2."""
+    return min(np.pi / 2, 1.0 / math.sqrt(max(n, 0.4)))
+
+
+#: Registry name → values → :class:`Lobe`, for the built-in models (used only when the model
+#: is the registered one: same kernel).
+LOBE_HINTS: dict[str, Callable[[Mapping[str, Any]], Lobe]] = {
+    "lambert": lambda v: Lobe("normal", np.pi / 2),
+    "oren-nayar": lambda v: Lobe("normal", np.pi / 2, _theta_i_break),
+    "oren-nayar-simple": lambda v: Lobe("normal", np.pi / 2, _theta_i_break),
+    "disney-diffuse": lambda v: Lobe("normal", np.pi / 2),
+    "phong": lambda v: Lobe("mirror", _power_width(float(v["n"])), _mirror_kink),
+    "blinn-phong": lambda v: Lobe("half", _power_width(float(v["n"]))),
+    "cook-torrance": lambda v: Lobe("half", float(v["m"]), _vcavity_breaks),
+    "ggx": lambda v: Lobe("half", float(v["alpha"])),
+    "gltf": lambda v: Lobe("half", alpha_from_roughness(v["roughness"])),
+    "ue4": lambda v: Lobe("half", alpha_from_roughness(v["roughness"])),
+    # measured, isotropic; the specular peak of shiny materials is ~0.5° wide.  The lookups
+    # are piecewise constant or linear over 1.46 million bins, so refinement never reaches
+    # 1e-6: a smaller budget (the error estimate stays honest: 1e-5…1e-3 measured)
+    "merl": lambda v: Lobe("half", 0.004, max_evals=MERL_MAX_EVALS),
+}
+#: Any other model: the half-vector frame (a specular lobe at the pole for every θi), graded
+#: down to the narrowest built-in lobe, no symmetry assumed.
+DEFAULT_LOBE = Lobe("half", 1e-3, None, False)
+
+
+def lobe(model: Model, values: Mapping[str, Any]) -> Lobe:
+    """The integration hint for ``model`` (see :data:`LOBE_HINTS`)."""
+    reg = MODELS.get(model.name)
+    if reg is not None and reg.kernel is model.kernel and model.name in LOBE_HINTS:
+        return LOBE_HINTS[model.name](values)
+    return DEFAULT_LOBE
+
+
 def _resolve(model: str | Model, params: Mapping[str, Any] | None) -> tuple[Model, dict]:
     m = get_model(model)
     return m, m.resolve(params)
@@ -64,6 +167,17 @@ def _check_theta(theta_i_deg: float) -> float:
     if not 0.0 <= t <= 90.0:  # also rejects NaN
         raise ValueError(f"theta_i = {theta_i_deg!r} is invalid: expected in [0, 90]°")
     return t
+
+
+def _check_phi(phi_i_deg: float) -> float:
+    p = float(phi_i_deg)
+    if not math.isfinite(p):
+        raise ValueError(f"phi_i = {phi_i_deg!r} is invalid: expected a finite angle in °")
+    return p
+
+
+def _incident(theta_i_deg: float, phi_i_deg: float) -> np.ndarray:
+    return from_degrees(_check_theta(theta_i_deg), _check_phi(phi_i_deg))
 
 
 def _radiance(model: Model, values: Mapping[str, Any], wi: np.ndarray, wo: np.ndarray,
@@ -86,99 +200,123 @@ def _scalar(x: np.ndarray) -> float | np.ndarray:
 # albedo
 
 
-def _uniform(model: Model, values, wi: np.ndarray, level: int) -> tuple[np.ndarray, float]:
-    """Vertex rule at ``level`` and how far from resolved the integrand looks there.
+def albedo_curve_estimate_resolved(model: Model, values: Mapping[str, Any],
+                                   thetas_deg: Sequence[float] | np.ndarray,
+                                   phi_i_deg: float = 180.0, *, rtol: float = DEFAULT_RTOL,
+                                   max_evals: int = MAX_EVALS) -> AlbedoEstimate:
+    """Albedo and error estimate at each incidence, integrated in one batch (one kernel call
+    per refinement round for the whole curve): arrays ``(n,)``, or ``(n, 3)`` for RGB."""
+    thetas = np.atleast_1d(np.asarray(thetas_deg, dtype=float))
+    for t in thetas:
+        _check_theta(t)
+    st, ct = sincos_deg(thetas)
+    sp, cp = sincos_deg(np.full(len(thetas), _check_phi(phi_i_deg)))
+    hint = lobe(model, values)
 
-    The second value is ``|a_L − a_(L−1)| / (RESOLVED_RTOL·|a_L|)`` (the level below is a prefix
-    of this one, so its values are already computed): ≤ 1 means resolved; since the rule is
-    second order, one more level divides it by about 4.  It is ``inf`` when a vertex misses the
-    lobe's top by more than 2× (``f·cos`` at the mirror direction, where a sharp lobe can hide
-    between vertices while both levels agree on missing it).
-    """
+    def f(wi, wo):
+        return evaluate_resolved(model, values, wi, wo)
+
+    r = polar.integrate(f, hint.frame, polar.cases(st, ct, sp, cp), scale=hint.scale,
+                        radial_breaks=hint.breaks, symmetric=hint.symmetric, rtol=rtol,
+                        atol=ATOL, max_evals=min(max_evals, hint.max_evals or max_evals))
+    return AlbedoEstimate(r.value, r.error)
+
+
+def albedo_estimate_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float,
+                             phi_i_deg: float = 180.0, *, rtol: float = DEFAULT_RTOL,
+                             max_evals: int = MAX_EVALS) -> AlbedoEstimate:
+    """Directional albedo at ``(θi, φi)`` (degrees) with an estimate of its absolute error
+    (:mod:`tuibrdf.core.polar`: nested adaptive Gauss–Kronrod about the model's lobe)."""
+    e = albedo_curve_estimate_resolved(model, values, [theta_i_deg], phi_i_deg, rtol=rtol,
+                                       max_evals=max_evals)
+    return AlbedoEstimate(_scalar(e.value[0]), _scalar(e.error[0]))
+
+
+def albedo_estimate(model: str | Model, params: Mapping[str, Any] | None = None,
+                    theta_i_deg: float = 0.0, phi_i_deg: float = 180.0, *,
+                    rtol: float = DEFAULT_RTOL, max_evals: int = MAX_EVALS) -> AlbedoEstimate:
+    """:func:`albedo_estimate_resolved` with a model name and user ``params``."""
+    m, v = _resolve(model, params)
+    return albedo_estimate_resolved(m, v, theta_i_deg, phi_i_deg, rtol=rtol,
+                                    max_evals=max_evals)
+
+
+def _uniform(model: Model, values, wi: np.ndarray, level: int) -> np.ndarray:
+    """Vertex rule of ``hemisphere(level)``."""
     mesh = hemisphere(level)
-    g = _radiance(model, values, wi, mesh.vertices)
-    a = mesh.integrate(g)
-    coarse = hemisphere(level - 1)
-    a0 = coarse.integrate(g[: len(coarse.vertices)])
-    bad = float(np.max(np.abs(a - a0) / (RESOLVED_RTOL * np.abs(a) + 1e-12)))
-    top = _radiance(model, values, wi, mirror(wi)[None, :])[0]
-    if np.any(top > 2.0 * g.max(axis=0)):
-        bad = np.inf
-    return a, bad
+    return mesh.integrate(_radiance(model, values, wi, mesh.vertices))
 
 
 def adaptive_max_level(cos_i: float) -> int:
     """:data:`ADAPTIVE_MAX_LEVEL`, plus up to 3 levels at grazing incidence.
 
     A microfacet lobe reflected at θi is squeezed across the plane of incidence by about
-    cos θi (a tilt δ of H moves wo by ~2δ·cos θi sideways): at θi = 89° a lobe of width α =
-    0.005 is 0.01° thin, below the 0.06° edges of level 10.  One level per halving of cos θi
-    below cos 85°, at most 3 (measured in docs/accuracy.md).
+    cos θi (a tilt δ of H moves wo by ~2δ·cos θi sideways).  One level per halving of cos θi
+    below cos 85°, at most 3.
     """
     ratio = GRAZING_COS / max(float(cos_i), 1e-300)
     extra = int(np.clip(np.round(np.log2(ratio)), 0, GRAZING_EXTRA_LEVELS)) if ratio > 1 else 0
     return ADAPTIVE_MAX_LEVEL + extra
 
 
-def albedo_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
-                    level: int = DEFAULT_LEVEL, tol: float = DEFAULT_TOL,
-                    method: str = "auto") -> float | np.ndarray:
-    """Directional albedo ``∫ f cos θo dω`` at incidence ``theta_i_deg``: a float, or ``(3,)``
-    for an RGB model.
-
-    ``method="uniform"``: the vertex rule of ``hemisphere(level)``.  ``"adaptive"``:
-    :func:`refine_adaptive` at ``tol`` from level 2 down to :data:`ADAPTIVE_MAX_LEVEL`,
-    focused on the mirror direction (deeper at grazing incidence: :func:`adaptive_max_level`).
-    ``"auto"`` (default): uniform at ``level``, or one level
-    finer when that should suffice, if the lobe is resolved there (see :func:`_uniform`), else
-    adaptive
-    (``docs/accuracy.md`` has the measurements behind this).
-    """
+def _check_method(method: str) -> None:
     if method not in METHODS:
         raise ValueError(f"method = {method!r} is invalid: expected one of {', '.join(METHODS)}")
-    wi = incident(_check_theta(theta_i_deg))
-    if method == "uniform":
-        return _scalar(_uniform(model, values, wi, level)[0])
+
+
+def albedo_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float,
+                    phi_i_deg: float = 180.0, *, level: int = DEFAULT_LEVEL,
+                    tol: float = DEFAULT_TOL, method: str = "auto") -> float | np.ndarray:
+    """Directional albedo ``∫ f cos θo dω`` at incidence ``(θi, φi)`` (degrees): a float, or
+    ``(3,)`` for an RGB model.
+
+    ``method="auto"`` (default): :func:`albedo_estimate_resolved`'s value.  ``"uniform"``: the
+    vertex rule of ``hemisphere(level)``.  ``"adaptive"``: :func:`refine_adaptive` at ``tol``
+    from level 2 down to :data:`ADAPTIVE_MAX_LEVEL` (deeper at grazing incidence), focused on
+    the mirror direction.
+    """
+    _check_method(method)
     if method == "auto":
-        a, bad = _uniform(model, values, wi, level)
-        if bad <= 1.0:
-            return _scalar(a)
-        if bad <= 4.0 and level < MAX_LEVEL:  # one more level should do (second order)
-            a, bad = _uniform(model, values, wi, level + 1)
-            if bad <= 1.0:
-                return _scalar(a)
+        return albedo_estimate_resolved(model, values, theta_i_deg, phi_i_deg).value
+    wi = _incident(theta_i_deg, phi_i_deg)
+    if method == "uniform":
+        return _scalar(_uniform(model, values, wi, level))
     ad = refine_adaptive(lambda wo: _radiance(model, values, wi, wo), tol,
                          max_level=adaptive_max_level(wi[2]), base_level=2, focus=mirror(wi))
     return _scalar(ad.integrate())
 
 
 def albedo(model: str | Model, params: Mapping[str, Any] | None = None,
-           theta_i_deg: float = 0.0, *, level: int = DEFAULT_LEVEL, tol: float = DEFAULT_TOL,
-           method: str = "auto") -> float | np.ndarray:
+           theta_i_deg: float = 0.0, phi_i_deg: float = 180.0, *, level: int = DEFAULT_LEVEL,
+           tol: float = DEFAULT_TOL, method: str = "auto") -> float | np.ndarray:
     """Directional albedo of ``model`` with user ``params`` (see :func:`albedo_resolved`)."""
     m, v = _resolve(model, params)
-    return albedo_resolved(m, v, theta_i_deg, level=level, tol=tol, method=method)
+    return albedo_resolved(m, v, theta_i_deg, phi_i_deg, level=level, tol=tol, method=method)
 
 
 def albedo_curve_resolved(model: Model, values: Mapping[str, Any],
-                          thetas_deg: Sequence[float] | np.ndarray, *,
-                          level: int = DEFAULT_LEVEL, tol: float = DEFAULT_TOL,
+                          thetas_deg: Sequence[float] | np.ndarray, phi_i_deg: float = 180.0,
+                          *, level: int = DEFAULT_LEVEL, tol: float = DEFAULT_TOL,
                           method: str = "auto") -> np.ndarray:
-    """Albedo at each incidence: ``(n,)``, or ``(n, 3)`` for an RGB model.
-
-    Vectorised over the mesh; the loop is over incidence angles only (a ``(n, N)`` batch would
-    hold every kernel temporary n times)."""
+    """Albedo at each incidence: ``(n,)``, or ``(n, 3)`` for an RGB model (``"auto"``: one
+    batch, :func:`albedo_curve_estimate_resolved`)."""
+    _check_method(method)
+    if method == "auto":
+        return np.asarray(albedo_curve_estimate_resolved(model, values, thetas_deg,
+                                                         phi_i_deg).value, dtype=float)
     thetas = np.atleast_1d(np.asarray(thetas_deg, dtype=float))
-    out = [albedo_resolved(model, values, t, level=level, tol=tol, method=method)
+    out = [albedo_resolved(model, values, t, phi_i_deg, level=level, tol=tol, method=method)
            for t in thetas]
     return np.array(out, dtype=float)
 
 
 def albedo_curve(model: str | Model, params: Mapping[str, Any] | None,
-                 thetas_deg: Sequence[float] | np.ndarray, *, level: int = DEFAULT_LEVEL,
-                 tol: float = DEFAULT_TOL, method: str = "auto") -> np.ndarray:
+                 thetas_deg: Sequence[float] | np.ndarray, phi_i_deg: float = 180.0, *,
+                 level: int = DEFAULT_LEVEL, tol: float = DEFAULT_TOL,
+                 method: str = "auto") -> np.ndarray:
     m, v = _resolve(model, params)
-    return albedo_curve_resolved(m, v, thetas_deg, level=level, tol=tol, method=method)
+    return albedo_curve_resolved(m, v, thetas_deg, phi_i_deg, level=level, tol=tol,
+                                 method=method)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -230,15 +368,16 @@ def _upper(d: np.ndarray) -> np.ndarray:
     return d / np.linalg.norm(d, axis=-1, keepdims=True)  # ≠ 0: steps are ≪ 1 rad
 
 
-def peak_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
-                  level: int = DEFAULT_LEVEL, cosine: bool = False) -> Peak:
+def peak_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float,
+                  phi_i_deg: float = 180.0, *, level: int = DEFAULT_LEVEL,
+                  cosine: bool = False) -> Peak:
     """Largest ``f`` (or ``f cos θo`` with ``cosine=True``) over the hemisphere.
 
     The best of the mesh vertices, the mirror direction and the normal, then a local pattern
     search in the tangent plane (which works at the pole and clamps to the horizon).  An RGB
     model is ranked by its channel mean and returns its ``(3,)`` value there.
     """
-    wi = incident(_check_theta(theta_i_deg))
+    wi = _incident(theta_i_deg, phi_i_deg)
     cand = np.concatenate([hemisphere(level).vertices, [mirror(wi)], [[0.0, 0.0, 1.0]]])
 
     def score(wo: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -263,6 +402,7 @@ def peak_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float, *
 
 
 def peak(model: str | Model, params: Mapping[str, Any] | None = None,
-         theta_i_deg: float = 0.0, *, level: int = DEFAULT_LEVEL, cosine: bool = False) -> Peak:
+         theta_i_deg: float = 0.0, phi_i_deg: float = 180.0, *, level: int = DEFAULT_LEVEL,
+         cosine: bool = False) -> Peak:
     m, v = _resolve(model, params)
-    return peak_resolved(m, v, theta_i_deg, level=level, cosine=cosine)
+    return peak_resolved(m, v, theta_i_deg, phi_i_deg, level=level, cosine=cosine)
