@@ -3,8 +3,8 @@
     python scripts/gen_material_albedo.py          # rewrite it (about 10 s)
     python scripts/gen_material_albedo.py --check  # exit 1 if it differs from a fresh run
 
-Run it after changing the abc or sgd kernels or the half-vector rule
-(``tuibrdf/core/material_albedo.py``); the tests recompute a sample of the entries.
+Run it after changing the abc or sgd kernels or the albedo quadrature
+(``tuibrdf/core/quadrature.py``); the tests recompute a sample of the entries.
 """
 
 from __future__ import annotations

@@ -4,7 +4,7 @@ One line per material, sorted by name: a colour swatch of each fit (its albedo a
 sRGB colour) where stdout is a colour terminal, then the directional albedo a(θi) (R,G,B) of the
 ABC and SGD fits at θi = 0° and 60°.  Colour follows ``tuibrdf render``'s rule (``--color auto``:
 plain text when piped, with ``NO_COLOR`` or ``TERM=dumb``).  The albedos are read from
-``tuibrdf/core/data/material_albedo.tsv`` (computed by a half-vector Gauss rule, see
+``tuibrdf/core/data/material_albedo.tsv`` (computed by the albedo quadrature, see
 :mod:`tuibrdf.core.material_albedo`), so the listing takes milliseconds and is the same on every
 machine.  ``--json`` adds each material's other name in the SGD data (accepted as an alias) and the
 stored digits.
