@@ -25,19 +25,19 @@ from textual.css.query import NoMatches
 from textual.widgets import Footer, Static
 from textual.worker import Worker, get_current_worker
 
-from ..core import merl, scene
-from ..core.models import MODELS
+from ..core import scene
 from ..core.scene import FrameRequest, FrameResult
-from ..render import MIN_HEIGHT, MIN_WIDTH, VIEW_TITLES, panes
+from ..render import MIN_HEIGHT, MIN_WIDTH, panes
 from ..render.views import map_pixels
 from . import keys
+from .layout import CSS, arrange
+from .loading import MeasuredData
 from .presets import PresetError, apply_loaded, list_presets, load_preset, preset_dir, save_preset
 from .screens import HelpScreen, SafeCommandPalette, SaveScreen
-from .state import COMPARE_PRESETS, Side, ViewerState, panel_rows
+from .state import ViewerState
+from .text import PANES, legend_text, status_text, visible_panes
 from .widgets import ParamPanel, Picture, StatusLine
 
-MIN_W, MIN_H = 60, 18
-BOTH_PANELS_H = 40  # compare mode shows both parameter panels from this height
 RETRY_S = 0.02  # re-check a busy writer after this long
 #: colour levels of the maps: 32 keeps a full 160×48 map update near 50 KiB (docs/app.md)
 LEVELS = 32
@@ -45,40 +45,11 @@ LEVELS = 32
 #: (ValueError, OSError) and a floating-point exception from a kernel (the kernels raise on
 #: one, core/numerics.py; a picture is not worth losing the session over)
 DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
-STEADY_PANEL_H = max(len(panel_rows(m)) for m in MODELS.values()) + 2  # rows + border
 #: the actions of the viewer itself (not of a modal screen)
 VIEWER_ACTIONS = frozenset({"state", "save", "load_next", "help"})
-#: pane → (view, side)
-PANES = {"map-a": ("map", 0), "map-b": ("map", 1), "diff": ("diff", 0), "solid-a": ("solid", 0),
-         "solid-b": ("solid", 1), "albedo": ("albedo", 0), "incidence": ("incidence", 0),
-         "perpendicular": ("perpendicular", 0)}
-
-CSS = """
-Screen { layout: vertical; }
-#root { height: 1fr; }
-#body { height: 1fr; }
-#main { width: 55%; height: 1fr; }
-#main.compare-map { layout: grid; grid-size: 2 2; }
-#main.compare-solid { layout: horizontal; }
-#side { width: 1fr; height: 1fr; }
-#side Picture { height: 1fr; }
-Picture { border-title-color: $text-muted; }
-#main Picture { border: none; }
-#main.compare-map Picture, #main.compare-solid Picture { border: round $primary-darken-3; }
-#legend { padding: 0 1; }
-#toosmall { width: 1fr; height: 1fr; content-align: center middle; display: none; }
-Screen.small #toosmall { display: block; }
-Screen.small #root { display: none; }
-"""
 
 
-def side_files(side: Side) -> list[str]:
-    """The data files (``path`` parameters, i.e. MERL files) a side needs in memory."""
-    return [str(side.values[p.name]) for p in side.spec.params
-            if p.kind == "path" and side.values.get(p.name)]
-
-
-class BrdfApp(App):
+class BrdfApp(MeasuredData, App):
     """``BrdfApp(state, color=None)``; ``color`` ∈ truecolor/256/none overrides detection.
     ``sync=True`` (tests) computes every frame on the event loop, deterministically."""
 
@@ -140,45 +111,6 @@ class BrdfApp(App):
         cs = self.console.color_system
         return "truecolor" if cs == "truecolor" else ("none" if cs is None else "256")
 
-    def visible_panes(self) -> list[str]:
-        s = self.state
-        if s.compare:
-            main = {"map": ["map-a", "map-b", "diff"], "solid": ["solid-a", "solid-b"],
-                    "albedo": ["albedo"]}[s.view]
-        else:
-            main = {"map": ["map-a"], "solid": ["solid-a"], "albedo": ["albedo"]}[s.view]
-        return main + ["incidence", "perpendicular"]
-
-    def _layout(self) -> None:
-        """Show the panes of the current mode; the too-small message below the minimum."""
-        w, h = self.size
-        self.screen.set_class(w < MIN_W or h < MIN_H, "small")
-        self.query_one("#toosmall", Static).update(
-            f"The terminal is {w}×{h}: tuibrdf needs at least {MIN_W}×{MIN_H}.\n"
-            "Enlarge the window (q quits).")
-        s = self.state
-        visible = set(self.visible_panes())
-        main = self.query_one("#main")
-        main.set_class(s.compare and s.view == "map", "compare-map")
-        main.set_class(s.compare and s.view == "solid", "compare-solid")
-        for pic in self.query(Picture):
-            pic.display = pic.pane in visible
-        self.query_one("#legend").display = s.compare and s.view == "map"
-        # both panels when there is room; otherwise only the side the keys act on
-        both = s.compare and h >= BOTH_PANELS_H
-        self.query_one("#panel-a").display = not s.compare or both or s.active == 0
-        self.query_one("#panel-b").display = both or (s.compare and s.active == 1)
-        # tall terminals: panels as tall as the longest model's, so cycling models never
-        # resizes the plots below; short ones keep every row for the plots
-        steady = STEADY_PANEL_H if h >= BOTH_PANELS_H else None
-        for panel in self.query(ParamPanel):
-            panel.styles.min_height = steady
-        if s.compare:
-            for pane in ("map-a", "map-b", "solid-a", "solid-b"):
-                k = PANES[pane][1]
-                self.query_one(f"#{pane}").border_title = f"{'AB'[k]}: {s.sides[k].model}"
-            self.query_one("#diff").border_title = "A − B"
-
     # -- one frame ---------------------------------------------------------------------------
     def _changed(self, message: str | None = None, relayout: bool = False) -> None:
         """After any change: the screen follows once the events already queued are handled
@@ -195,7 +127,7 @@ class BrdfApp(App):
         try:
             if self._relayout:
                 self._relayout = False
-                self._layout()
+                arrange(self)
             for i, panel in enumerate(self.query(ParamPanel)):
                 if i < len(self.state.sides):
                     panel.show(self.state, i)
@@ -220,7 +152,7 @@ class BrdfApp(App):
         s = self.state
         map_px = None
         if s.view == "map":
-            sizes = [self._pane_size(p) for p in self.visible_panes() if PANES[p][0] in
+            sizes = [self._pane_size(p) for p in visible_panes(self.state) if PANES[p][0] in
                      ("map", "diff")]
             if all(w >= MIN_WIDTH and h >= MIN_HEIGHT for w, h in sizes):
                 map_px = map_pixels(min(w for w, _ in sizes), min(h for _, h in sizes))
@@ -234,7 +166,7 @@ class BrdfApp(App):
             self._status()
             return
         if not self._files_ready():  # measured data still loading: its panes say so
-            for pane in self.visible_panes():
+            for pane in visible_panes(self.state):
                 self.query_one(f"#{pane}", Picture).show(
                     Text("loading measured data …", justify="center"), None)
             self._status()
@@ -281,7 +213,7 @@ class BrdfApp(App):
 
     def _failed(self, req: FrameRequest, error: Exception) -> None:
         if req == self.request:
-            for pane in self.visible_panes():
+            for pane in visible_panes(self.state):
                 self.query_one(f"#{pane}", Picture).show(Text(f"cannot draw: {error}"), None)
             self.message = f"cannot compute this frame: {error}"
             self._status()
@@ -303,11 +235,11 @@ class BrdfApp(App):
             return
         self.frame = res
         self.frames += 1
-        shown = self.visible_panes()
+        shown = visible_panes(self.state)
         for pane in shown[:-2]:
             self._draw(pane, res)
         if self.state.compare and self.state.view == "map":
-            self.query_one("#legend", Static).update(self._legend())
+            self.query_one("#legend", Static).update(legend_text(self.state))
         self._status()
         self.call_after_refresh(self._draw_later, res, shown[-2:])
 
@@ -338,93 +270,9 @@ class BrdfApp(App):
         except DRAW_ERRORS as e:
             pic.show(Text(f"cannot draw {pane}: {e}"), None)
 
-    def _legend(self) -> Text:
-        s = self.state
-        t = Text()
-        for i, side in enumerate(s.sides):
-            t.append(f"{'AB'[i]}: ", style="bold")
-            t.append(s.describe(side) + "\n")
-        t.append("A and B share one colour scale.\n", style="dim")
-        if s.preset:
-            title = next(p.title for p in COMPARE_PRESETS if p.name == s.preset)
-            t.append(f"preset {title}\n", style="dim")
-        t.append("tab: keys act on the other side", style="dim")
-        return t
-
     def _status(self) -> None:
-        """θi, then each side's albedo and peak from the frame on screen when it is the
-        current state's (else "…"), then the view, scale, colour map and the last message."""
-        s = self.state
-        line = Text()
-        line.append(f"θi {s.theta_i:g}°", style="bold")
-        res = self.frame
-        materials = tuple(x.material for x in s.sides)
-        loading = [f for side in s.sides for f in side_files(side) if f in self._loading]
-        if loading:
-            line.append(f"  loading {loading[0]} {self._loading[loading[0]]:.0%}",
-                        style="bold yellow")
-        elif res is not None and (res.request.materials, res.request.theta_i,
-                                  res.request.cosine) == (materials, s.theta_i, s.cosine):
-            line.append_text(panes.stats_text(res, s.view, self.look))
-        else:
-            for i in range(len(s.sides)):
-                line.append(f"  {'AB'[i]}: a=…" if s.compare else "  a(θi) …")
-        second = Text()
-        scale = "log (3 decades)" if s.log else "linear"
-        second.append(f"{VIEW_TITLES[s.view]} · {scale} · {s.cmap}"
-                      f"{' · f·cos θr' if s.cosine else ''}", style="dim")
-        if s.compare:
-            second.append(f" · keys → {'AB'[s.active]}", style="bold")
-        if self.message:
-            second.append(f"  {self.message}", style="bold yellow")
-        self.query_one("#status", StatusLine).show_text(Text("\n").join([line, second]))
-
-    # -- measured data: read off the event loop, progress on the status line ---------------
-    def _files_ready(self) -> bool:
-        """Whether every side's data file is in memory; starts a loader for each missing one
-        (a worker thread: the 35 MB read never blocks a key) and answers False meanwhile."""
-        ready = True
-        for side in self.state.sides:
-            for path in side_files(side):
-                try:
-                    if merl.is_loaded(path):
-                        continue
-                except merl.MerlError as e:
-                    self.call_later(self._load_failed, path, str(e))
-                    return False
-                ready = False
-                if path not in self._loading:
-                    self._loading[path] = 0.0
-                    self.run_worker(partial(self._load_file, path), thread=True,
-                                    group="load", exit_on_error=False)
-        return ready
-
-    def _load_file(self, path: str) -> None:
-        def progress(fraction: float) -> None:
-            self.call_from_thread(self._load_progress, path, fraction)
-
-        try:
-            merl.load_cached(path, progress)
-        except (merl.MerlError, OSError) as e:
-            self.call_from_thread(self._load_failed, path, str(e))
-            return
-        self.call_from_thread(self._load_done, path)
-
-    def _load_progress(self, path: str, fraction: float) -> None:
-        if path in self._loading:
-            self._loading[path] = fraction
-            self._status()
-
-    def _load_done(self, path: str) -> None:
-        self._loading.pop(path, None)
-        self._changed(f"loaded {path}")
-
-    def _load_failed(self, path: str, error: str) -> None:
-        """A side whose file cannot be read shows Lambert instead; the message says why."""
-        self._loading.pop(path, None)
-        s = self.state
-        s.sides = [Side.of("lambert") if path in side_files(x) else x for x in s.sides]
-        self._changed(f"{error} — showing lambert", relayout=True)
+        self.query_one("#status", StatusLine).show_text(
+            status_text(self.state, self.frame, self.look, self._loading, self.message))
 
     # -- actions -----------------------------------------------------------------------------
     def action_state(self, method: str, args: tuple = ()) -> None:
