@@ -141,7 +141,7 @@ class BrdfApp(MeasuredData, App):
 
     def request_rebuild(self) -> None:
         """A pane was resized: the request (pane sizes) changed."""
-        self.refresh_frame()
+        self._changed(self.message)
 
     def _pane_size(self, pane: str) -> tuple[int, int]:
         size = self.query_one(f"#{pane}", Picture).size
