@@ -58,7 +58,7 @@ def test_held_key_status_ends_on_the_final_albedo(tmp_path):
     from tuibrdf.core.quadrature import albedo
 
     want = f"θi 15°  a(θi)={fmt_value(albedo('ggx', {}, 15.0))} "
-    for run in range(2):
+    for _ in range(2):
         sock = f"tuibrdf-test-{uuid.uuid4().hex[:8]}"
         env_cmd = (f"cd {ROOT} && XDG_CONFIG_HOME={tmp_path} PYTHONPATH={ROOT} "
                    f"{sys.executable} -m tuibrdf view ggx --theta-i 0; sleep 5")
