@@ -16,10 +16,10 @@ import time
 import numpy as np
 from rich.console import Console
 
+from tuibrdf.core.hemimap import map_values
 from tuibrdf.core.models import MODELS
 from tuibrdf.render.colormap import colorize
 from tuibrdf.render.halfblock import HalfBlockImage
-from tuibrdf.render.hemimap import map_values
 from tuibrdf.render.views import VIEWS, render_view
 
 SIZES = [(80, 24), (160, 48), (240, 70)]

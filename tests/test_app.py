@@ -18,7 +18,7 @@ def config_home(tmp_path, monkeypatch):
 
 
 def make(model="phong", theta=30.0, **params):
-    return BrdfApp(ViewerState(sides=[Side.of(model, params)], theta_i=theta), sync_stats=True)
+    return BrdfApp(ViewerState(sides=[Side.of(model, params)], theta_i=theta), sync=True)
 
 
 def status(app) -> str:
@@ -129,7 +129,7 @@ async def test_saved_presets_load_from_the_keyboard(config_home):
         await pilot.press("P")
         assert "no saved presets" in app.message
         for name, kd, theta in (("a-first", 0.3, 40.0), ("b-second", 0.4, 50.0)):
-            app.state.sides[0].values["kd"] = kd
+            app.state.set_param("kd", kd)
             app.state.theta_i = theta
             await pilot.press("s")
             await pilot.pause()
@@ -162,7 +162,7 @@ async def test_every_view_and_toggle_renders_without_error():
             await pilot.press(key)
             await pilot.pause()
         assert app.state.view == "map" and app.state.log and app.state.cosine
-        assert app.rebuilds > 0
+        assert app.frames > 0
 
 
 async def test_too_small_shows_a_message():
@@ -269,7 +269,7 @@ async def test_measured_file_loads_in_the_background_then_draws(tmp_path):
     async with app.run_test(size=(100, 30)) as pilot:
         # the loader runs in a worker; when it is done the map is drawn from the data:
         # a constant BRDF of 0.1 sr⁻¹ in every channel gives the albedo 0.1·π at any θi
-        assert await wait_for(pilot, lambda: not app._loading and app.rebuilds > 0)
+        assert await wait_for(pilot, lambda: not app._loading and app.frames > 0)
         assert await wait_for(pilot, lambda: "a(θi)=(0.314,0.314,0.314)" in status(app))
         assert app.state.side.model == "merl" and f"loaded {path}" in status(app)
 
@@ -292,7 +292,10 @@ async def test_a_bad_measured_file_is_a_message_not_a_crash(tmp_path):
 
 async def test_albedo_curve_is_computed_off_the_loop_then_drawn():
     # a sharp lobe's curve takes ~0.5 s: the pane says so at once, then shows the curve
-    from tuibrdf.app import scene
+    from tuibrdf.core import scene
+    from tuibrdf.core.material import Material
+
+    scene.clear_caches()
 
     app = BrdfApp(ViewerState(sides=[Side.of("cook-torrance", {"m": 0.05, "kd": 0.1})]))
     async with app.run_test(size=(100, 30)) as pilot:
@@ -303,8 +306,11 @@ async def test_albedo_curve_is_computed_off_the_loop_then_drawn():
         def shown() -> str:
             return "\n".join(pane.render_line(y).text for y in range(pane.size.height))
 
-        assert await wait_for(pilot, lambda: scene.albedo_curve_ready(app.state.side), 500)
-        assert await wait_for(pilot, lambda: "a(θi)" in shown() and "computing" not in shown())
+        assert "computing" in shown()
+        m = Material("cook-torrance", {"m": 0.05, "kd": 0.1})
+        assert await wait_for(pilot, lambda: scene._CURVES.peek(m) is not None, 500)
+        drawn = lambda: "a(θi=30°) = " in shown() and "computing" not in shown()  # noqa: E731
+        assert await wait_for(pilot, drawn, 500)
         await pilot.press("right")  # keys still work
         assert app.state.theta_i == 31.0
 
@@ -312,16 +318,12 @@ async def test_albedo_curve_is_computed_off_the_loop_then_drawn():
 async def test_a_failing_picture_is_a_message_not_a_crash(monkeypatch):
     # kernels raise on a floating-point exception (core/numerics.py); should one ever escape,
     # the pane says so and the viewer keeps running
-    from tuibrdf.app import scene
+    from tuibrdf.render import panes
 
-    real = scene.view_pane
+    def broken(*args, **kw):
+        raise FloatingPointError("overflow encountered in multiply")
 
-    def broken(view, *args, **kw):
-        if view == "map":
-            raise FloatingPointError("overflow encountered in multiply")
-        return real(view, *args, **kw)
-
-    monkeypatch.setattr(scene, "view_pane", broken)
+    monkeypatch.setattr(panes, "map_pane", broken)
     app = make()
     async with app.run_test(size=(100, 30)) as pilot:
         await pilot.pause()

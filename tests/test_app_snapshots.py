@@ -1,6 +1,6 @@
 """Screenshots of the viewer (pytest-textual-snapshot); regenerate with --snapshot-update.
 
-Deterministic: stats are computed on the loop (``sync_stats``), nothing time-dependent is shown,
+Deterministic: frames are computed on the loop (``sync=True``), nothing time-dependent is shown,
 and conftest.py pops NO_COLOR / TEXTUAL_THEME / COLORTERM.  Small sizes keep the SVGs small.
 """
 
@@ -16,7 +16,7 @@ def config_home(tmp_path, monkeypatch):
 
 
 def app_for(model="lambert", theta=30.0, **params):
-    return BrdfApp(ViewerState(sides=[Side.of(model, params)], theta_i=theta), sync_stats=True)
+    return BrdfApp(ViewerState(sides=[Side.of(model, params)], theta_i=theta), sync=True)
 
 
 def test_default_80x24(snap_compare):

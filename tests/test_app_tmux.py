@@ -49,3 +49,28 @@ def test_viewer_in_tmux(tmp_path):
         subprocess.run(["tmux", "-L", sock, "send-keys", "-t", "t", "q"], check=True)
     finally:
         subprocess.run(["tmux", "-L", sock, "kill-server"], capture_output=True)
+
+
+def test_held_key_status_ends_on_the_final_albedo(tmp_path):
+    # issue 11: → held (15 presses at 10/s) from θi = 0°; the status line must end on θi 15°
+    # with that state's albedo (the core quadrature's, computed here), in every run
+    from tuibrdf.core.conventions import fmt_value
+    from tuibrdf.core.quadrature import albedo
+
+    want = f"θi 15°  a(θi)={fmt_value(albedo('ggx', {}, 15.0))} "
+    for _ in range(2):
+        sock = f"tuibrdf-test-{uuid.uuid4().hex[:8]}"
+        env_cmd = (f"cd {ROOT} && XDG_CONFIG_HOME={tmp_path} PYTHONPATH={ROOT} "
+                   f"{sys.executable} -m tuibrdf view ggx --theta-i 0; sleep 5")
+        subprocess.run(["tmux", "-L", sock, "new-session", "-d", "-s", "t", "-x", "100", "-y",
+                        "30", "-e", "COLORTERM=truecolor", env_cmd], check=True,
+                       env={k: v for k, v in os.environ.items() if k != "TMUX"})
+        try:
+            wait_for(sock, lambda s: "θi 0°  a(θi)=" in s)
+            for _ in range(15):
+                subprocess.run(["tmux", "-L", sock, "send-keys", "-t", "t", "Right"], check=True)
+                time.sleep(0.1)
+            wait_for(sock, lambda s: want in s, timeout=20.0)
+            subprocess.run(["tmux", "-L", sock, "send-keys", "-t", "t", "q"], check=True)
+        finally:
+            subprocess.run(["tmux", "-L", sock, "kill-server"], capture_output=True)

@@ -18,3 +18,72 @@ def test_core_imports_neither_textual_nor_rich(statement):
     mods = loaded_after(statement)
     assert "textual" not in mods
     assert "rich" not in mods
+
+
+def import_graph() -> dict[str, set[str]]:
+    """``tuibrdf`` module → the ``tuibrdf`` modules it imports (anywhere in its code, function
+    bodies included), from the source with ``ast``."""
+    import ast
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1] / "tuibrdf"
+    names = {}
+    for path in root.rglob("*.py"):
+        parts = path.relative_to(root.parent).with_suffix("").parts
+        names[".".join(parts[:-1] if parts[-1] == "__init__" else parts)] = path
+    graph: dict[str, set[str]] = {}
+    for mod, path in names.items():
+        pkg = mod if path.name == "__init__.py" else mod.rsplit(".", 1)[0]
+        deps = set()
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            targets = []
+            if isinstance(node, ast.Import):
+                targets = [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom):
+                base = node.module or ""
+                if node.level:
+                    up = pkg.split(".")[: len(pkg.split(".")) - node.level + 1]
+                    base = ".".join(up + ([base] if base else []))
+                targets = [base] + [f"{base}.{a.name}" for a in node.names]
+            deps |= {t for t in targets if t in names and t != mod}
+        graph[mod] = deps
+    return graph
+
+
+def test_no_import_cycle_and_layers_point_down():
+    graph = import_graph()
+    # layers: core ← render ← app ← cli (a lower layer never imports a higher one)
+    rank = {"core": 0, "render": 1, "app": 2, "cli": 3}
+
+    def layer(m: str) -> int:
+        parts = m.split(".")
+        return rank.get(parts[1], -1) if len(parts) > 1 else -1
+
+    for mod, deps in graph.items():
+        for d in deps:
+            if layer(mod) >= 0 and layer(d) >= 0:
+                assert layer(d) <= layer(mod), f"{mod} imports {d}"
+    # no cycle (a package's __init__ importing its own modules is the usual exception)
+    state: dict[str, int] = {}
+
+    def visit(m: str, path: list[str]) -> None:
+        state[m] = 1
+        for d in graph[m]:
+            if m.startswith(d + ".") or d.startswith(m + "."):
+                continue  # package ↔ its own modules
+            if state.get(d) == 1:
+                raise AssertionError("import cycle: " + " → ".join(path + [m, d]))
+            if d not in state:
+                visit(d, path + [m])
+        state[m] = 2
+
+    for m in graph:
+        if m not in state:
+            visit(m, [])
+
+
+@pytest.mark.parametrize("statement", ["import tuibrdf.core.scene", "import tuibrdf.core.material",
+                                       "import tuibrdf.core.peak"])
+def test_the_frame_computation_is_numpy_only(statement):
+    mods = loaded_after(statement)
+    assert "textual" not in mods and "rich" not in mods

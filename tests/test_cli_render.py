@@ -86,10 +86,10 @@ def test_render_goldens(capsys, name):
       disc is uniformly the brightest glyph '@'; 'o' (light, θi = 30°) left of centre, 'X'
       (mirror) at the same distance right of it; colour bar 0 … 0.255.
     - phong-map-32x14: n = 200, ks = 1 at θi = 45°: peak (n+2)/(2π) = 32.1 at θ = 45° φ = 0°;
-      the only bright pixels are at the 'X', right of centre.
+      the only bright pixels are at the 'X', right of centre; the colour bar tops at the peak.
     - cook-torrance-incidence-48x16: the seed's example at 60°: the light's line up and to the
       left, the lobe on the right beyond the mirror direction (peak 6.14 at θ ≈ 62°).
-    - phong-map-16x8-truecolor: 24-bit escapes, peak (50+2)/(2π) = 8.28.
+    - phong-map-16x8-truecolor: 24-bit escapes, peak (50+2)/(2π) = 8.28, the colour bar's top.
     - cook-torrance-perpendicular-48x16: the section through the peak (θ = 62.0°) across the
       plane of incidence at 60°: a thin lobe straight up (FWHM 6.6°, too long for the title at
       this width), reaching the max 6.14 (the outer guide at 6; guides every 2).

@@ -1,12 +1,23 @@
-"""Albedo curve view (tuibrdf/render/albedo_plot.py)."""
+"""Albedo curve view (tuibrdf/render/albedo_plot.py, the pane in tuibrdf/render/panes.py; the
+curve from tuibrdf/core/scene.py)."""
 
 import numpy as np
 import pytest
 from rich.console import Console
 
+from tuibrdf.core import scene
+from tuibrdf.core.material import Material
 from tuibrdf.core.models import MODELS
-from tuibrdf.render import albedo_plot
-from tuibrdf.render.albedo_plot import albedo_curve, albedo_view
+from tuibrdf.render import panes
+from tuibrdf.render.views import render_view
+
+
+def albedo_curve(model, values):
+    return scene.CURVE_THETAS, scene.albedo_curve(Material(model, values))
+
+
+def albedo_view(model, values, theta_i, w, h, color):
+    return render_view("albedo", model, values, theta_i, w, h, color=color)
 
 
 def text_of(r) -> str:
@@ -31,13 +42,19 @@ def test_view_title_and_no_flag_for_lambert():
     assert "\x1b" not in out and len(out.rstrip("\n").split("\n")) == 12
 
 
-def test_flag_when_above_one(monkeypatch):
-    # a hand-made curve crossing 1 must be flagged with its maximum
-    m = MODELS["lambert"]
-    fake = (np.array([0.0, 45.0, 90.0]), np.array([0.9, 1.0, 1.2]))
-    monkeypatch.setattr(albedo_plot, "albedo_curve", lambda model, values: fake)
-    out = text_of(albedo_view(m, m.resolve({}), 10, 70, 10, color="none"))
-    assert "a>1 (max 1.2): not energy-conserving" in out.split("\n")[0]
+def test_flag_when_above_one():
+    # a hand-made curve crossing 1 + ENERGY_TOL must be flagged with its maximum; one that
+    # stays within the tolerance must not
+    from dataclasses import replace
+
+    res = scene.compute_frame(scene.FrameRequest((Material("lambert"),), 10, curve=True))
+    for top, flagged in ((1.2, True), (1.0005, False)):
+        fake = np.linspace(0.9, top, len(scene.CURVE_THETAS))
+        side = replace(res.sides[0], curve=fake)
+        out = text_of(panes.albedo_pane(replace(res, sides=(side,)), 70, 10,
+                                        panes.Look(color="none")))
+        first = out.split("\n")[0]
+        assert (f"a>1 (max {top:.3g}): not energy-conserving" in first) == flagged, first
 
 
 def test_rgb_curves():

@@ -1,13 +1,23 @@
-"""Polar cross-sections (tuibrdf/render/polar.py)."""
+"""Polar cross-sections (tuibrdf/render/polar.py; the values from tuibrdf/core/scene.py)."""
 
 import numpy as np
 import plotext
 import pytest
 from rich.console import Console
 
+from tuibrdf.core import scene
+from tuibrdf.core.material import Material
 from tuibrdf.core.models import MODELS
+from tuibrdf.core.scene import section_directions
 from tuibrdf.render import polar
-from tuibrdf.render.polar import polar_plot, radius, section_curves, section_directions
+from tuibrdf.render.polar import channel_curves, polar_plot, radius
+
+
+def section_curves(model, values, theta_i, plane):
+    """The frame's values along ``plane`` as curves, as the section pane draws them."""
+    res = scene.compute_frame(scene.FrameRequest((Material(model, values),), theta_i))
+    return [(label, scene.SECTION_THETAS, v)
+            for label, v in channel_curves(model.name, res.sides[0].sections[plane])]
 
 
 @pytest.fixture
@@ -84,7 +94,7 @@ def test_plain_output_and_deterministic():
     c, _ = polar_plot(curves, 40, 10)
     assert "\x1b[" in c
     # lambert kd=0.8: 0.8/π ≈ 0.255 → 1-2-5 step with at most 5 circles: 0.1
-    assert cap == "max 0.255 · circles every 0.1"
+    assert cap == "section max 0.255 · circles every 0.1"
 
 
 def test_rgb_model_gives_channel_curves():
@@ -107,7 +117,7 @@ def test_both_planes_share_one_scale():
         with con.capture() as cap:
             con.print(render_view(plane, m, v, 60, 100, 16, color="none"))
         titles[plane] = cap.get().split("\n")[0]
-    assert "max 6.14" in titles["incidence"] and "circles every 2" in titles["incidence"]
+    assert "section max 6.14" in titles["incidence"] and "circles every 2" in titles["incidence"]
     assert "circles every 2" in titles["perpendicular"]
     vmax = float(titles["perpendicular"].split("max ")[1].split()[0])
     assert 0 < vmax < 1e-25

@@ -17,23 +17,22 @@ method                what it does
 ``toggle_compare``    one side ↔ two sides (B starts as a copy of A)
 ``switch_side``       which side the parameter keys act on (compare mode)
 ``apply_preset``      one of :data:`COMPARE_PRESETS` (the seed's comparisons)
-``rotate``            azimuth / elevation of the 3D solid
+``rotate``            azimuth / elevation of the 3D solid (solid view only)
 ====================  =====================================================
 """
 
 from __future__ import annotations
 
-import copy
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..core.models import MODELS, get_model
-from ..core.params import Model, Param, Value, _fmt
+from ..core.material import Material
+from ..core.models import MODELS
+from ..core.params import Model, Param, Value
+from ..render import CMAPS
 
-VIEWS = ("map", "solid", "albedo")
-VIEW_TITLES = {"map": "equal-area map", "solid": "3D photometric solid", "albedo": "albedo a(θi)"}
-#: fallback when the renderer does not list its colour maps
-DEFAULT_CMAPS = ("grey", "viridis", "inferno")
+#: the main views ``v`` cycles through (the cross-sections are always shown beside them)
+MAIN_VIEWS = ("map", "solid", "albedo")
 
 THETA_MIN, THETA_MAX = 0.0, 90.0
 ELEVATION_MIN, ELEVATION_MAX = -10.0, 90.0
@@ -89,29 +88,36 @@ def _round(v: float) -> float:
     return float(round(v, 10))
 
 
-@dataclass
 class Side:
-    """One model with its resolved parameter values (user units) and the panel cursor."""
+    """One side of the viewer: a :class:`~tuibrdf.core.material.Material` (immutable,
+    validated) and the panel cursor, the only thing about a side that changes in place."""
 
-    model: str
-    values: dict[str, Value]
-    selected: int = 0
+    def __init__(self, model: str | Material, values: dict[str, Any] | None = None,
+                 selected: int = 0) -> None:
+        self.material = model if isinstance(model, Material) else Material(model, values)
+        self.selected = selected
 
     @classmethod
     def of(cls, model: str, params: dict[str, Any] | None = None) -> Side:
-        m = get_model(model)
-        return cls(m.name, m.resolve(params or {}))
+        return cls(model, params)
+
+    @property
+    def model(self) -> str:
+        return self.material.name
+
+    @property
+    def values(self) -> dict[str, Value]:
+        return self.material.values
 
     @property
     def spec(self) -> Model:
-        return get_model(self.model)
+        return self.material.model
 
     def rows(self) -> list[Row]:
         return panel_rows(self.spec)
 
-    def key(self) -> tuple:
-        """Hashable identity of what this side computes (for caches)."""
-        return (self.model, tuple(sorted(self.values.items())))
+    def copy(self) -> Side:
+        return Side(self.material, selected=self.selected)
 
 
 def usable(model: Model, values: dict[str, Value] | None = None) -> bool:
@@ -129,8 +135,7 @@ class ViewerState:
     theta_i: float = 30.0
     view: str = "map"
     log: bool = False
-    cmap: str = DEFAULT_CMAPS[0]
-    cmaps: tuple[str, ...] = DEFAULT_CMAPS
+    cmap: str = CMAPS[0]
     cosine: bool = False
     azimuth: float = -60.0
     elevation: float = 25.0
@@ -181,10 +186,10 @@ class ViewerState:
         """Validate the side's values with ``name = value``; apply them or return why not."""
         side = self.side
         try:
-            side.values = side.spec.resolve({**side.values, name: value})
+            side.material = side.material.with_values(**{name: value})
         except ValueError as e:
             return str(e)
-        self.memory[side.model] = dict(side.values)
+        self.memory[side.model] = side.values
         return None
 
     def step_param(self, direction: int, coarse: bool = False) -> str | None:
@@ -231,14 +236,13 @@ class ViewerState:
         else:
             i = -1 if delta > 0 else 0
         name = names[(i + delta) % len(names)]
-        self.memory[self.side.model] = dict(self.side.values)
-        self.sides[self.active] = Side(name, dict(self.memory.get(name) or
-                                                  MODELS[name].defaults()))
+        self.memory[self.side.model] = self.side.values
+        self.sides[self.active] = Side(name, self.memory.get(name))
         self.preset = ""
         return None
 
     def cycle_view(self, delta: int = 1) -> str | None:
-        self.view = VIEWS[(VIEWS.index(self.view) + delta) % len(VIEWS)]
+        self.view = MAIN_VIEWS[(MAIN_VIEWS.index(self.view) + delta) % len(MAIN_VIEWS)]
         return None
 
     def toggle_log(self) -> str | None:
@@ -246,8 +250,8 @@ class ViewerState:
         return None
 
     def cycle_cmap(self, delta: int = 1) -> str | None:
-        i = self.cmaps.index(self.cmap) if self.cmap in self.cmaps else -1
-        self.cmap = self.cmaps[(i + delta) % len(self.cmaps)]
+        i = CMAPS.index(self.cmap) if self.cmap in CMAPS else -1
+        self.cmap = CMAPS[(i + delta) % len(CMAPS)]
         return None
 
     def toggle_cosine(self) -> str | None:
@@ -260,7 +264,7 @@ class ViewerState:
             self.active = 0
             self.preset = ""
         else:
-            self.sides = [self.side, copy.deepcopy(self.side)]
+            self.sides = [self.side, self.side.copy()]
             self.active = 1
         return None
 
@@ -288,6 +292,8 @@ class ViewerState:
         return self.apply_preset(names[(i + 1) % len(names)])
 
     def rotate(self, d_azimuth: float, d_elevation: float) -> str | None:
+        if self.view != "solid":
+            return "ctrl+arrows rotate the 3D solid (press v for that view)"
         self.azimuth = (self.azimuth + d_azimuth + 180.0) % 360.0 - 180.0
         el = min(ELEVATION_MAX, max(ELEVATION_MIN, self.elevation + d_elevation))
         if d_elevation and el == self.elevation:
@@ -298,6 +304,4 @@ class ViewerState:
     # -- text ---------------------------------------------------------------------------------
     def describe(self, side: Side | None = None) -> str:
         """``phong kd=0.2 ks=0.5 n=20`` — for titles and messages."""
-        side = side or self.side
-        vals = " ".join(f"{k}={_fmt(v)}" for k, v in side.values.items())
-        return f"{side.model} {vals}".strip()
+        return (side or self.side).material.describe()

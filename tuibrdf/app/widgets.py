@@ -60,7 +60,19 @@ class Picture(Widget):
         return [f for f in super().get_line_filters() if not isinstance(f, ANSIToTruecolor)]
 
 
-class ParamPanel(Static):
+class QuietStatic(Static):
+    """A ``Static`` updated only when its text changes (an update re-lays the widget out)."""
+
+    _shown: tuple | None = None
+
+    def show_text(self, text: Text) -> None:
+        key = (text.plain, tuple(text.spans), str(text.style))  # Text == ignores the style
+        if key != self._shown:
+            self._shown = key
+            self.update(text)
+
+
+class ParamPanel(QuietStatic):
     """The parameter rows of one side: value, range, unit; the selected row highlighted."""
 
     DEFAULT_CSS = """
@@ -74,8 +86,9 @@ class ParamPanel(Static):
         active = side_index == state.active
         self.set_class(active and state.compare, "active")
         label = "AB"[side_index] + ": " if state.compare else ""
-        self.border_title = f"{label}{side.spec.title}"
-        self.border_subtitle = "m/M model" if active else ""
+        title, subtitle = f"{label}{side.spec.title}", "m/M model" if active else ""
+        if (self.border_title, self.border_subtitle) != (title, subtitle):
+            self.border_title, self.border_subtitle = title, subtitle
         text = Text(no_wrap=True, overflow="ellipsis")
         rows = side.rows()
         for i, row in enumerate(rows):
@@ -95,8 +108,10 @@ class ParamPanel(Static):
                 text.append("\n")
         if not rows:
             text.append("(no parameters)", style="dim")
-        self.update(text)
+        self.show_text(text)
 
 
-class StatusLine(Static):
+class StatusLine(QuietStatic):
+    """Two lines: θi and the frame's numbers; the view, scale, colour map and a message."""
+
     DEFAULT_CSS = "StatusLine { height: auto; max-height: 3; padding: 0 1; }"

@@ -16,11 +16,10 @@ import json
 
 import numpy as np
 
+from ..core.conventions import ENERGY_TOL  # a > 1 + ENERGY_TOL is flagged
 from .common import add_model_args, add_theta_i, fmt, fmt_params, json_params, resolve
 
 DEFAULT_THETAS = (0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0)
-#: a > 1 + ENERGY_TOL is flagged: above the quadrature's own error (≤ 1e-4 on smooth lobes)
-ENERGY_TOL = 1e-3
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:

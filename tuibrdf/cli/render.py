@@ -27,18 +27,15 @@ import os
 import sys
 from typing import Any
 
+from ..render import CMAPS, MIN_HEIGHT, MIN_WIDTH, VIEWS
 from .common import add_model_args, add_theta_i, bounded, choices_type, int_in, resolve
 
-#: the picture views of ``tuibrdf.render.views.VIEWS`` (kept here so ``--help`` stays light;
-#: tests check they agree), plus ``all``
-VIEWS = ("map", "incidence", "perpendicular", "solid", "albedo")
-#: the views of ``tuibrdf.render.extra_views.EXTRA_VIEWS`` not in ``VIEWS`` (drawn by it, as is
-#: ``perpendicular``)
+#: the views of ``tuibrdf.render.extra_views.EXTRA_VIEWS`` beyond :data:`tuibrdf.render.VIEWS`
+#: (drawn by it, as is ``perpendicular``; declared with no import so ``--help`` stays light)
 EXTRA = ("sphere", "plane", "slice", "theta-h", "theta-d")
+#: what ``--view all`` draws
 ALL = ("map", "incidence", "perpendicular", "albedo")
-CMAPS = ("grey", "viridis", "inferno")
 COLORS = ("auto", "truecolor", "256", "none")
-MIN_WIDTH, MIN_HEIGHT = 12, 6  # tuibrdf.render.views.MIN_WIDTH / MIN_HEIGHT
 MAX_SIZE = 1000
 
 

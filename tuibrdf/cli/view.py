@@ -153,5 +153,6 @@ def run(args: argparse.Namespace) -> int:
     from ..app.app import BrdfApp  # Textual only here
 
     color = None if args.color == "auto" else args.color
-    BrdfApp(state, color=color).run()
-    return 0
+    app = BrdfApp(state, color=color)
+    app.run()  # a crash: Textual restores the terminal, prints the error, sets return_code 1
+    return app.return_code or 0

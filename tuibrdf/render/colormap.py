@@ -35,9 +35,10 @@ import numpy as np
 from rich.console import Group
 from rich.text import Text
 
-from .halfblock import REC709, TRANSPARENT, HalfBlockImage
+from ..core.conventions import fmt_value, luminance
+from . import CMAPS
+from .halfblock import TRANSPARENT, HalfBlockImage
 
-CMAPS: tuple[str, ...] = ("grey", "viridis", "inferno")
 RGB_MODES: tuple[str, ...] = ("color", "luminance")
 DEFAULT_LEVELS = 256
 MIN_LEVELS, MAX_LEVELS = 32, 256
@@ -254,11 +255,6 @@ def quantise(t: np.ndarray, levels: int = DEFAULT_LEVELS) -> np.ndarray:
     return np.where(nan, TRANSPARENT, k)
 
 
-def luminance(rgb: np.ndarray) -> np.ndarray:
-    """Rec.709 luminance of linear RGB values ``(..., 3)``."""
-    return np.asarray(rgb, dtype=float) @ REC709
-
-
 @dataclass(frozen=True)
 class Colored:
     """A colour-mapped picture: ``index`` into ``palette`` (−1 transparent) and its scale."""
@@ -306,11 +302,6 @@ def colorize(
     return Colored(quantise(scale.normalise(v), levels), palette(cmap, levels), scale)
 
 
-def fmt_value(v: float) -> str:
-    """Short, deterministic number format for ticks and titles."""
-    return f"{v:.3g}"
-
-
 def colorbar(
     scale: Scale,
     cmap: str = "grey",
@@ -319,18 +310,19 @@ def colorbar(
     levels: int = DEFAULT_LEVELS,
     unit: str = "sr⁻¹",
     color_system: str | None = None,
+    note: str = "",
 ) -> Group:
     """A one-row colour bar ``width`` cells wide, with min / mid / max values underneath.
 
     For RGB pictures in colour mode pass ``cmap="grey"``: the bar then shows one channel's
-    ramp.
+    ramp.  ``note`` follows the top value (compare mode: whose peak it is).
     """
     width = max(int(width), 3)
     t = (np.arange(width) + 0.5) / width
     idx = quantise(t, levels)[None, :].repeat(2, axis=0)
     bar = HalfBlockImage(idx, palette(cmap, levels), color_system=color_system)
     lo, mid, hi = (fmt_value(x) for x in scale.ticks())
-    right = hi + f" {unit}" + (" (log)" if scale.log else "")
+    right = hi + f" {unit}" + (f" {note}" if note else "") + (" (log)" if scale.log else "")
     return Group(bar, Text(tick_line(width, lo, mid, right)))
 
 

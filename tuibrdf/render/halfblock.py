@@ -43,6 +43,8 @@ from rich.measure import Measurement
 from rich.segment import Segment
 from rich.style import Style
 
+from ..core.conventions import REC709  # here applied to 8-bit values: a luma
+
 ColorSystem = Literal["truecolor", "256", "none"]
 COLOR_SYSTEMS: tuple[str, ...] = ("truecolor", "256", "none")
 
@@ -52,9 +54,6 @@ LOWER_HALF = "▄"
 ASCII_RAMP = " .:-=+*#%@"
 #: index of a pixel that shows the terminal's own background
 TRANSPARENT = -1
-
-#: Rec.709 luma weights (applied to the 8-bit values: a luma, not a linear luminance)
-REC709 = np.array([0.2126, 0.7152, 0.0722])
 
 
 @dataclass(frozen=True)

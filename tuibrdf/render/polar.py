@@ -1,4 +1,5 @@
-"""Polar cross-sections with plotext (SPEC §4 view 2).
+"""Polar cross-sections with plotext (SPEC §4 view 2): curves in, text out (the values come from
+:mod:`tuibrdf.core.scene`, the pane from :mod:`.panes`).
 
 plotext has no polar axes: a curve is drawn as ``x = r sin θr``, ``y = r cos θr`` for
 ``θr ∈ [−90°, 90°]`` with braille dots; negative ``θr`` is the left half of the plot.
@@ -22,21 +23,16 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Sequence
-from typing import Any
 
 import numpy as np
 import plotext as plt
-from rich.console import Group
 from rich.text import Text
 
-from ..core.evaluate import evaluate_resolved
-from ..core.frame import incident, sincos_deg
-from ..core.params import Model
-from .colormap import LOG_DECADES, fmt_value
-from .text import title
+from ..core.conventions import fmt_value
+from ..core.frame import sincos_deg
+from .colormap import LOG_DECADES
 
 PLOT_LOCK = threading.Lock()
-PLANES = {"incidence": 0.0, "perpendicular": 90.0}
 #: curve colours in order (plotext's 16-colour names: readable on dark and light terminals)
 CURVE_COLORS = ("red", "cyan", "green", "magenta", "yellow", "blue")
 GUIDE_COLOR = 244  # xterm grey
@@ -44,42 +40,6 @@ INCIDENT_COLOR = "yellow"
 CELL_ASPECT = 2.0  # a terminal cell is about twice as tall as it is wide
 
 Curve = tuple[str, np.ndarray, np.ndarray]  # (label, θr degrees, values)
-
-
-def section_directions(plane: str, thetas_deg: np.ndarray) -> np.ndarray:
-    """Unit directions for signed ``θr`` in ``plane`` (exact at ±90°)."""
-    if plane not in PLANES:
-        raise ValueError(f"unknown plane {plane!r}: expected one of {', '.join(PLANES)}")
-    s, c = sincos_deg(np.asarray(thetas_deg, dtype=float))
-    zero = np.zeros_like(s)
-    if plane == "incidence":
-        return np.stack([s, zero, c], axis=-1)
-    return np.stack([zero, s, c], axis=-1)
-
-
-def section_curves(
-    model: Model,
-    values: dict[str, Any],
-    theta_i_deg: float,
-    plane: str,
-    *,
-    n: int = 181,
-    cosine: bool = False,
-) -> list[Curve]:
-    """The model's values along ``plane``: one curve, or R, G, B curves for RGB models."""
-    thetas = np.linspace(-90.0, 90.0, n)
-    wo = section_directions(plane, thetas)
-    f = np.asarray(evaluate_resolved(model, values, incident(theta_i_deg), wo), dtype=float)
-    if cosine:
-        f = f * (wo[:, 2][:, None] if f.ndim == 2 else wo[:, 2])
-    return [(label, thetas, v) for label, v in channel_curves(model.name, f)]
-
-
-def sections_max(model: Model, values: dict[str, Any], theta_i_deg: float,
-                 cosine: bool = False) -> float:
-    """The largest value over both planes (every channel): the common scale of the plots."""
-    return max(float(np.max(v)) for plane in PLANES
-               for _, _, v in section_curves(model, values, theta_i_deg, plane, cosine=cosine))
 
 
 def curve_color(label: str, j: int) -> str:
@@ -128,12 +88,13 @@ def polar_plot(
     vmax = vmax if vmax > 0 else 1.0  # an all-zero curve still gets a unit circle
     if log:
         rmax, guides = 1.0, [1.0 - k / decades for k in range(int(decades))]
-        caption = f"max {fmt_value(own)} · log, circles every decade below {fmt_value(vmax)}"
+        caption = (f"section max {fmt_value(own)} · log, circles every decade below "
+                   f"{fmt_value(vmax)}")
     else:
         step = nice_step(vmax)
         guides = list(step * np.arange(1, int(np.floor(vmax / step + 1e-9)) + 1))
         rmax = max(vmax, guides[-1] if guides else vmax)
-        caption = f"max {fmt_value(own)} · circles every {fmt_value(step)}"
+        caption = f"section max {fmt_value(own)} · circles every {fmt_value(step)}"
     # equal aspect: one data unit spans the same physical length in x and y
     span = rmax * 1.08
     k = max(2 * span / width, span / (CELL_ASPECT * height))
@@ -196,31 +157,3 @@ def channel_curves(label: str, values: np.ndarray) -> list[tuple[str, np.ndarray
     if values.ndim == 2:
         return [(ch, values[:, k]) for k, ch in enumerate("RGB")]
     return [(label, values)]
-
-
-def section_view(
-    plane: str,
-    model: Model,
-    values: dict[str, Any],
-    theta_i_deg: float,
-    width: int,
-    height: int,
-    *,
-    color: str = "truecolor",
-    log: bool = False,
-    cosine: bool = False,
-) -> Group:
-    """Title line + polar plot of ``model`` in ``plane`` (``height − 1`` rows).
-
-    Both planes are drawn on one scale, the larger of their maxima, so the two plots compare
-    at a glance (a sharp lobe at θi = 60° leaves almost nothing in the perpendicular plane,
-    and the plot shows that instead of magnifying 1e-30 to full size)."""
-    curves = section_curves(model, values, theta_i_deg, plane, cosine=cosine)
-    text, caption = polar_plot(curves, width, height - 1, log=log, color=color,
-                               theta_i_deg=theta_i_deg if plane == "incidence" else None,
-                               vmax=sections_max(model, values, theta_i_deg, cosine))
-    what = "f·cosθr" if cosine else "f"
-    sides = "φ 180°|0°" if plane == "incidence" else "φ 270°|90°"
-    head = title([(model.name, 2), (f"θi={theta_i_deg:g}°", 3), (plane, 0), (f"({sides})", 4),
-                  (what, 1), *caption_parts(caption)], width)
-    return Group(head, plot_body(text, color))

@@ -28,8 +28,10 @@ from typing import Any
 import numpy as np
 from rich.console import Group
 
-from ..core.frame import sincos_deg
+from ..core.evaluate import evaluate_resolved
+from ..core.frame import incident, sincos_deg
 from ..core.params import Model
+from ..core.scene import PLANES, section_directions
 from ..core.sections import PERPENDICULAR, center_direction, peak_in_plane, section_values
 from .braille import BrailleCanvas, curve_layers, draw_legend
 from .colormap import LOG_DECADES, fmt_value
@@ -40,8 +42,6 @@ from .polar import (
     curve_color,
     nice_step,
     radius,
-    section_curves,
-    sections_max,
 )
 from .text import title
 
@@ -51,6 +51,24 @@ INCIDENT = "yellow"
 N_SAMPLES = 181
 
 Curve = tuple[str, np.ndarray, np.ndarray]  # (label, θ degrees, values)
+
+
+def section_curves(model: Model, values: dict[str, Any], theta_i_deg: float, plane: str, *,
+                   n: int = N_SAMPLES, cosine: bool = False) -> list[Curve]:
+    """The model's values along ``plane`` (through the normal): one curve, or R, G, B."""
+    thetas = np.linspace(-90.0, 90.0, n)
+    wo = section_directions(plane, thetas)
+    f = np.asarray(evaluate_resolved(model, values, incident(theta_i_deg), wo), dtype=float)
+    if cosine:
+        f = f * (wo[:, 2][:, None] if f.ndim == 2 else wo[:, 2])
+    return [(label, thetas, v) for label, v in channel_curves(model.name, f)]
+
+
+def sections_max(model: Model, values: dict[str, Any], theta_i_deg: float,
+                 cosine: bool = False) -> float:
+    """The largest value over both planes (every channel): the common scale of the plots."""
+    return max(float(np.max(v)) for plane in PLANES
+               for _, _, v in section_curves(model, values, theta_i_deg, plane, cosine=cosine))
 
 
 def polar_canvas(

@@ -1,4 +1,5 @@
-"""Title lines that fit their width: the least important parts go first, never the numbers.
+"""Title lines that fit their width (the least important parts go first, never the numbers),
+and the marks and guide colours every picture shares.
 
 A title is a list of parts in display order, each with a rank (0 = always kept).  When the
 joined title is wider than the view, the part with the highest rank goes, then the next; what
@@ -33,3 +34,23 @@ def fit_parts(parts: Sequence[tuple[str, int]], width: int) -> str:
 def title(parts: Sequence[tuple[str, int]], width: int, style: str = "") -> Text:
     """:func:`fit_parts` as a one-row Rich ``Text``."""
     return Text(fit_parts(parts, width), style=style, no_wrap=True, overflow="crop")
+
+
+# -------------------------------------------------------------------- guides and marks
+#: colour of the horizon ring drawn just outside the disc and of the solid's guides (not in
+#: any colour map's range of greys, so "outside" never reads as a value)
+RING_RGB = (70, 90, 130)
+LIGHT_RGB = (40, 220, 255)
+MIRROR_MARK = dict(glyph="×", ascii="X", rgb=(255, 40, 40))
+INCIDENT_MARK = dict(glyph="o", ascii="o", rgb=LIGHT_RGB)
+
+
+def mark_legend(color: str) -> str:
+    """``× mirror  o light`` with the glyphs the picture uses (ASCII ones in plain text)."""
+    key = "ascii" if color == "none" else "glyph"
+    return f"{MIRROR_MARK[key]} mirror  {INCIDENT_MARK[key]} light"
+
+
+def where(theta_deg: float, phi_deg: float) -> str:
+    """``θ=62° φ=0°``: whole degrees, as ints so a tiny negative φ never reads ``-0°``."""
+    return f"θ={round(theta_deg)}° φ={round(phi_deg)}°"

@@ -1,4 +1,4 @@
-"""Lambert azimuthal equal-area map of the upper hemisphere (SPEC §4 view 1).
+"""Lambert azimuthal equal-area map of the upper hemisphere (SPEC §4 view 1): the numbers.
 
 Projection: ``u = 2 sin(θ/2) cos φ``, ``v = 2 sin(θ/2) sin φ``; the hemisphere becomes a disc of
 radius √2 (``r = 2 sin(θ/2)``, ``r = √2`` on the horizon).  ``u`` points right (φ = 0, the
@@ -11,7 +11,7 @@ Inverse, per pixel centre (no trigonometry): ``r² = u² + v²``, ``s = √(1 �
 
 Pixel grid: ``px_w × px_h`` pixels, ``px_h = 2 ×`` cell rows for half blocks, so pixels are
 about square; the disc diameter is ``min(px_w, px_h) − 3`` pixels (one-pixel margin for the
-horizon ring drawn by :mod:`tuibrdf.render.views`), its centre on a pixel centre so the plane of
+horizon ring drawn by :mod:`tuibrdf.render.panes`), its centre on a pixel centre so the plane of
 incidence is one pixel row and the perpendicular plane one column.
 
 Two ways to fill it (``method``):
@@ -34,10 +34,10 @@ from typing import Any
 
 import numpy as np
 
-from ..core.evaluate import evaluate_resolved
-from ..core.frame import incident, mirror
-from ..core.params import Model
-from .colormap import luminance
+from .conventions import luminance
+from .evaluate import evaluate_resolved
+from .frame import incident, mirror
+from .params import Model
 
 METHODS: tuple[str, ...] = ("exact", "mesh")
 DEFAULT_METHOD = "exact"
@@ -143,7 +143,7 @@ def mesh_level_for(n_pixels: int) -> int:
 def _mesh_weights(px_w: int, px_h: int, level: int) -> tuple[np.ndarray, np.ndarray, Any]:
     """Per inside pixel: the 3 vertex ids of its mesh triangle and barycentric weights
     (``tuibrdf.core.mesh.locate``), computed once per size and level."""
-    from ..core.mesh import hemisphere, locate
+    from .mesh import hemisphere, locate
 
     mesh = hemisphere(level)
     ids, bary, _ = locate(mesh, geometry(px_w, px_h).dirs)  # every pixel is above the horizon
@@ -158,61 +158,20 @@ def _mesh_weights(px_w: int, px_h: int, level: int) -> tuple[np.ndarray, np.ndar
 
 @dataclass(frozen=True)
 class MapInfo:
-    """What a map shows besides its pixels.
+    """What a map shows besides its pixels: ``mirror_px`` ``(row, col)`` of the pixel holding
+    the mirror direction S, ``incident_px`` of the light's Lambert point (the nearest pixel
+    inside the disc), ``pixel_sr`` the solid angle of one pixel, ``vmin``/``vmax`` the smallest
+    and largest pixel value (the luminance for RGB models), ``method`` and the mesh ``level``.
+    The peak is not here: it is the frame's, found over the whole hemisphere
+    (:mod:`tuibrdf.core.peak`), not among the pixels."""
 
-    ``peak_value`` (sr⁻¹, or the luminance for RGB models; times cos θr when ``cosine``) and its
-    direction ``peak_theta_deg``/``peak_phi_deg``: from the brightest pixel (or the mirror
-    direction when brighter), refined below pixel size by :func:`refine_peak`.
-    ``mirror_px``: ``(row, col)`` of the pixel containing the mirror
-    direction S.  ``pixel_sr``: solid angle of one pixel.  ``vmax``: largest pixel value (the top
-    of the linear colour scale).
-    """
-
-    peak_value: float
-    peak_theta_deg: float
-    peak_phi_deg: float
     mirror_px: tuple[int, int]
+    incident_px: tuple[int, int]
     pixel_sr: float
+    vmin: float
     vmax: float
     method: str
     level: int | None = None
-    vmin: float = 0.0
-
-
-PEAK_ROUNDS = 8
-_PATTERN = np.stack(np.meshgrid(np.linspace(-1, 1, 5), np.linspace(-1, 1, 5)), -1).reshape(-1, 2)
-
-
-def _value(model: Model, values: dict[str, Any], wi: np.ndarray, wo: np.ndarray,
-           cosine: bool) -> np.ndarray:
-    """Scalar value (luminance for RGB models, times cos θr when ``cosine``) at ``wo (n, 3)``."""
-    f = np.asarray(evaluate_resolved(model, values, wi, wo), dtype=float)
-    f = luminance(f) if f.ndim == 2 else f
-    return f * wo[:, 2] if cosine else f
-
-
-def refine_peak(model: Model, values: dict[str, Any], wi: np.ndarray, uv: np.ndarray,
-                value: float, step: float, cosine: bool) -> tuple[np.ndarray, float]:
-    """Pattern search for the maximum near ``uv``: a 5×5 grid of half-width ``step`` around the
-    best point so far, halving the step each round; points beyond the horizon are pulled onto
-    it.  Never returns less than ``value``."""
-    best_uv, best = np.asarray(uv, dtype=float), float(value)
-    for _ in range(PEAK_ROUNDS):
-        cand = best_uv + step * _PATTERN
-        r = np.hypot(cand[:, 0], cand[:, 1])
-        cand *= np.minimum(1.0, SQRT2 / np.maximum(r, SQRT2))[:, None]  # r ≥ √2 → onto circle
-        vals = _value(model, values, wi, uv_to_dir(cand), cosine)
-        k = int(np.argmax(vals))
-        if vals[k] > best:
-            best_uv, best = cand[k], float(vals[k])
-        step *= 0.5
-    return best_uv, best
-
-
-def _angles(w: np.ndarray) -> tuple[float, float]:
-    theta = float(np.degrees(np.arctan2(np.hypot(w[0], w[1]), w[2])))
-    phi = float(np.degrees(np.arctan2(w[1], w[0]))) if np.hypot(w[0], w[1]) > 0 else 0.0
-    return theta, phi
 
 
 def map_values(
@@ -252,19 +211,9 @@ def map_values(
     shape = (g.px_h, g.px_w) + f.shape[1:]
     out = np.full(shape, np.nan)
     out[g.inside] = f
-    # peak: start from the brightest pixel (or S when brighter) and refine by a shrinking
-    # pattern search in the Lambert plane (sub-pixel, ≈ 200 evaluations in 8 vectorised calls)
     scalar = luminance(f) if f.ndim == 2 else f
-    s = mirror(wi)
-    start = dir_to_uv(s)
-    best = _value(model, values, wi, s[None, :], cosine)[0]
-    if n and scalar.max() > best:
-        k = int(np.argmax(scalar))
-        start, best = g.uv[k], float(scalar[k])
-    peak_uv, peak = refine_peak(model, values, wi, start, best, 2.0 * SQRT2 / g.diameter, cosine)
-    pt, pp = _angles(uv_to_dir(peak_uv))
-    vmax = float(np.max(f)) if n else 0.0
-    mirror_px = g.nearest_inside(dir_to_uv(s))
+    mirror_px = g.nearest_inside(dir_to_uv(mirror(wi)))
+    incident_px = g.nearest_inside(dir_to_uv(wi))
     vmin = float(np.min(scalar)) if n else 0.0
-    info = MapInfo(peak, pt, pp, mirror_px, g.pixel_sr, vmax, method, used_level, vmin)
-    return out, info
+    vmax = float(np.max(scalar)) if n else 0.0
+    return out, MapInfo(mirror_px, incident_px, g.pixel_sr, vmin, vmax, method, used_level)

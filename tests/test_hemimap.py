@@ -1,10 +1,10 @@
-"""Lambert equal-area map geometry and values (tuibrdf/render/hemimap.py)."""
+"""Lambert equal-area map geometry and values (tuibrdf/core/hemimap.py)."""
 
 import numpy as np
 import pytest
 
+from tuibrdf.core.hemimap import dir_to_uv, geometry, map_values, uv_to_dir
 from tuibrdf.core.models import MODELS
-from tuibrdf.render.hemimap import dir_to_uv, geometry, map_values, uv_to_dir
 
 
 def _sph_tri_area(a, b, c):
@@ -71,9 +71,8 @@ def test_mirror_pixel_holds_peak_for_sharp_phong(theta_i):
     v = m.resolve({"kd": 0.0, "ks": 1.0, "n": 2000})
     a, info = map_values(m, v, theta_i, 160, 96)
     assert a[info.mirror_px] == np.nanmax(a)
-    # the peak reported is the exact mirror value (n+2)/(2π)·ks (closed form at wo = S)
-    assert info.peak_value == pytest.approx(2002 / (2 * np.pi))
-    assert (info.peak_theta_deg, info.peak_phi_deg) == pytest.approx((theta_i, 0.0), abs=1e-9)
+    # the brightest pixel is close to the mirror value (n+2)/(2π)·ks (closed form at wo = S)
+    assert info.vmax == np.nanmax(a) and info.vmax <= 2002 / (2 * np.pi) * (1 + 1e-12)
 
 
 def test_lambert_map_constant_and_nan_outside():
@@ -84,7 +83,7 @@ def test_lambert_map_constant_and_nan_outside():
     assert a[g.inside] == pytest.approx(0.5 / np.pi)
     # cosine: f·cos θr peaks at the pole with kd/π
     a, info = map_values(m, m.resolve({"kd": 0.5}), 20, 40, 30, cosine=True)
-    assert info.peak_value == pytest.approx(0.5 / np.pi, rel=1e-3)
+    assert np.nanmax(a) == pytest.approx(0.5 / np.pi, rel=1e-2)
     assert np.nanmin(a) >= 0 and np.nanmin(a) < 0.1 * 0.5 / np.pi
 
 
@@ -99,7 +98,7 @@ def test_nan_free_inside_every_model(name, theta_i):
     g = geometry(40, 24)
     inside = a[g.inside]
     assert np.isfinite(inside).all() and (inside >= 0).all()
-    assert np.isfinite(info.peak_value)
+    assert np.isfinite(info.vmax) and info.vmin <= info.vmax
     if m.rgb:
         assert a.shape == (24, 40, 3)
 
@@ -119,26 +118,11 @@ def test_mesh_method_reproduces_constant_and_converges():
     assert errs[1] < errs[0] / 4  # linear interpolation: error ∝ h², h halves per level
 
 
-def test_off_specular_peak_refined_below_pixel_size():
-    # Cook-Torrance m = 0.07 at θi = 60° peaks off-specular; the map's refined peak must agree
-    # with the mesh-based local search of core.quadrature.peak_resolved (an independent
-    # algorithm) although a pixel here spans ≈ 5°
-    from tuibrdf.core.quadrature import peak_resolved
-
-    m = MODELS["cook-torrance"]
-    v = m.resolve({"kd": 0.0, "f0": 0.04, "m": 0.07})
-    ref = peak_resolved(m, v, 60)
-    _, info = map_values(m, v, 60, 40, 28)
-    assert info.peak_value == pytest.approx(ref.value, rel=1e-5)
-    assert info.peak_theta_deg == pytest.approx(ref.theta_deg, abs=0.05)
-    assert info.peak_theta_deg > 61  # off-specular: beyond the mirror direction
-
-
 @pytest.mark.parametrize("n_pixels", [1201, 5957, 13485])
 def test_mesh_level_not_finer_than_the_picture(n_pixels):
     # about one vertex per 4 pixels: the chosen level has enough vertices, the one below not
+    from tuibrdf.core.hemimap import mesh_level_for
     from tuibrdf.core.mesh import hemisphere
-    from tuibrdf.render.hemimap import mesh_level_for
 
     lv = mesh_level_for(n_pixels)
     assert len(hemisphere(lv).vertices) >= n_pixels / 4
@@ -146,7 +130,7 @@ def test_mesh_level_not_finer_than_the_picture(n_pixels):
 
 
 def test_horizon_ring_outside_and_touching_the_disc():
-    from tuibrdf.render.views import ring_mask
+    from tuibrdf.render.panes import ring_mask
 
     g = geometry(50, 40)
     ring = ring_mask(50, 40)

@@ -1,0 +1,233 @@
+"""The viewer's data flow and robustness (issue 11, issue 17 item 1), driven with Pilot.
+
+Expected numbers come from the core quadrature called here (independent of the app's
+workers), the key table's declarations, and Textual's documented return code (1 after an
+unhandled exception).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import random
+import re
+
+import numpy as np
+import pytest
+from textual import events
+
+from tuibrdf.app import keys
+from tuibrdf.app.app import BrdfApp
+from tuibrdf.app.state import MAIN_VIEWS, Side, ViewerState
+from tuibrdf.core import scene
+from tuibrdf.core.conventions import fmt_value
+from tuibrdf.core.models import MODELS
+from tuibrdf.core.quadrature import albedo
+
+
+@pytest.fixture(autouse=True)
+def config_home(tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path))
+    return tmp_path
+
+
+def status(app) -> str:
+    return str(app.query_one("#status").render())
+
+
+def burst(app, *names: str) -> None:
+    """Key events posted all at once, as a terminal delivers keys typed faster than the app
+    (Pilot's ``press`` waits between keys)."""
+    for name in names:
+        char = {"enter": "\r", "tab": "\t", "space": " "}.get(name)
+        if char is None and len(name) == 1:
+            char = name
+        app.post_message(events.Key(name, char))
+
+
+async def wait_for(pilot, cond, seconds=20.0):
+    for _ in range(int(seconds / 0.05)):
+        if cond():
+            return True
+        await pilot.pause(0.05)
+    return False
+
+
+# ------------------------------------------------------------------------- the key table
+def test_bindings_footer_help_and_palette_come_from_one_table():
+    assert [b.action for b in keys.BINDINGS] == [k.action for k in keys.KEYS]
+    assert [b.show for b in keys.BINDINGS] == [k.footer for k in keys.KEYS]
+    help_lines = keys.help_text().plain
+    for k in keys.KEYS:
+        assert f"{k.shown:<12}{k.help}" in help_lines
+    listed = {k.action for k in keys.palette_keys()}
+    assert listed == {k.action for k in keys.KEYS} - {"help", "quit"}
+    # every state action names a real transition
+    for k in keys.KEYS:
+        m = re.match(r"state\('(\w+)'", k.action)
+        if m:
+            assert callable(getattr(ViewerState, m.group(1)))
+
+
+# ---------------------------------------------------------------- latest state always wins
+async def test_held_key_ends_on_the_final_states_albedo():
+    # many → presses posted faster than the worker computes a frame (ggx at grazing angles
+    # takes tens of ms): the status line must end on θi = 15° and its albedo, computed here
+    # by the core quadrature
+    scene.clear_caches()
+    app = BrdfApp(ViewerState(sides=[Side.of("ggx", {"alpha": 0.1})], theta_i=0.0))
+    expected = fmt_value(albedo("ggx", {"alpha": 0.1}, 15.0))
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.pause()
+        for _ in range(5):
+            burst(app, "right", "right", "right")
+            await pilot.pause(0.01)
+        assert await wait_for(pilot, lambda: f"a(θi)={expected} " in status(app))
+        assert "θi 15°" in status(app) and app.state.theta_i == 15.0
+        assert app.frame.request.theta_i == 15.0
+
+
+async def test_status_follows_parameter_keys_and_compare_mode():
+    app = BrdfApp(ViewerState(sides=[Side.of("phong", {"kd": 0.2, "ks": 0.3})]))
+    async with app.run_test(size=(120, 36)) as pilot:
+        burst(app, *["plus"] * 8)  # kd 0.2 → 0.28
+        assert await wait_for(pilot, lambda: app.state.side.values["kd"] == pytest.approx(0.28))
+        want = fmt_value(albedo("phong", {"kd": 0.28, "ks": 0.3}, 30.0))
+        assert await wait_for(pilot, lambda: f"a(θi)={want} " in status(app))
+        burst(app, "c", "tab", "minus", "minus")  # compare; B's kd 0.28 → 0.26
+        want_b = fmt_value(albedo("phong", {"kd": 0.26, "ks": 0.3}, 30.0))
+        assert await wait_for(pilot, lambda: f"A: a={want}" in status(app)
+                              and f"B: a={want_b}" in status(app))
+
+
+async def test_each_visible_pane_is_evaluated_once_per_frame(monkeypatch):
+    # wrap both kernels; one θi step must evaluate each side's map and sections once
+    scene.clear_caches()
+    calls = {}
+    for name in ("phong", "cook-torrance"):
+        m = MODELS[name]
+        calls[name] = []
+
+        def kernel(wi, wo, _m=m, _c=calls[name], **kw):
+            _c.append(int(np.prod(np.shape(wo)[:-1])))
+            return _m.kernel(wi, wo, **kw)
+
+        monkeypatch.setitem(MODELS, name, dataclasses.replace(m, kernel=kernel))
+    n_sections = 2 * len(scene.SECTION_THETAS)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), sync=True)
+    async with app.run_test(size=(120, 36)) as pilot:
+        for mode in ("single", "compare"):
+            if mode == "compare":
+                await pilot.press("p", "p")  # phong vs cook-torrance
+                await pilot.pause()
+            for c in calls.values():
+                c.clear()
+            await pilot.press("right")
+            await pilot.pause()
+            n_map = int(np.count_nonzero(
+                __import__("tuibrdf.core.hemimap", fromlist=["g"]).geometry(
+                    *app.frame.request.map_px).inside))
+            sides = ["phong"] if mode == "single" else ["phong", "cook-torrance"]
+            for name in sides:
+                assert calls[name].count(n_map) == 1, (mode, name, calls[name])
+                assert calls[name].count(n_sections) == 1, (mode, name)
+            # drawing again (a redraw, or a pane resized back) evaluates nothing
+            for c in calls.values():
+                c.clear()
+            app.refresh_frame()
+            await pilot.pause()
+            assert all(c == [] for c in calls.values())
+
+
+# ---------------------------------------------------------- hostile key bursts (issue 17)
+async def test_save_dialog_survives_enter_enter_in_one_burst():
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), sync=True)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.pause()
+        burst(app, "s", "enter", "enter")
+        await pilot.pause(0.3)
+        burst(app, "s", "a", "enter", "enter")
+        await pilot.pause(0.3)
+        assert app.return_code is None and app._exception is None
+        # where each Enter lands depends on when the dialog gets the focus (as in a terminal):
+        # it answers the dialog, or reaches the viewer, which ignores it; never a crash
+        if len(app.screen_stack) > 1:
+            await pilot.press("escape")
+        assert app.screen is app.screen_stack[0]
+        await pilot.press("right")
+        assert app.state.theta_i == 31.0
+
+
+async def test_palette_survives_pageup_before_its_list_is_laid_out():
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), sync=True)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.pause()
+        burst(app, "ctrl+p", "pageup", "pagedown", "home", "end")
+        await pilot.pause(0.3)
+        assert app.return_code is None and app._exception is None
+        await pilot.press("escape")
+        await pilot.press("right")
+        assert app.state.theta_i == 31.0
+
+
+class Crashing(BrdfApp):
+    def action_state(self, method, args=()):
+        if method == "toggle_log":
+            raise RuntimeError("boom from a test")
+        super().action_state(method, args)
+
+
+async def test_a_crash_sets_a_nonzero_return_code():
+    app = Crashing(ViewerState(), sync=True)
+    with pytest.raises(RuntimeError, match="boom"):  # run_test re-raises it on exit
+        async with app.run_test(size=(100, 30)) as pilot:
+            await pilot.press("l")
+            await pilot.pause()
+    assert app.return_code == 1 and "boom from a test" in str(app._exception)
+
+
+def test_view_command_exits_nonzero_and_prints_the_error(monkeypatch, capsys):
+    # the real `tuibrdf view` path, headless: the crash ends the app, the message is printed
+    # and the exit status is not 0
+    import tuibrdf.app.app as app_module
+    from tuibrdf.cli import main
+
+    class Headless(Crashing):
+        def run(self, **kw):
+            async def crash(pilot):
+                await pilot.press("l")
+
+            return super().run(headless=True, auto_pilot=crash)
+
+    monkeypatch.setattr(app_module, "BrdfApp", Headless)
+    rc = main(["view", "phong"])
+    captured = capsys.readouterr()
+    assert rc == 1
+    assert "boom from a test" in captured.out + captured.err
+
+
+# ------------------------------------------------------------------------------ key mash
+async def test_key_mash_leaves_a_live_app_and_a_valid_state():
+    # a seeded storm of table keys and printable characters (into the save dialog too);
+    # quit keys left out, since quitting is what they do
+    rng = random.Random(11)
+    table = [name for k in keys.KEYS if k.action != "quit" for name in k.keys.split(",")]
+    printable = list("abcxyz0123._-") + ["enter", "escape", "backspace"]
+    pool = table + printable
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]))
+    async with app.run_test(size=(80, 24)) as pilot:
+        for _ in range(10):  # 2000 keys
+            burst(app, *(rng.choice(pool) for _ in range(200)))
+            await pilot.pause(0.01)
+        for _ in range(5):  # close whatever dialog is open
+            burst(app, "escape")
+            await pilot.pause(0.05)
+        assert app.return_code is None and app._exception is None
+        s = app.state
+        assert 0.0 <= s.theta_i <= 90.0 and s.view in MAIN_VIEWS and 1 <= len(s.sides) <= 2
+        for side in s.sides:
+            side.spec.resolve(side.values)  # still valid
+        # and it still answers: the final state's frame arrives
+        await pilot.press("right" if s.theta_i < 90 else "left")
+        want = app.frame_request()
+        assert await wait_for(pilot, lambda: app.frame is not None and
+                              app.frame.request == want, 30)

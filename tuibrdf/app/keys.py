@@ -1,0 +1,96 @@
+"""The key table, declared once: Textual's bindings, the footer, the help screen and the
+command palette are all generated from :data:`KEYS`.
+
+An action ``state('METHOD', (ARGS…))`` calls :class:`~tuibrdf.app.state.ViewerState`'s
+transition of that name (``BrdfApp.action_state``); the others (help, save, load a saved
+preset, quit) are the app's own.  :data:`RELAYOUT` names the transitions that change which
+panes are shown.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from rich.text import Text
+from textual.binding import Binding
+
+
+@dataclass(frozen=True)
+class Key:
+    keys: str  # Textual key names, comma-separated
+    action: str
+    short: str  # footer label
+    help: str  # help screen and command palette
+    display: str | None = None  # how the key is written (default: the first key name)
+    footer: bool = False
+    priority: bool = False
+
+    @property
+    def shown(self) -> str:
+        return self.display or self.keys.split(",")[0]
+
+
+def _s(method: str, *args: object) -> str:
+    """``state('METHOD', (ARGS…))``: the arguments as one tuple (Textual passes an action
+    only as many arguments as its method declares, so no ``*args`` there)."""
+    return f"state({method!r}, {args!r})"
+
+
+KEYS: tuple[Key, ...] = (
+    Key("left", _s("step_theta", -1), "θi−", "θi −1°  (shift+← −10°)", "←", footer=True),
+    Key("right", _s("step_theta", 1), "θi+", "θi +1°  (shift+→ +10°)", "→", footer=True),
+    Key("shift+left", _s("step_theta", -10), "θi −10°", "θi −10°"),
+    Key("shift+right", _s("step_theta", 10), "θi +10°", "θi +10°"),
+    Key("up", _s("select", -1), "param ↑", "previous parameter", "↑"),
+    Key("down", _s("select", 1), "param ↓", "next parameter", "↓"),
+    Key("plus,equals_sign,right_square_bracket", _s("step_param", 1), "inc",
+        "selected parameter + step (also = and ])", "+", footer=True),
+    Key("minus,left_square_bracket", _s("step_param", -1), "dec",
+        "selected parameter − step (also [)", "-", footer=True),
+    Key("right_curly_bracket", _s("step_param", 1, True), "+coarse",
+        "selected parameter + coarse step", "}"),
+    Key("left_curly_bracket,underscore", _s("step_param", -1, True), "−coarse",
+        "selected parameter − coarse step (also _)", "{"),
+    Key("r", _s("reset_param"), "reset", "reset the selected parameter"),
+    Key("m", _s("cycle_model", 1), "model", "next model (θi kept)", footer=True),
+    Key("M", _s("cycle_model", -1), "prev model", "previous model"),
+    Key("v", _s("cycle_view"), "view", "main view: map → 3D solid → albedo curve", footer=True),
+    Key("ctrl+left", _s("rotate", -10, 0), "rotate ←", "3D solid: turn left"),
+    Key("ctrl+right", _s("rotate", 10, 0), "rotate →", "3D solid: turn right"),
+    Key("ctrl+up", _s("rotate", 0, 5), "tilt ↑", "3D solid: tilt up"),
+    Key("ctrl+down", _s("rotate", 0, -5), "tilt ↓", "3D solid: tilt down"),
+    Key("l", _s("toggle_log"), "log", "linear / log colour scale"),
+    Key("k", _s("cycle_cmap"), "cmap", "next colour map"),
+    Key("o", _s("toggle_cosine"), "f·cos", "show f or f·cos θr"),
+    Key("c", _s("toggle_compare"), "compare", "compare two models (B starts as A)", footer=True),
+    Key("tab", _s("switch_side"), "side", "compare: keys act on A or B", priority=True),
+    Key("p", _s("next_preset"), "preset", "next seed comparison (diffuse, specular)",
+        footer=True),
+    Key("s", "save", "save", "save θi and parameters as a preset (TOML file)"),
+    Key("P", "load_next", "load preset",
+        "load the next saved preset (also: tuibrdf view --preset NAME)"),
+    Key("question_mark", "help", "help", "this screen", "?", footer=True),
+    Key("q", "quit", "quit", "quit", footer=True),
+)
+
+#: transitions after which the set of visible panes may change
+RELAYOUT = frozenset({"cycle_model", "cycle_view", "toggle_compare", "switch_side",
+                      "next_preset"})
+
+BINDINGS = [Binding(k.keys, k.action, k.short, show=k.footer, key_display=k.display,
+                    priority=k.priority) for k in KEYS]
+
+
+def help_text() -> Text:
+    """The help screen: every key with its help line."""
+    t = Text("tuibrdf — keys\n\n", style="bold")
+    for k in KEYS:
+        t.append(f"{k.shown:<12}", style="bold")
+        t.append(f"{k.help}\n")
+    t.append("\nEsc or ? closes this screen; ctrl+p opens the command palette.", style="dim")
+    return t
+
+
+def palette_keys() -> list[Key]:
+    """The keys the command palette lists (Textual adds its own help and quit)."""
+    return [k for k in KEYS if k.action not in ("help", "quit")]

@@ -1,0 +1,63 @@
+"""The viewer's layout: its CSS and which panes and panels show in each mode."""
+
+from __future__ import annotations
+
+from textual.widgets import Static
+
+from ..core.models import MODELS
+from .state import panel_rows
+from .text import PANES, visible_panes
+from .widgets import ParamPanel, Picture
+
+MIN_W, MIN_H = 60, 18
+BOTH_PANELS_H = 40  # compare mode shows both parameter panels from this height
+STEADY_PANEL_H = max(len(panel_rows(m)) for m in MODELS.values()) + 2  # rows + border
+
+CSS = """
+Screen { layout: vertical; }
+#root { height: 1fr; }
+#body { height: 1fr; }
+#main { width: 55%; height: 1fr; }
+#main.compare-map { layout: grid; grid-size: 2 2; }
+#main.compare-solid { layout: horizontal; }
+#side { width: 1fr; height: 1fr; }
+#side Picture { height: 1fr; }
+Picture { border-title-color: $text-muted; }
+#main Picture { border: none; }
+#main.compare-map Picture, #main.compare-solid Picture { border: round $primary-darken-3; }
+#legend { padding: 0 1; }
+#toosmall { width: 1fr; height: 1fr; content-align: center middle; display: none; }
+Screen.small #toosmall { display: block; }
+Screen.small #root { display: none; }
+"""
+
+
+def arrange(app) -> None:
+    """Show ``app``'s panes for its state's mode; the too-small message below the minimum."""
+    w, h = app.size
+    app.screen.set_class(w < MIN_W or h < MIN_H, "small")
+    app.query_one("#toosmall", Static).update(
+        f"The terminal is {w}×{h}: tuibrdf needs at least {MIN_W}×{MIN_H}.\n"
+        "Enlarge the window (q quits).")
+    s = app.state
+    visible = set(visible_panes(s))
+    main = app.query_one("#main")
+    main.set_class(s.compare and s.view == "map", "compare-map")
+    main.set_class(s.compare and s.view == "solid", "compare-solid")
+    for pic in app.query(Picture):
+        pic.display = pic.pane in visible
+    app.query_one("#legend").display = s.compare and s.view == "map"
+    # both panels when there is room; otherwise only the side the keys act on
+    both = s.compare and h >= BOTH_PANELS_H
+    app.query_one("#panel-a").display = not s.compare or both or s.active == 0
+    app.query_one("#panel-b").display = both or (s.compare and s.active == 1)
+    # tall terminals: panels as tall as the longest model's, so cycling models never
+    # resizes the plots below; short ones keep every row for the plots
+    steady = STEADY_PANEL_H if h >= BOTH_PANELS_H else None
+    for panel in app.query(ParamPanel):
+        panel.styles.min_height = steady
+    if s.compare:
+        for pane in ("map-a", "map-b", "solid-a", "solid-b"):
+            k = PANES[pane][1]
+            app.query_one(f"#{pane}").border_title = f"{'AB'[k]}: {s.sides[k].model}"
+        app.query_one("#diff").border_title = "A − B"

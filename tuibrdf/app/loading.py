@@ -1,0 +1,60 @@
+"""Measured data (MERL files) read off the event loop, with progress on the status line: a
+mixin of the viewer (the 35 MB read never blocks a key)."""
+
+from __future__ import annotations
+
+from functools import partial
+
+from ..core import merl
+from .state import Side
+from .text import side_files
+
+
+class MeasuredData:
+    """Needs ``state``, ``_loading`` (file → fraction read), ``_changed`` and ``_status``."""
+
+    def _files_ready(self) -> bool:
+        """Whether every side's data file is in memory; starts a loader for each missing one
+        (a worker thread) and answers False meanwhile."""
+        ready = True
+        for side in self.state.sides:
+            for path in side_files(side):
+                try:
+                    if merl.is_loaded(path):
+                        continue
+                except merl.MerlError as e:
+                    self.call_later(self._load_failed, path, str(e))
+                    return False
+                ready = False
+                if path not in self._loading:
+                    self._loading[path] = 0.0
+                    self.run_worker(partial(self._load_file, path), thread=True,
+                                    group="load", exit_on_error=False)
+        return ready
+
+    def _load_file(self, path: str) -> None:
+        def progress(fraction: float) -> None:
+            self.call_from_thread(self._load_progress, path, fraction)
+
+        try:
+            merl.load_cached(path, progress)
+        except (merl.MerlError, OSError) as e:
+            self.call_from_thread(self._load_failed, path, str(e))
+            return
+        self.call_from_thread(self._load_done, path)
+
+    def _load_progress(self, path: str, fraction: float) -> None:
+        if path in self._loading:
+            self._loading[path] = fraction
+            self._status()
+
+    def _load_done(self, path: str) -> None:
+        self._loading.pop(path, None)
+        self._changed(f"loaded {path}")
+
+    def _load_failed(self, path: str, error: str) -> None:
+        """A side whose file cannot be read shows Lambert instead; the message says why."""
+        self._loading.pop(path, None)
+        s = self.state
+        s.sides = [Side.of("lambert") if path in side_files(x) else x for x in s.sides]
+        self._changed(f"{error} — showing lambert", relayout=True)

@@ -1,0 +1,73 @@
+"""What the viewer writes besides the pictures, as plain functions of the session state and
+the frame on screen (Rich text, no Textual): the visible panes, the status line, the compare
+legend."""
+
+from __future__ import annotations
+
+from rich.text import Text
+
+from ..core.scene import FrameResult
+from ..render import VIEW_TITLES, panes
+from .state import COMPARE_PRESETS, Side, ViewerState
+
+#: pane → (view, side)
+PANES = {"map-a": ("map", 0), "map-b": ("map", 1), "diff": ("diff", 0), "solid-a": ("solid", 0),
+         "solid-b": ("solid", 1), "albedo": ("albedo", 0), "incidence": ("incidence", 0),
+         "perpendicular": ("perpendicular", 0)}
+
+
+def visible_panes(s: ViewerState) -> list[str]:
+    """The panes of the main view (one per side in compare mode), then the two sections."""
+    if s.compare:
+        main = {"map": ["map-a", "map-b", "diff"], "solid": ["solid-a", "solid-b"],
+                "albedo": ["albedo"]}[s.view]
+    else:
+        main = {"map": ["map-a"], "solid": ["solid-a"], "albedo": ["albedo"]}[s.view]
+    return main + ["incidence", "perpendicular"]
+
+
+def side_files(side: Side) -> list[str]:
+    """The data files (``path`` parameters, i.e. MERL files) a side needs in memory."""
+    return [str(side.values[p.name]) for p in side.spec.params
+            if p.kind == "path" and side.values.get(p.name)]
+
+
+def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
+                loading: dict[str, float], message: str) -> Text:
+    """θi, then each side's albedo and peak from the frame on screen when it is the current
+    state's (else "…"), then the view, scale, colour map and the last message."""
+    line = Text()
+    line.append(f"θi {s.theta_i:g}°", style="bold")
+    materials = tuple(x.material for x in s.sides)
+    files = [f for side in s.sides for f in side_files(side) if f in loading]
+    if files:
+        line.append(f"  loading {files[0]} {loading[files[0]]:.0%}", style="bold yellow")
+    elif frame is not None and (frame.request.materials, frame.request.theta_i,
+                                frame.request.cosine) == (materials, s.theta_i, s.cosine):
+        line.append_text(panes.stats_text(frame, s.view, look))
+    else:
+        for i in range(len(s.sides)):
+            line.append(f"  {'AB'[i]}: a=…" if s.compare else "  a(θi) …")
+    second = Text()
+    scale = "log (3 decades)" if s.log else "linear"
+    second.append(f"{VIEW_TITLES[s.view]} · {scale} · {s.cmap}"
+                  f"{' · f·cos θr' if s.cosine else ''}", style="dim")
+    if s.compare:
+        second.append(f" · keys → {'AB'[s.active]}", style="bold")
+    if message:
+        second.append(f"  {message}", style="bold yellow")
+    return Text("\n").join([line, second])
+
+
+def legend_text(s: ViewerState) -> Text:
+    """Compare mode: both materials in full, the shared scale, the preset, the tab key."""
+    t = Text()
+    for i, side in enumerate(s.sides):
+        t.append(f"{'AB'[i]}: ", style="bold")
+        t.append(s.describe(side) + "\n")
+    t.append("A and B share one colour scale.\n", style="dim")
+    if s.preset:
+        title = next(p.title for p in COMPARE_PRESETS if p.name == s.preset)
+        t.append(f"preset {title}\n", style="dim")
+    t.append("tab: keys act on the other side", style="dim")
+    return t

@@ -1,0 +1,266 @@
+"""Panes: one :class:`~tuibrdf.core.scene.FrameResult` in, Rich renderables out.
+
+Every number a pane shows comes from the result, so the panes agree: the map's title, its
+colour bar's top, the solid's scale and the status line show the same peak
+(:func:`shown_peak`: for an RGB model the luminance ``Y``, or the largest channel when the map
+shows the channels in colour, and the text says which); the cross-sections say "section max"
+(the largest value along the two planes, below the peak when it lies off them).  In compare
+mode both maps share one colour scale topped by the larger of the two peaks, and the bar says
+whose peak that is.
+
+=================  =================================================================
+:func:`pane`       dispatch by view name (``map``, ``incidence``, ``perpendicular``,
+                   ``solid``, ``albedo``; plus ``diff`` in compare mode)
+:func:`stats_text` the status line's numbers: albedo, energy flag, peak and direction
+=================  =================================================================
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+from rich.console import Group, RenderableType
+from rich.text import Text
+
+from ..core.conventions import exceeds_one, fmt_value, luminance
+from ..core.hemimap import geometry
+from ..core.peak import Peak
+from ..core.scene import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
+from .albedo_plot import albedo_plot
+from .colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize
+from .halfblock import HalfBlockImage, Mark
+from .polar import caption_parts, channel_curves, plot_body, polar_plot
+from .solid import solid_image
+from .text import INCIDENT_MARK, MIRROR_MARK, RING_RGB, mark_legend, title, where
+
+SIDE_LABELS = ("A", "B")
+#: diverging palette of the difference map: blue (B larger) – grey – red (A larger)
+DIVERGING = ((59, 76, 192), (221, 221, 221), (180, 4, 38))
+
+
+@dataclass(frozen=True)
+class Look:
+    """How the numbers are drawn (none of it changes a number)."""
+
+    color: str = "truecolor"  # truecolor | 256 | none
+    cmap: str = "grey"
+    log: bool = False
+    levels: int = DEFAULT_LEVELS
+    rgb_mode: str = "auto"  # auto | color | luminance
+    azimuth: float = -60.0  # the 3D solid's camera
+    elevation: float = 25.0
+
+    @property
+    def rgb(self) -> str:
+        """RGB pictures: channels in colour with the grey map, else the luminance (auto)."""
+        if self.rgb_mode == "auto":
+            return "color" if self.cmap == "grey" else "luminance"
+        return self.rgb_mode
+
+
+def shown_peak(side: SideFrame, view: str, look: Look) -> Peak:
+    """The peak the pictures of ``view`` are scaled by, and so the one every pane shows."""
+    return side.peaks[0] if view == "solid" else side.peak_for(look.rgb)
+
+
+def _label(res: FrameResult, k: int) -> str:
+    name = res.sides[k].material.name
+    return name if len(res.sides) == 1 else f"{SIDE_LABELS[k]}: {name}"
+
+
+def _unit(cosine: bool) -> str:
+    return "sr⁻¹·cos" if cosine else "sr⁻¹"
+
+
+def peak_text(peak: Peak, cosine: bool) -> str:
+    """``f peak 425 sr⁻¹`` (``… (Y)`` or ``(R)`` for an RGB model)."""
+    what = "f·cosθr" if cosine else "f"
+    ch = f" ({peak.label})" if peak.label else ""
+    return f"{what} peak {fmt_value(peak.value)} {_unit(cosine)}{ch}"
+
+
+def albedo_text(a) -> str:
+    if a is None:
+        return "…"
+    if isinstance(a, tuple):
+        return "(" + ",".join(fmt_value(x) for x in a) + ")"
+    return fmt_value(a)
+
+
+# ----------------------------------------------------------------------------------- map
+@lru_cache(maxsize=16)
+def ring_mask(px_w: int, px_h: int) -> np.ndarray:
+    """Pixels outside the disc that touch it (8-neighbourhood): the horizon ring."""
+    inside = geometry(px_w, px_h).inside
+    grown = inside.copy()
+    grown[1:] |= inside[:-1]
+    grown[:-1] |= inside[1:]
+    g2 = grown.copy()
+    g2[:, 1:] |= grown[:, :-1]
+    g2[:, :-1] |= grown[:, 1:]
+    ring = g2 & ~inside
+    ring.setflags(write=False)
+    return ring
+
+
+def map_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
+    """Title, half-block disc (× on the mirror direction, o on the light's) and colour bar,
+    on the frame's peak scale (shared by both sides in compare mode)."""
+    side = res.sides[k]
+    data, info = side.map
+    px_h, px_w = data.shape[:2]
+    cosine = res.request.cosine
+    peak = shown_peak(side, "map", look)
+    tops = [shown_peak(s, "map", look).value for s in res.sides]
+    top = max(tops)
+    note = f"({SIDE_LABELS[int(np.argmax(tops))]} peak)" if len(res.sides) > 1 else ""
+    scale = Scale(top if top > 0 else 1.0, look.log)  # an all-zero BRDF: the lowest colour
+    col = colorize(data, look.cmap, levels=look.levels, log=look.log, rgb_mode=look.rgb,
+                   scale=scale)
+    ring_index = len(col.palette)
+    index = np.where(ring_mask(px_w, px_h), ring_index, col.index)
+    pal = np.concatenate([col.palette, np.array([RING_RGB], dtype=np.uint8)])
+    marks = [Mark(info.mirror_px[0] // 2, info.mirror_px[1], **MIRROR_MARK)]
+    r, c = info.incident_px
+    if (r // 2, c) != (marks[0].row, marks[0].col):
+        marks.append(Mark(r // 2, c, **INCIDENT_MARK))
+    image = HalfBlockImage(index, pal, marks, color_system=look.color)
+    if info.vmin >= peak.value * (1.0 - 1e-12):  # Lambert: no "the" peak
+        what = "f·cosθr" if cosine else "f"
+        head, at = f"{what} = {fmt_value(peak.value)} {_unit(cosine)}", "everywhere"
+    else:
+        head, at = peak_text(peak, cosine), f"at {where(peak.theta_deg, peak.phi_deg)}"
+    bar_cmap = "grey" if (data.ndim == 3 and look.rgb == "color") else look.cmap
+    bar = colorbar(scale, bar_cmap, w, levels=look.levels, unit=_unit(cosine),
+                   color_system=look.color, note=note)
+    t = res.request.theta_i
+    head_line = title([(_label(res, k), 2), (f"θi={t:g}°", 3), (head, 0), (at, 1),
+                       (mark_legend(look.color), 4)], w)
+    return Group(head_line, image, bar)
+
+
+def diff_pane(res: FrameResult, w: int, h: int, look: Look) -> Group:
+    """A − B (luminance for RGB) on a diverging scale symmetric about 0."""
+    va, vb = (s.map[0] for s in res.sides)
+    d = (luminance(va) if va.ndim == 3 else va) - (luminance(vb) if vb.ndim == 3 else vb)
+    finite = np.isfinite(d)
+    m = float(np.max(np.abs(d[finite]))) if finite.any() else 0.0
+    m = m if m > 0 else 1.0  # identical sides: all mid-grey, no division by zero
+    t = np.clip(d / m * 0.5 + 0.5, 0.0, 1.0)
+    levels = min(look.levels, 32)
+    idx = np.where(finite, np.rint(np.nan_to_num(t) * (levels - 1)), -1).astype(np.int64)
+    stops = np.array(DIVERGING, dtype=float)
+    x = np.linspace(0, 1, levels)
+    pal = np.stack([np.interp(x, [0, 0.5, 1], stops[:, c]) for c in range(3)], -1)
+    img = HalfBlockImage(idx, np.rint(pal).astype(np.uint8), (), color_system=look.color)
+    head = title([("A − B", 1), (f"max |Δ| {fmt_value(m)}", 0)], w)
+    return Group(head, img, title([("red: A>B  blue: B>A", 0)], w))
+
+
+# ----------------------------------------------------------------------- cross-sections
+def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Group:
+    """The sides' values along ``plane`` (R, G, B curves for an RGB model alone), both planes
+    and both sides on one radius scale; the caption gives the section max."""
+    compare = len(res.sides) > 1
+    curves = []
+    for k, s in enumerate(res.sides):
+        name = s.material.name
+        for label, v in channel_curves(name, s.sections[plane]):
+            label = f"{SIDE_LABELS[k]}:{name}" if compare and label == name else label
+            curves.append((label, SECTION_THETAS, v))
+    vmax = max(s.section_max for s in res.sides)
+    t = res.request.theta_i
+    text, caption = polar_plot(curves, w, h - 1, log=look.log, color=look.color,
+                               theta_i_deg=t if plane == "incidence" else None, vmax=vmax)
+    if compare:
+        a, b = (s.material.name for s in res.sides)
+        parts = [(plane, 0), (f"A {a} vs B {b}", 2)]
+    else:
+        sides = "φ 180°|0°" if plane == "incidence" else "φ 270°|90°"
+        what = "f·cosθr" if res.request.cosine else "f"
+        parts = [(res.sides[0].material.name, 2), (f"θi={t:g}°", 3), (plane, 0),
+                 (f"({sides})", 4), (what, 1)]
+    return Group(title([*parts, *caption_parts(caption)], w), plot_body(text, look.color))
+
+
+# --------------------------------------------------------------------------------- solid
+def solid_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
+    """Title and the photometric solid as half blocks, its radius scale the frame's peak."""
+    side = res.sides[k]
+    peak = shown_peak(side, "solid", look)
+    index, pal = solid_image(side.solid, res.request.theta_i, w, 2 * (h - 1), rmax=peak.value,
+                             cmap=look.cmap, log=look.log, azimuth_deg=look.azimuth,
+                             elevation_deg=look.elevation)
+    what = "f·cosθr·wo" if res.request.cosine else "f·wo"
+    if look.log:
+        what += f" (log, {LOG_DECADES:g} decades)"
+    ch = f" ({peak.label})" if peak.label else ""
+    head = title([(_label(res, k), 2), (f"θi={res.request.theta_i:g}°", 3),
+                  (f"solid {what}, peak {fmt_value(peak.value)}{ch}", 0),
+                  (f"az {look.azimuth:g}° el {look.elevation:g}°", 4)], w)
+    return Group(head, HalfBlockImage(index, pal, color_system=look.color))
+
+
+# ---------------------------------------------------------------------------- albedo curve
+def albedo_pane(res: FrameResult, w: int, h: int, look: Look) -> RenderableType:
+    """a(θi) over 0–90° per side (channels for one RGB model, luminance in compare mode), θi
+    marked, the line a = 1 drawn; flagged when a curve exceeds 1 (+ the energy tolerance)."""
+    if any(s.curve is None for s in res.sides):
+        return Text("computing a(θi) over 0–90° …", justify="center")
+    t = res.request.theta_i
+    if len(res.sides) == 1:
+        s = res.sides[0]
+        curves = channel_curves(s.material.name, s.curve)
+    else:
+        curves = [(_label(res, k), luminance(s.curve) if s.curve.ndim == 2 else s.curve)
+                  for k, s in enumerate(res.sides)]
+    top = max(float(np.max(s.curve)) for s in res.sides)
+    over = any(exceeds_one(s.curve) for s in res.sides)
+    flag = f"a>1 (max {fmt_value(top)}): not energy-conserving" if over else ""
+    text = albedo_plot(CURVE_THETAS, curves, w, h - 1, theta_i_deg=t, color=look.color)
+    if len(res.sides) == 1:
+        parts = [(res.sides[0].material.name, 2),
+                 (f"a(θi={t:g}°) = {albedo_text(res.sides[0].albedo)}", 0), (flag, 1)]
+    else:
+        parts = [("directional albedo a(θi) = ∫ f cos θr dω", 0), ("(line: a = 1)", 2),
+                 (flag, 1)]
+    style = "bold red" if over and look.color != "none" else ""
+    return Group(title(parts, w, style=style), plot_body(text, look.color))
+
+
+# ---------------------------------------------------------------------------------- both
+def pane(view: str, res: FrameResult, k: int, w: int, h: int, look: Look) -> RenderableType:
+    """The renderable of ``view`` for side ``k`` in ``w × h`` cells."""
+    if view == "map":
+        return map_pane(res, k, w, h, look)
+    if view == "diff":
+        return diff_pane(res, w, h, look)
+    if view in ("incidence", "perpendicular"):
+        return section_pane(res, view, w, h, look)
+    if view == "solid":
+        return solid_pane(res, k, w, h, look)
+    if view == "albedo":
+        return albedo_pane(res, w, h, look)
+    raise ValueError(f"unknown pane {view!r}")
+
+
+def stats_text(res: FrameResult, view: str, look: Look) -> Text:
+    """``a(θi)=0.835  peak 0.703 (Y) at θ=90° φ=0°`` per side (``A: a=… B: a=…`` in compare
+    mode), the albedo flagged in red above 1 + the energy tolerance."""
+    compare = len(res.sides) > 1
+    line = Text()
+    for k, side in enumerate(res.sides):
+        tag = f"  {SIDE_LABELS[k]}:" if compare else " "
+        line.append(f"{tag} {'a' if compare else 'a(θi)'}={albedo_text(side.albedo)}")
+        if side.albedo is not None and exceeds_one(side.albedo):
+            line.append(" >1 NOT energy-conserving", style="bold red")
+        pk = shown_peak(side, view, look)
+        what = "f·cos peak" if res.request.cosine else "peak"
+        ch = f" ({pk.label})" if pk.label else ""
+        at = f"({round(pk.theta_deg)}°,{round(pk.phi_deg)}°)" if compare else \
+            f"at {where(pk.theta_deg, pk.phi_deg)}"
+        line.append(f"  {what} {fmt_value(pk.value)}{ch} {at}")
+    return line
+
