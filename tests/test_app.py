@@ -290,12 +290,23 @@ async def test_a_bad_measured_file_is_a_message_not_a_crash(tmp_path):
         assert app.state.theta_i == 31.0
 
 
-async def test_albedo_curve_is_computed_off_the_loop_then_drawn():
-    # a sharp lobe's curve takes ~0.5 s: the pane says so at once, then shows the curve
+async def test_albedo_curve_is_computed_off_the_loop_then_drawn(monkeypatch):
+    # while the curve is computed the pane says so at once, then shows the curve; the
+    # quadrature is held back by an event here, so the test sees the pane while it works
+    import threading
+
     from tuibrdf.core import scene
     from tuibrdf.core.material import Material
 
     scene.clear_caches()
+    release = threading.Event()
+    real = scene.albedo_curve_resolved
+
+    def held(*args, **kw):
+        release.wait(10.0)
+        return real(*args, **kw)
+
+    monkeypatch.setattr(scene, "albedo_curve_resolved", held)
 
     app = BrdfApp(ViewerState(sides=[Side.of("cook-torrance", {"m": 0.05, "kd": 0.1})]))
     async with app.run_test(size=(100, 30)) as pilot:
@@ -307,6 +318,7 @@ async def test_albedo_curve_is_computed_off_the_loop_then_drawn():
             return "\n".join(pane.render_line(y).text for y in range(pane.size.height))
 
         assert "computing" in shown()
+        release.set()
         m = Material("cook-torrance", {"m": 0.05, "kd": 0.1})
         assert await wait_for(pilot, lambda: scene._CURVES.peek(m) is not None, 500)
         drawn = lambda: "a(θi=30°) = " in shown() and "computing" not in shown()  # noqa: E731
