@@ -45,18 +45,18 @@ roughness  rough   0.5              [0, 1]      (disney-diffuse) retro-reflectio
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ..frame import Geometry, cos_dphi, theta_of
 from ..params import Model, Param
+from .common_params import BASE, KD
+from .common_params import ROUGHNESS as _ROUGHNESS
 
-KD = Param("kd", "Kd", 0.8, 0.0, 1.0, 0.01, doc="diffuse reflectance")
 SIGMA = Param("sigma", "σ", 20.0, 0.0, 90.0, 1.0, unit="deg",
               doc="facet slope standard deviation (roughness)")
-BASE = Param("base_color", "base", (0.8, 0.8, 0.8), 0.0, 1.0, 0.01, kind="rgb",
-             doc="base colour (linear RGB)")
-ROUGHNESS = Param("roughness", "rough", 0.5, 0.0, 1.0, 0.01,
-                  doc="roughness: raises grazing retro-reflection")
+ROUGHNESS = replace(_ROUGHNESS, doc="roughness: raises grazing retro-reflection")
 
 
 def above(wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
