@@ -139,6 +139,8 @@ def test_fresnel_ends_and_clipping():
     assert np.all(fresnel_mod.fresnel_exact(c, 1.0) == 1.0)
     assert_close(fresnel_mod.fresnel_exact(c[[0, 2]], 0.3), [1.0, 0.3], rtol=1e-12)
     assert_close(fresnel_mod.fresnel_schlick(c[[0, 2]], 0.3), [1.0, 0.3], rtol=1e-12)
+    assert np.all(fresnel_mod.fresnel_exact(c[[0, 2]], 0.0) == 0.0)
+    assert fresnel_mod.fresnel_schlick(c[2], 0.0) == 0.0  # never (1 − 1.0001)⁵ < 0
 
 
 @pytest.mark.parametrize("cos_psi, f0", [(0.8137, 0.04), (0.2311, (0.91, 0.52, 0.23))])
@@ -161,6 +163,7 @@ def test_index_from_f0():
 def test_lambert(pair):
     """Lambert 1760: f = kd/π everywhere in the closed upper hemisphere."""
     assert_close(value("lambert", {"kd": 0.37}, *pair), 0.37 / PI)
+    assert_close(value("lambert", {"kd": 0.37}, *pair[::-1]), 0.37 / PI)
 
 
 def test_lambert_below_the_horizon_is_zero():
@@ -275,6 +278,12 @@ CT_CASES = [
     ({"kd": 0.05, "f0": 0.61, "m": 0.45, "fresnel": "exact"}, GRAZING_SHADOW),
     ({"kd": 0.21, "f0": 0.08, "m": 0.6, "fresnel": "schlick"}, SAME),
     ({"kd": 0.0, "f0": 0.9, "m": 0.15, "fresnel": "exact"}, NEAR_NORMAL),
+    # far down a sharp lobe's tail: exp(−tan²θh/m²) = 7.6e-4, still a value
+    ({"kd": 0.0, "f0": 0.04, "m": 0.1, "fresnel": "schlick"},
+     (direction(37.0, 203.0), direction(67.0, 23.0))),
+    # the exact mirror at θ = 89°: H = N, G = 1, cosθi cosθo = 3e-4
+    ({"kd": 0.0, "f0": 0.04, "m": 0.2, "fresnel": "exact"},
+     (direction(89.0, 200.0), direction(89.0, 20.0))),
 ]
 
 
@@ -282,6 +291,19 @@ CT_CASES = [
 def test_cook_torrance(params, pair):
     want = cook_torrance_ref(params["kd"], params["f0"], params["m"], params["fresnel"], *pair)
     assert_close(value("cook-torrance", params, *pair), want)
+
+
+@pytest.mark.parametrize("kind", ["exact", "schlick"])
+def test_cook_torrance_nearly_opposite_grazing_directions(kind):
+    """θi = 89.95°, θo = 89.7° on opposite azimuths: H ≈ N (θh = 0.13°) but cos ψ = 0.003, so
+    the V-cavity min picks 2 cosθh cosθo / cosψ (masking) in one order and the shadowing term
+    in the other; G/(cosθi cosθo) is 1.25e5 there.  cos ψ = |wi + wo|/2 comes from a sum whose
+    horizontal parts cancel (to 0.3%), computed differently here and in the kernel: 1e-9."""
+    wi, wo = direction(89.95, 180.0), direction(89.7, 0.0)
+    params = {"kd": 0.0, "f0": 0.04, "m": 0.2, "fresnel": kind}
+    for a, b in ((wi, wo), (wo, wi)):
+        assert_close(value("cook-torrance", params, a, b),
+                     cook_torrance_ref(0.0, 0.04, 0.2, kind, a, b), rtol=1e-9)
 
 
 def test_vcavity_cases_cover_both_masking_and_shadowing():
@@ -333,9 +355,16 @@ def test_ggx_one_direction_on_the_horizon_is_the_limit():
     want = 0.1 / PI + f * ggx_d_ref(h, 0.5) / (2.0 * 0.5 * wi[2])
     for a, b in ((wi, wo), (wo, wi)):
         assert_close(value("ggx", {"kd": 0.1, "f0": 0.3, "alpha": 0.5}, a, b), want)
+    # the sharpest lobe, α = 0.001, just off the mirror (no diffuse term): the same limit
+    wi, wo = direction(30.0, 200.0), (math.cos(math.radians(20.01)),
+                                      math.sin(math.radians(20.01)), 0.0)
+    h = half(wi, wo)
+    want = fresnel_snell(dot(h, wi), 0.3) * ggx_d_ref(h, 1e-3) / (2.0 * 1e-3 * wi[2])
+    for a, b in ((wi, wo), (wo, wi)):
+        assert_close(value("ggx", {"kd": 0.0, "f0": 0.3, "alpha": 1e-3}, a, b), want)
 
 
-@pytest.mark.parametrize("cos_t, alpha", [(0.77, 0.3), (0.12, 0.65), (0.999, 0.05)])
+@pytest.mark.parametrize("cos_t, alpha", [(0.77, 0.3), (0.12, 0.65), (0.999, 0.05), (1e-4, 1e-3)])
 def test_smith_g1(cos_t, alpha):
     """G1 = 1/(1 + Λ) (Heitz eq. 43 with eq. 72)."""
     got = float(microfacet.ggx_g1(np.array(cos_t), np.array(1.0 - cos_t * cos_t), alpha))
@@ -445,7 +474,7 @@ def disney_ref(base, roughness, wi, wo) -> list[float]:
 
 
 @pytest.mark.parametrize("roughness, pair", [(0.5, BACK), (0.9, GRAZING_MIRROR), (0.15, SIDE),
-                                             (0.7, ON_HORIZON)])
+                                             (0.7, ON_HORIZON), (0.35, NEAR_NORMAL)])
 def test_disney_diffuse(roughness, pair):
     params = {"base_color": BASE, "roughness": roughness}
     assert_close(value("disney-diffuse", params, *pair), disney_ref(BASE, roughness, *pair))
@@ -478,7 +507,10 @@ def oren_nayar_ref(kd, sigma_deg, wi, wo, simple=False, clamp=True) -> float:
 
 
 ON_CASES = [(0.8, 20.0, BACK), (0.63, 35.0, SAME), (0.5, 50.0, SIDE), (0.9, 12.0, ON_HORIZON),
-            (0.44, 27.0, GRAZING_MIRROR)]
+            (0.44, 27.0, GRAZING_MIRROR),
+            # |cos Δφ| < 1e-3 on either side of 0: each side of the C2 switch
+            (0.7, 30.0, (direction(50.0, 10.0), direction(70.0, 100.03))),
+            (0.7, 30.0, (direction(50.0, 10.0), direction(70.0, 99.97)))]
 
 
 @pytest.mark.parametrize("kd, sigma, pair", ON_CASES)
@@ -506,6 +538,14 @@ def test_oren_nayar_clamps_where_the_formula_goes_negative():
     want = oren_nayar_ref(0.7, 90.0, wi, wo)
     assert want > 0.0
     assert_close(value("oren-nayar", {"kd": 0.7, "sigma": 90.0}, wi, wo), want)
+
+
+@pytest.mark.parametrize("model", ["oren-nayar", "oren-nayar-simple"])
+def test_oren_nayar_both_on_the_horizon_is_zero(model):
+    """θi = θo = 90°: tan β has no limit there; the documented value is 0 (SPEC §2)."""
+    wi = (math.cos(math.radians(200.0)), math.sin(math.radians(200.0)), 0.0)  # z exactly 0
+    wo = (math.cos(math.radians(35.0)), math.sin(math.radians(35.0)), 0.0)
+    assert value(model, {"kd": 0.8, "sigma": 20.0}, wi, wo) == 0.0
 
 
 # -- near the horizon: an independent evaluation with 60-digit decimals
@@ -583,6 +623,38 @@ def test_hiprec_functions():
         assert abs(hiprec.atan(hiprec.sqrt(3)) - pi / 3) < hiprec.D("1e-50")
         assert abs(hiprec.sin(pi / 6) - hiprec.D("0.5")) < hiprec.D("1e-50")
         assert abs(hiprec.cos(pi / 3) - hiprec.D("0.5")) < hiprec.D("1e-50")
+
+
+# ------------------------------------------------------------------------------ every model
+
+
+ANALYTIC = {"lambert": {}, "phong": {}, "blinn-phong": {}, "cook-torrance": {"kd": 0.2},
+            "oren-nayar": {}, "oren-nayar-simple": {}, "ggx": {"kd": 0.2}, "gltf": {},
+            "disney-diffuse": {}, "ue4": {}}
+
+
+@pytest.mark.parametrize("model", ANALYTIC)
+def test_below_the_horizon_is_zero(model):
+    """SPEC §2: a BRDF is defined on the upper hemisphere; a direction 1e-6 rad below the
+    horizon gives 0 (in either argument)."""
+    below = (math.cos(1e-6) * math.cos(0.4), math.cos(1e-6) * math.sin(0.4), -math.sin(1e-6))
+    for a, b in ((BACK[0], below), (below, BACK[0])):
+        assert np.all(np.asarray(value(model, ANALYTIC[model], a, b)) == 0.0)
+
+
+@pytest.mark.parametrize("model, params, diffuse", [
+    ("cook-torrance", {"kd": 0.2}, [0.2 / PI]),
+    ("ggx", {"kd": 0.2}, [0.2 / PI]),
+    ("gltf", {"base_color": BASE, "metallic": 0.3}, [0.0, 0.0, 0.0]),  # (1 − F) = 0 at ψ = 90°
+    ("ue4", {"base_color": BASE, "metallic": 0.3}, [b * 0.7 / PI for b in BASE]),
+    ("blinn-phong", {"kd": 0.0, "ks": 0.5, "n": 1.0}, [0.0]),
+])
+def test_opposite_directions_on_the_horizon_have_no_specular_term(model, params, diffuse):
+    """wi = −wo on the horizon: H is undefined; the specular term is 0 there (documented in
+    each model's horizon note), leaving the diffuse term."""
+    wi = (math.cos(math.radians(200.0)), math.sin(math.radians(200.0)), 0.0)  # z exactly 0
+    wo = (-wi[0], -wi[1], 0.0)
+    assert_close(value(model, params, wi, wo), diffuse if len(diffuse) > 1 else diffuse[0])
 
 
 # ------------------------------------------------------------------------------ MERL
