@@ -19,6 +19,7 @@ Usage::
     PYTHONPATH=$PWD python scripts/mutation_check.py --match oren --jobs 1
     PYTHONPATH=$PWD python scripts/mutation_check.py --json out.json   # per-mutant results
     PYTHONPATH=$PWD python scripts/mutation_check.py --rerun out.json  # only its survivors
+    PYTHONPATH=$PWD python scripts/mutation_check.py --report out.json # its summary again
 
 Exit status 1 if a mutant survives that is not in :data:`EQUIVALENT`.
 """
@@ -65,6 +66,9 @@ _UNIT = ("r = |w| = 1 to a few ulps for a direction: 'r > t' holds everywhere fo
 _BELOW = ("cos θ < 0 only below the horizon, where the result is replaced by 0 (g.above): "
           "the lower clip at −0.001 changes nothing that is returned")
 _UNIT_COS = "cos θ ≤ 1 for a unit vector: an upper clip at 1.001 never acts"
+_FLAT_TOP = ("equivalent to float64 precision: a clip of cos θ at 0.999 turns (1 − cos θ)⁵ < 1e-15 "
+             "into 1e-15, so 1 + (FD90 − 1)(1 − cos θ)⁵ moves by < 2e-15 relative, the size of "
+             "its rounding: no test of values can see it")
 EQUIVALENT: dict[str, str] = {
     f"{_MF}::beckmann_d::0.0#0::+": (
         "cos²θh ≤ 0.001 means tan²θh/m² ≥ 999 for m ≤ 1 (the parameter's range), and "
@@ -87,6 +91,8 @@ EQUIVALENT: dict[str, str] = {
     f"{_DF}::disney_diffuse::0.0#1::-": _BELOW,
     f"{_DF}::disney_diffuse::1.0#0::+": _UNIT_COS,
     f"{_DF}::disney_diffuse::1.0#1::+": _UNIT_COS,
+    f"{_DF}::disney_diffuse::1.0#0::-": _FLAT_TOP,
+    f"{_DF}::disney_diffuse::1.0#1::-": _FLAT_TOP,
     f"{_MM}::ue4::0.0#0::+": "fill below the horizon, replaced by 0 in the result (g.above)",
     f"{_MM}::ue4::0.0#0::-": "fill below the horizon, replaced by 0 in the result (g.above)",
     "tuibrdf/core/models/phong.py::blinn_phong::0.0#0::-": (
@@ -213,18 +219,25 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--timeout", type=float, default=600.0)
     ap.add_argument("--match", default="", help="only mutants whose key contains this")
-    ap.add_argument("--rerun", type=Path, help="only the mutants that were not killed in this "
-                    "earlier --json output")
+    ap.add_argument("--rerun", type=Path, help="run again only the mutants that this earlier "
+                    "--json output did not kill (the others count as killed in the summary)")
+    ap.add_argument("--report", type=Path, help="only print the summary of this earlier --json "
+                    "output (with the current list of equivalent mutants)")
     ap.add_argument("--list", action="store_true", help="list the mutants and stop")
     ap.add_argument("--json", type=Path, help="write the per-mutant results here")
     args = ap.parse_args(argv)
+    if args.report:
+        return report(args.report, args.delta)
     stages = [args.tests] if args.tests else STAGES
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(3))  # clean the temporary copies up
 
     mutants = [m for f in args.files for m in find_mutants(f, args.delta) if args.match in m.key]
+    earlier: list[tuple[Mutant, str, str]] = []
     if args.rerun:
-        keep = {r["key"] for r in json.loads(args.rerun.read_text()) if r["status"] != "killed"}
-        mutants = [m for m in mutants if m.key in keep]
+        before = {r["key"]: r for r in json.loads(args.rerun.read_text())}
+        earlier = [(m, "killed", before[m.key]["pytest"]) for m in mutants
+                   if before.get(m.key, {}).get("status") == "killed"]
+        mutants = [m for m in mutants if before.get(m.key, {}).get("status") != "killed"]
     if args.list:
         for m in mutants:
             print(f"{m.path}:{m.line}:{m.col}  {m.key}  {m.literal} -> {m.replacement}")
@@ -271,9 +284,25 @@ def main(argv: list[str] | None = None) -> int:
                       f"{m.literal} -> {m.replacement}  ({m.key})", flush=True)
         elapsed = time.perf_counter() - start
 
+    if earlier:
+        print(f"(and {len(earlier)} mutants killed in {args.rerun})")
+    results = earlier + results
+    survived = summarize(results, f"delta {args.delta:g}, {elapsed:.0f} s")
+    if args.json:
+        args.json.write_text(json.dumps([
+            {"key": m.key, "file": m.path, "line": m.line, "literal": m.literal,
+             "mutant": m.replacement, "status": s, "pytest": out} for m, s, out in results],
+            indent=1))
+    return 1 if survived else 0
+
+
+def summarize(results: list[tuple[Mutant, str, str]], note: str) -> list[Mutant]:
+    """Print the equivalent and surviving mutants and the kill rate; return the survivors.
+    A mutant that was not killed counts as equivalent if :data:`EQUIVALENT` explains it."""
     killed = sum(s == "killed" for _, s, _ in results)
-    equivalent = [(m, EQUIVALENT[m.key]) for m, s, _ in results if s == "equivalent"]
-    survived = [m for m, s, _ in results if s == "SURVIVED"]
+    equivalent = [(m, EQUIVALENT[m.key]) for m, s, _ in results
+                  if s != "killed" and m.key in EQUIVALENT]
+    survived = [m for m, s, _ in results if s != "killed" and m.key not in EQUIVALENT]
     print()
     for m, why in equivalent:
         print(f"equivalent: {m.key}: {why}")
@@ -281,15 +310,22 @@ def main(argv: list[str] | None = None) -> int:
         print(f"SURVIVED:   {m.path}:{m.line}  {m.literal} -> {m.replacement}  ({m.key})")
     n = len(results)
     rate = killed / (n - len(equivalent)) if n > len(equivalent) else 1.0
-    print(f"\n{n} mutants (delta {args.delta:g}): {killed} killed, {len(equivalent)} equivalent, "
-          f"{len(survived)} survived; kill rate {100 * rate:.1f}% of non-equivalent mutants "
-          f"({elapsed:.0f} s)")
-    if args.json:
-        args.json.write_text(json.dumps([
-            {"key": m.key, "file": m.path, "line": m.line, "literal": m.literal,
-             "mutant": m.replacement, "status": s, "pytest": out} for m, s, out in results],
-            indent=1))
-    return 1 if survived else 0
+    print(f"\n{n} mutants ({note}): {killed} killed, {len(equivalent)} equivalent, "
+          f"{len(survived)} survived; kill rate {100 * rate:.1f}% of non-equivalent mutants")
+    return survived
+
+
+def report(path: Path, delta: float) -> int:
+    """The summary of an earlier ``--json`` output, with today's :data:`EQUIVALENT`."""
+    mutants = {m.key: m for f in FILES for m in find_mutants(f, delta)}
+    records = json.loads(path.read_text())
+    unknown = [r["key"] for r in records if r["key"] not in mutants]
+    if unknown:
+        print(f"{len(unknown)} mutants of {path} no longer exist (the code changed): run again",
+              file=sys.stderr)
+        return 2
+    results = [(mutants[r["key"]], r["status"], r["pytest"]) for r in records]
+    return 1 if summarize(results, f"from {path}") else 0
 
 
 if __name__ == "__main__":
