@@ -333,3 +333,14 @@ def test_hemisphere_rule_sanity():
     d, w = hemisphere_rule()
     assert w.sum() == pytest.approx(2 * math.pi, rel=1e-14)
     assert (w * d[:, 2]).sum() == pytest.approx(math.pi, rel=1e-14)
+
+
+def test_a_parameter_name_means_one_declaration():
+    """Parameters shared by several models are declared once (core/models/common_params.py):
+    wherever a name recurs, only its default and one-line doc may differ."""
+    seen = {}
+    for m in MODELS.values():
+        for p in m.params:
+            key = (p.symbol, p.kind, p.min, p.max, p.step, p.unit, p.choices, p.coarse_step)
+            assert seen.setdefault(p.name, (m.name, key))[1] == key, (
+                f"{p.name}: {m.name} and {seen[p.name][0]} declare it differently")

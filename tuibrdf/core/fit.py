@@ -263,14 +263,6 @@ class Fit:
     seconds: float
     n_samples: int
 
-    def rgb(self, wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
-        """The fitted model as RGB, ``(..., 3)`` (a ``mean`` fit is grey)."""
-        with kernel_errstate():
-            if self.model.rgb:
-                return evaluate_resolved(self.model, self.params[0], wi, wo)
-            f = [evaluate_resolved(self.model, v, wi, wo) for v in self.params]
-            return np.stack(f * (3 // len(f)), axis=-1)
-
 
 def fit(data: MerlData, model: str | Model, *, fixed: Mapping[str, Any] | None = None,
         stride: tuple[int, int, int] = STRIDE, mean: bool = False) -> Fit:

@@ -65,12 +65,6 @@ def ggx_lambda_cos(cos_t: np.ndarray, sin2_t: np.ndarray, alpha: float) -> np.nd
     return safe_div(a2s2, den, den > 0.0)  # den = 0 only if sin = cos = 0: not a direction
 
 
-def ggx_lambda(cos_t: np.ndarray, sin2_t: np.ndarray, alpha: float) -> np.ndarray:
-    """Smith Λ for GGX; +inf on the horizon (G1 = 0 there)."""
-    lc = ggx_lambda_cos(cos_t, sin2_t, alpha)
-    return safe_div(lc, cos_t, cos_t > 0.0, fill=np.inf)
-
-
 def ggx_g1(cos_t: np.ndarray, sin2_t: np.ndarray, alpha: float) -> np.ndarray:
     """``G1 = 1/(1 + Λ) = cos/(cos + cosΛ)``; 0 on the horizon."""
     den = cos_t + ggx_lambda_cos(cos_t, sin2_t, alpha)
@@ -90,12 +84,6 @@ def ggx_g2_over_cos(
         cos_o, sin2_o, alpha
     )
     return safe_div(0.25, den, den > 0.0)
-
-
-def vcavity_g(cos_h: np.ndarray, cos_i: np.ndarray, cos_o: np.ndarray, cos_psi: np.ndarray):
-    """Cook-Torrance's V-cavity shadowing/masking (cos ψ = H·wi = H·wo)."""
-    inv = safe_div(2.0 * cos_h, cos_psi, cos_psi > 0.0, fill=np.inf)
-    return np.clip(np.minimum(cos_i * inv, cos_o * inv), 0.0, 1.0)
 
 
 def vcavity_g_over_cos(cos_h, cos_i, cos_o, cos_psi):

@@ -17,10 +17,6 @@ import numpy as np
 #: The one errstate policy of the package (see module docstring).
 ERRSTATE = {"divide": "raise", "over": "raise", "invalid": "raise", "under": "ignore"}
 
-#: Smallest cosine treated as "above the horizon" in denominators.  Only used to keep a
-#: masked-out branch of ``np.where`` finite; the masked value itself is always replaced.
-TINY = 1e-300
-
 
 def kernel_errstate() -> np.errstate:
     """Context manager applying :data:`ERRSTATE`."""

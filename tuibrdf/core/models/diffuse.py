@@ -45,18 +45,19 @@ roughness  rough   0.5              [0, 1]      (disney-diffuse) retro-reflectio
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
-from ..frame import Geometry, cos_dphi, theta_of
+from ..frame import Geometry, cos_dphi, cos_theta, sin2_theta, theta_of
+from ..numerics import safe_div, safe_sqrt
 from ..params import Model, Param
+from .common_params import BASE, KD
+from .common_params import ROUGHNESS as _ROUGHNESS
 
-KD = Param("kd", "Kd", 0.8, 0.0, 1.0, 0.01, doc="diffuse reflectance")
 SIGMA = Param("sigma", "σ", 20.0, 0.0, 90.0, 1.0, unit="deg",
               doc="facet slope standard deviation (roughness)")
-BASE = Param("base_color", "base", (0.8, 0.8, 0.8), 0.0, 1.0, 0.01, kind="rgb",
-             doc="base colour (linear RGB)")
-ROUGHNESS = Param("roughness", "rough", 0.5, 0.0, 1.0, 0.01,
-                  doc="roughness: raises grazing retro-reflection")
+ROUGHNESS = replace(_ROUGHNESS, doc="roughness: raises grazing retro-reflection")
 
 
 def above(wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
@@ -75,18 +76,47 @@ def oren_nayar_ab(sigma: float) -> tuple[float, float]:
 
 
 class _AlphaBeta:
-    """α = max(θi, θo), β = min(θi, θo), cos Δφ, and where tan β is finite."""
+    """α = max(θi, θo), β = min(θi, θo), cos Δφ, tan β, tan((α+β)/2), sin α, and where they
+    are finite.
+
+    The tangents and sin α come from the vectors' components, not from ``tan`` of an ``atan2``
+    angle: near the horizon θ = π/2 − ε is rounded to an absolute 2e-16, so ``tan θ ≈ 1/ε``
+    would carry a relative error of 2e-16/ε (1e-7 at ε = 1e-9).  With s = sin θ and c = cos θ
+    of each direction (normalised by its length, so they are exactly those of ``atan2(s, c)``):
+
+        tan β = min(si/ci, so/co)                      (tan increases on [0, π/2])
+        sin α = max(si, so)                            (sin increases on [0, π/2])
+        tan((α+β)/2) = (sin α + sin β)/(cos α + cos β) = (si + so)/(ci + co)
+
+    each symmetric in (wi, wo) to the last bit, so the model stays exactly reciprocal.
+    """
 
     def __init__(self, wi: np.ndarray, wo: np.ndarray):
         ti, to = theta_of(wi), theta_of(wo)
         self.alpha = np.maximum(ti, to)
         self.beta = np.minimum(ti, to)
         self.cos_dphi = cos_dphi(wi, wo)
-        # both on the horizon: β = 90°, tan β and tan((α+β)/2) have no limit → value 0
+        # both on the horizon (β rounds to 90°): tan β and tan((α+β)/2) have no limit → value 0
         self.ok = above(wi, wo) & (self.beta < np.pi / 2)
-        beta = np.where(self.ok, self.beta, 0.0)  # keep the masked-out tan finite
-        self.tan_beta = np.tan(beta)
-        self.tan_mean = np.tan(0.5 * (np.where(self.ok, self.alpha, 0.0) + beta))
+        si, ci = _sin_cos(wi)
+        so, co = _sin_cos(wo)
+        # θ < π/2 as a double means c/s ≳ 1e-16, so s/c ≤ ~1e16; θ rounded to π/2 (c = 0 or c
+        # tiny): tan θ = ∞, never the smaller tangent where ``ok`` holds
+        tan_i = safe_div(si, ci, ti < np.pi / 2, fill=np.inf)
+        tan_o = safe_div(so, co, to < np.pi / 2, fill=np.inf)
+        self.tan_beta = np.where(self.ok, np.minimum(tan_i, tan_o), 0.0)
+        self.sin_alpha = np.maximum(si, so)
+        # ci + co > 0 wherever ``ok`` holds (at least one direction is above the horizon)
+        self.tan_mean = safe_div(si + so, ci + co, self.ok)
+
+
+def _sin_cos(w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(sin θ, cos θ)`` of a direction from its components, divided by its length (≥ 0 for
+    z ≥ 0; the length of a direction is never 0)."""
+    s = safe_sqrt(sin2_theta(w))
+    c = cos_theta(w)
+    r = np.hypot(s, c)
+    return safe_div(s, r, r > 0.0), safe_div(c, r, r > 0.0)
 
 
 def oren_nayar(wi: np.ndarray, wo: np.ndarray, kd: float, sigma: float) -> np.ndarray:
@@ -95,7 +125,7 @@ def oren_nayar(wi: np.ndarray, wo: np.ndarray, kd: float, sigma: float) -> np.nd
     s2 = sigma * sigma
     cphi = ab.cos_dphi
     two_beta_pi = 2.0 * ab.beta / np.pi
-    sin_alpha = np.sin(ab.alpha)
+    sin_alpha = ab.sin_alpha
     c2 = np.where(cphi >= 0.0, b * sin_alpha, b * (sin_alpha - two_beta_pi**3))
     c3 = 0.125 * s2 / (s2 + 0.09) * (4.0 * ab.alpha * ab.beta / np.pi**2) ** 2
     single = kd / np.pi * (a + c2 * cphi * ab.tan_beta + c3 * (1.0 - np.abs(cphi)) * ab.tan_mean)
@@ -107,7 +137,7 @@ def oren_nayar(wi: np.ndarray, wo: np.ndarray, kd: float, sigma: float) -> np.nd
 def oren_nayar_simple(wi: np.ndarray, wo: np.ndarray, kd: float, sigma: float) -> np.ndarray:
     ab = _AlphaBeta(wi, wo)
     a, b = oren_nayar_ab(sigma)
-    f = kd / np.pi * (a + b * np.maximum(0.0, ab.cos_dphi) * np.sin(ab.alpha) * ab.tan_beta)
+    f = kd / np.pi * (a + b * np.maximum(0.0, ab.cos_dphi) * ab.sin_alpha * ab.tan_beta)
     return np.where(ab.ok, f, 0.0)
 
 

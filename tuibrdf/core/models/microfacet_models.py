@@ -46,6 +46,8 @@ are 0 there is no limit and the specular term is 0.  All four are reciprocal.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ..frame import Geometry
@@ -61,19 +63,18 @@ from ..microfacet import (
 )
 from ..numerics import safe_div
 from ..params import Model, Param
+from .common_params import BASE, KD
+from .common_params import ROUGHNESS as _ROUGHNESS
 
-KD0 = Param("kd", "Kd", 0.0, 0.0, 1.0, 0.01, doc="diffuse reflectance")
+KD0 = replace(KD, default=0.0)
 F0 = Param("f0", "F0", 0.04, 0.0, 1.0, 0.01, doc="Fresnel reflectance at normal incidence")
 M = Param("m", "m", 0.2, 0.001, 1.0, 0.005, coarse=0.05, doc="Beckmann RMS slope (roughness)")
 ALPHA = Param("alpha", "α", 0.2, ALPHA_MIN, 1.0, 0.005, coarse=0.05,
               doc="GGX width (roughness²)")
 FRESNEL = Param("fresnel", "F", "exact", kind="choice", choices=("exact", "schlick"),
                 doc="Fresnel: exact unpolarised dielectric or Schlick")
-BASE = Param("base_color", "base", (0.8, 0.8, 0.8), 0.0, 1.0, 0.01, kind="rgb",
-             doc="base colour (linear RGB)")
 METALLIC = Param("metallic", "metal", 0.0, 0.0, 1.0, 0.01, doc="0 dielectric, 1 metal")
-ROUGHNESS = Param("roughness", "rough", 0.5, 0.0, 1.0, 0.01,
-                  doc=f"perceptual roughness; α = roughness², floored at {ALPHA_MIN}")
+ROUGHNESS = replace(_ROUGHNESS, doc=f"perceptual roughness; α = roughness², floored at {ALPHA_MIN}")
 
 
 def _specular(g: Geometry, d: np.ndarray, g_over_cos: np.ndarray) -> np.ndarray:

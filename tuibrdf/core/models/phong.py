@@ -24,13 +24,16 @@ Constraint: kd + ks ≤ 1.  Both are finite on the horizon (no division by a cos
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ..frame import half_vector
 from ..params import Model, Param, sum_at_most_one
+from . import common_params
 from .diffuse import above
 
-KD = Param("kd", "Kd", 0.2, 0.0, 1.0, 0.01, doc="diffuse reflectance")
+KD = replace(common_params.KD, default=0.2)
 KS = Param("ks", "Ks", 0.5, 0.0, 1.0, 0.01, doc="specular reflectance")
 N = Param("n", "n", 20.0, 0.0, 10000.0, 1.0, coarse=10.0,
           doc="lobe exponent: larger is higher and narrower")

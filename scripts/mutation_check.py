@@ -1,0 +1,332 @@
+"""Mutation check: does changing any one constant of any model formula fail a core test?
+
+For every numeric literal in the formula modules (``tuibrdf/core/fresnel.py``,
+``tuibrdf/core/microfacet.py``, ``tuibrdf/core/models/*.py``) this makes two mutants, the
+literal scaled by ``1 ± delta`` (a zero becomes ``± delta``), one at a time, in a temporary copy
+of the package, and runs the non-snapshot core tests on each (``pytest -x``: the first failure
+kills the mutant).  A mutant that passes every test *survives*: either a test is missing, or
+the mutant is equivalent (the changed constant cannot change any result); the equivalent ones
+are listed in :data:`EQUIVALENT` with the reason, everything else is reported as a survivor.
+
+Not mutated: arguments of the declarations ``Param(...)``, ``Model(...)``, ``replace(...)``
+(defaults, ranges and steps: the docs test checks those), subscript indices and ``axis=``
+(they pick a component, they are not constants of a formula).
+
+Usage::
+
+    PYTHONPATH=$PWD python scripts/mutation_check.py            # all mutants, 2 workers
+    PYTHONPATH=$PWD python scripts/mutation_check.py --list     # only list them
+    PYTHONPATH=$PWD python scripts/mutation_check.py --match oren --jobs 1
+    PYTHONPATH=$PWD python scripts/mutation_check.py --json out.json   # per-mutant results
+    PYTHONPATH=$PWD python scripts/mutation_check.py --rerun out.json  # only its survivors
+    PYTHONPATH=$PWD python scripts/mutation_check.py --report out.json # its summary again
+
+Exit status 1 if a mutant survives that is not in :data:`EQUIVALENT`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import ast
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+FILES = ["tuibrdf/core/fresnel.py", "tuibrdf/core/microfacet.py",
+         *sorted(str(p.relative_to(ROOT)) for p in (ROOT / "tuibrdf/core/models").glob("*.py"))]
+#: the non-snapshot core tests, in stages: a mutant that survives a stage runs the next one
+#: (the slow hypothesis stability suite only runs for the few mutants the fast tests miss)
+STAGES = [["tests/test_reference_values.py", "tests/test_models.py"], ["tests/test_stability.py"]]
+DECLARATIONS = {"Param", "Model", "replace", "Constraint"}
+
+#: Mutants that cannot change any result, keyed as printed (``file::function::literal#k::±``),
+#: with the reason.  Most are guards whose threshold cannot matter for unit directions and the
+#: parameters' ranges, or fills that a later ``np.where`` replaces.
+_MF = "tuibrdf/core/microfacet.py"
+_DF = "tuibrdf/core/models/diffuse.py"
+_MM = "tuibrdf/core/models/microfacet_models.py"
+_GGX_DEN = ("den = 2(cos θ + √(cos²θ + α² sin²θ)) ≥ 2α ≥ 0.002 for a unit vector and "
+            "α ≥ ALPHA_MIN = 0.001: 'den > t' holds everywhere for any t < 0.002")
+_VC_FILL = ("G/(cos cos) is infinite only where both cosines are 0 (then H is on the horizon and "
+            "Beckmann D = 0 multiplies it) or H is undefined (_specular gives 0 there): the fill "
+            "never reaches a result")
+_TAN_FILL = ("tan β's fill where `ok` is False: oren_nayar and oren_nayar_simple return "
+             "np.where(ab.ok, ..., 0.0), so the filled elements never reach a result")
+_UNIT = ("r = |w| = 1 to a few ulps for a direction: 'r > t' holds everywhere for any "
+         "t in (−1, 1)")
+_BELOW = ("cos θ < 0 only below the horizon, where the result is replaced by 0 (g.above): "
+          "the lower clip at −0.001 changes nothing that is returned")
+_UNIT_COS = "cos θ ≤ 1 for a unit vector: an upper clip at 1.001 never acts"
+_FLAT_TOP = ("equivalent to float64 precision: a clip of cos θ at 0.999 turns (1 − cos θ)⁵ < 1e-15 "
+             "into 1e-15, so 1 + (FD90 − 1)(1 − cos θ)⁵ moves by < 2e-15 relative, the size of "
+             "its rounding: no test of values can see it")
+EQUIVALENT: dict[str, str] = {
+    f"{_MF}::beckmann_d::0.0#0::+": (
+        "cos²θh ≤ 0.001 means tan²θh/m² ≥ 999 for m ≤ 1 (the parameter's range), and "
+        "exp(−999) is 0 in float64 (exp underflows below −745): D is 0 with or without the "
+        "guard"),
+    f"{_MF}::ggx_lambda_cos::0.0#0::+": _GGX_DEN,
+    f"{_MF}::ggx_lambda_cos::0.0#0::-": _GGX_DEN,
+    f"{_MF}::ggx_g1::0.0#0::-": (
+        "den = cos θ + cos θ·Λ > 0 for every direction (α sin θ/2 > 0 on the horizon): "
+        "'den > −0.001' selects the same elements as 'den > 0'"),
+    f"{_MF}::vcavity_g_over_cos::0.0#3::+": _VC_FILL,
+    f"{_MF}::vcavity_g_over_cos::0.0#3::-": _VC_FILL,
+    f"{_DF}::_AlphaBeta.__init__::0.0#0::+": _TAN_FILL,
+    f"{_DF}::_AlphaBeta.__init__::0.0#0::-": _TAN_FILL,
+    f"{_DF}::_sin_cos::0.0#0::+": _UNIT,
+    f"{_DF}::_sin_cos::0.0#0::-": _UNIT,
+    f"{_DF}::_sin_cos::0.0#1::+": _UNIT,
+    f"{_DF}::_sin_cos::0.0#1::-": _UNIT,
+    f"{_DF}::disney_diffuse::0.0#0::-": _BELOW,
+    f"{_DF}::disney_diffuse::0.0#1::-": _BELOW,
+    f"{_DF}::disney_diffuse::1.0#0::+": _UNIT_COS,
+    f"{_DF}::disney_diffuse::1.0#1::+": _UNIT_COS,
+    f"{_DF}::disney_diffuse::1.0#0::-": _FLAT_TOP,
+    f"{_DF}::disney_diffuse::1.0#1::-": _FLAT_TOP,
+    f"{_MM}::ue4::0.0#0::+": "fill below the horizon, replaced by 0 in the result (g.above)",
+    f"{_MM}::ue4::0.0#0::-": "fill below the horizon, replaced by 0 in the result (g.above)",
+    "tuibrdf/core/models/phong.py::blinn_phong::0.0#0::-": (
+        "N·H = −0.001 where H is undefined: lobe_power gives 0 for c ≤ 0, as for c = 0"),
+}
+
+
+@dataclass(frozen=True)
+class Mutant:
+    path: str
+    line: int
+    col: int
+    end_col: int
+    scope: str
+    literal: str
+    occurrence: int
+    sign: str
+    replacement: str
+
+    @property
+    def key(self) -> str:
+        return f"{self.path}::{self.scope}::{self.literal}#{self.occurrence}::{self.sign}"
+
+
+def _mutated_value(value: float, sign: str, delta: float) -> str:
+    if value == 0:
+        new = delta if sign == "+" else -delta
+    else:
+        new = value * (1.0 + delta) if sign == "+" else value * (1.0 - delta)
+    return f"({new!r})"
+
+
+def find_mutants(path: str, delta: float) -> list[Mutant]:
+    """Every mutable numeric literal of ``path`` (see the module docstring), two mutants each."""
+    source = (ROOT / path).read_text()
+    tree = ast.parse(source)
+    skip: set[int] = set()  # id() of Constant nodes that are not formula constants
+    scope_of: dict[int, str] = {}
+
+    def mark(node: ast.AST) -> None:
+        for sub in ast.walk(node):
+            if isinstance(sub, ast.Constant):
+                skip.add(id(sub))
+
+    def visit(node: ast.AST, scope: str) -> None:
+        if isinstance(node, ast.FunctionDef | ast.ClassDef):
+            scope = f"{scope}.{node.name}" if scope != "<module>" else node.name
+        if isinstance(node, ast.Call):
+            name = node.func.id if isinstance(node.func, ast.Name) else getattr(
+                node.func, "attr", "")
+            if name in DECLARATIONS:
+                mark(node)
+            for kw in node.keywords:
+                if kw.arg == "axis":
+                    mark(kw.value)
+        if isinstance(node, ast.Subscript):
+            mark(node.slice)
+        if isinstance(node, ast.Constant):
+            scope_of[id(node)] = scope
+        for child in ast.iter_child_nodes(node):
+            visit(child, scope)
+
+    visit(tree, "<module>")
+    mutants = []
+    seen: dict[tuple[str, str], int] = {}
+    lines = source.splitlines()
+    constants = [node for node in ast.walk(tree)
+                 if isinstance(node, ast.Constant) and type(node.value) in (int, float)
+                 and id(node) not in skip]
+    for node in sorted(constants, key=lambda n: (n.lineno, n.col_offset)):  # k in source order
+        text = lines[node.lineno - 1][node.col_offset:node.end_col_offset]
+        scope = scope_of[id(node)]
+        k = seen.get((scope, text), 0)
+        seen[(scope, text)] = k + 1
+        for sign in "+-":
+            mutants.append(Mutant(path, node.lineno, node.col_offset, node.end_col_offset, scope,
+                                  text, k, sign, _mutated_value(node.value, sign, delta)))
+    mutants.sort(key=lambda m: (m.path, m.line, m.col, m.sign))
+    return mutants
+
+
+def apply(source: str, m: Mutant) -> str:
+    lines = source.splitlines(keepends=True)
+    line = lines[m.line - 1]
+    lines[m.line - 1] = line[:m.col] + m.replacement + line[m.end_col:]
+    return "".join(lines)
+
+
+def make_copy(dest: Path) -> None:
+    for name in ("tuibrdf", "tests"):
+        shutil.copytree(ROOT / name, dest / name,
+                        ignore=shutil.ignore_patterns("__pycache__", "__snapshots__", "golden"))
+    shutil.copy(ROOT / "pyproject.toml", dest / "pyproject.toml")
+
+
+def run_stages(workdir: Path, stages: list[list[str]], timeout: float) -> tuple[int, str]:
+    """Run the stages in order until one fails: ``(exit status, pytest's last line)``."""
+    code, summary = 0, ""
+    for tests in stages:
+        code, summary = run_tests(workdir, tests, timeout)
+        if code != 0:
+            break
+    return code, summary
+
+
+def run_tests(workdir: Path, tests: list[str], timeout: float) -> tuple[int, str]:
+    shutil.rmtree(workdir / ".hypothesis", ignore_errors=True)  # no replay between mutants
+    env = dict(os.environ, PYTHONPATH=str(workdir), PYTHONDONTWRITEBYTECODE="1")
+    cmd = [sys.executable, "-m", "pytest", "-q", "-x", "-p", "no:cacheprovider", *tests]
+    try:
+        r = subprocess.run(cmd, cwd=workdir, env=env, capture_output=True, text=True,
+                           timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return -1, "timeout"
+    last = [ln for ln in r.stdout.splitlines() if ln.strip()]
+    return r.returncode, (last[-1] if last else r.stderr.strip()[-200:])
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--files", nargs="+", default=FILES)
+    ap.add_argument("--tests", nargs="+", help="one stage of these tests instead of the default")
+    ap.add_argument("--delta", type=float, default=1e-3, help="relative change (default 1e-3)")
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--timeout", type=float, default=600.0)
+    ap.add_argument("--match", default="", help="only mutants whose key contains this")
+    ap.add_argument("--rerun", type=Path, help="run again only the mutants that this earlier "
+                    "--json output did not kill (the others count as killed in the summary)")
+    ap.add_argument("--report", type=Path, help="only print the summary of this earlier --json "
+                    "output (with the current list of equivalent mutants)")
+    ap.add_argument("--list", action="store_true", help="list the mutants and stop")
+    ap.add_argument("--json", type=Path, help="write the per-mutant results here")
+    args = ap.parse_args(argv)
+    if args.report:
+        return report(args.report, args.delta)
+    stages = [args.tests] if args.tests else STAGES
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(3))  # clean the temporary copies up
+
+    mutants = [m for f in args.files for m in find_mutants(f, args.delta) if args.match in m.key]
+    earlier: list[tuple[Mutant, str, str]] = []
+    if args.rerun:
+        before = {r["key"]: r for r in json.loads(args.rerun.read_text())}
+        earlier = [(m, "killed", before[m.key]["pytest"]) for m in mutants
+                   if before.get(m.key, {}).get("status") == "killed"]
+        mutants = [m for m in mutants if before.get(m.key, {}).get("status") != "killed"]
+    if args.list:
+        for m in mutants:
+            print(f"{m.path}:{m.line}:{m.col}  {m.key}  {m.literal} -> {m.replacement}")
+        print(f"{len(mutants)} mutants")
+        return 0
+
+    with tempfile.TemporaryDirectory(prefix="tuibrdf-mutants-") as tmp:
+        workers = []
+        for j in range(max(1, args.jobs)):
+            d = Path(tmp) / f"w{j}"
+            make_copy(d)
+            workers.append(d)
+        start = time.perf_counter()
+        code, summary = run_tests(workers[0], [t for s in stages for t in s], args.timeout)
+        if code != 0:
+            print(f"baseline fails ({summary}): fix the tests first", file=sys.stderr)
+            return 2
+        print(f"baseline passes ({summary}, {time.perf_counter() - start:.1f} s); "
+              f"{len(mutants)} mutants, {len(workers)} workers", flush=True)
+
+        free = list(workers)
+        results: list[tuple[Mutant, str, str]] = []
+
+        def run_one(m: Mutant):
+            d = free.pop()
+            try:
+                target = d / m.path
+                original = target.read_text()
+                target.write_text(apply(original, m))
+                try:
+                    code, summary = run_stages(d, stages, args.timeout)
+                finally:
+                    target.write_text(original)
+            finally:
+                free.append(d)
+            status = "killed" if code != 0 else (
+                "equivalent" if m.key in EQUIVALENT else "SURVIVED")
+            return m, status, summary
+
+        with ThreadPoolExecutor(max_workers=len(workers)) as pool:
+            for i, (m, status, summary) in enumerate(pool.map(run_one, mutants), 1):
+                results.append((m, status, summary))
+                print(f"[{i:3d}/{len(mutants)}] {status:10s} {m.path}:{m.line}  "
+                      f"{m.literal} -> {m.replacement}  ({m.key})", flush=True)
+        elapsed = time.perf_counter() - start
+
+    if earlier:
+        print(f"(and {len(earlier)} mutants killed in {args.rerun})")
+    results = earlier + results
+    survived = summarize(results, f"delta {args.delta:g}, {elapsed:.0f} s")
+    if args.json:
+        args.json.write_text(json.dumps([
+            {"key": m.key, "file": m.path, "line": m.line, "literal": m.literal,
+             "mutant": m.replacement, "status": s, "pytest": out} for m, s, out in results],
+            indent=1))
+    return 1 if survived else 0
+
+
+def summarize(results: list[tuple[Mutant, str, str]], note: str) -> list[Mutant]:
+    """Print the equivalent and surviving mutants and the kill rate; return the survivors.
+    A mutant that was not killed counts as equivalent if :data:`EQUIVALENT` explains it."""
+    killed = sum(s == "killed" for _, s, _ in results)
+    equivalent = [(m, EQUIVALENT[m.key]) for m, s, _ in results
+                  if s != "killed" and m.key in EQUIVALENT]
+    survived = [m for m, s, _ in results if s != "killed" and m.key not in EQUIVALENT]
+    print()
+    for m, why in equivalent:
+        print(f"equivalent: {m.key}: {why}")
+    for m in survived:
+        print(f"SURVIVED:   {m.path}:{m.line}  {m.literal} -> {m.replacement}  ({m.key})")
+    n = len(results)
+    rate = killed / (n - len(equivalent)) if n > len(equivalent) else 1.0
+    print(f"\n{n} mutants ({note}): {killed} killed, {len(equivalent)} equivalent, "
+          f"{len(survived)} survived; kill rate {100 * rate:.1f}% of non-equivalent mutants")
+    return survived
+
+
+def report(path: Path, delta: float) -> int:
+    """The summary of an earlier ``--json`` output, with today's :data:`EQUIVALENT`."""
+    mutants = {m.key: m for f in FILES for m in find_mutants(f, delta)}
+    records = json.loads(path.read_text())
+    unknown = [r["key"] for r in records if r["key"] not in mutants]
+    if unknown:
+        print(f"{len(unknown)} mutants of {path} no longer exist (the code changed): run again",
+              file=sys.stderr)
+        return 2
+    results = [(mutants[r["key"]], r["status"], r["pytest"]) for r in records]
+    return 1 if summarize(results, f"from {path}") else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
