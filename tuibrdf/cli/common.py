@@ -22,12 +22,10 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 import sys
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import Any
 
-from ..core.models import get_model
 from ..core.params import Model, Param, unknown_message
 
 
@@ -40,8 +38,15 @@ class Parser(argparse.ArgumentParser):
     instead of a usage block, so a log keeps one line per mistake."""
 
     def error(self, message: str):  # noqa: D401 — argparse's hook
-        print(f"{self.prog}: error: {message} (see '{self.prog} --help')", file=sys.stderr)
+        from .text import one_line  # a newline typed in an argument stays escaped
+
+        print(f"{self.prog}: error: {one_line(message)} (see '{self.prog} --help')",
+              file=sys.stderr)
         raise SystemExit(2)
+
+    def _print_message(self, message, file=None):  # argparse's writer, which hides OSError
+        if message:  # --help > /dev/full must fail loudly (main reports it in one line)
+            (file or sys.stderr).write(message)
 
 
 # --------------------------------------------------------------------------- formatting
@@ -129,6 +134,8 @@ def add_model_args(parser: argparse.ArgumentParser) -> None:
 
 def resolve(args: argparse.Namespace) -> tuple[Model, dict[str, Any]]:
     """The model named by ``args.model`` and its validated parameters (defaults filled)."""
+    from ..core.models import get_model  # numpy: only once a command runs, not for --help
+
     model = get_model(args.model)
     return model, model.resolve(parse_params(model, args.param))
 
@@ -159,8 +166,12 @@ def parse_value(model: Model, p: Param, raw: str) -> Any:
     if p.kind == "choice" and raw.lower() not in p.choices:
         raise UsageError(unknown_message(f"{model.name}: {p.name}: unknown choice", raw,
                                          list(p.choices)))
-    if p.kind == "path" and not os.path.isfile(raw):
-        raise UsageError(f"{model.name}: {p.name} = {raw!r}: no such file")
+    if p.kind == "path":
+        from ..core.files import describe
+
+        problem = describe(raw) if raw else "empty file name"
+        if problem:  # "no such file", "is a directory, not a regular file", ...
+            raise UsageError(f"{model.name}: {p.name} = {raw!r}: {problem}")
     value: Any = raw
     if p.kind == "rgb" and "," not in raw:
         try:  # one grey value: validate() repeats a number over R, G, B
@@ -183,7 +194,8 @@ def add_theta_i(parser: argparse.ArgumentParser, *, many: bool = False,
     else:
         kw["default"] = default
     parser.add_argument("--theta-i", type=bounded("theta_i", 0.0, 90.0), metavar="DEG",
-                        help="incidence angle(s) θi in degrees, in [0, 90]"
+                        help=("incidence angles θi in degrees, each in [0, 90]" if many
+                              else "incidence angle θi in degrees, in [0, 90]")
                              + (f" (default: {fmt(default)})" if default is not None else ""),
                         **kw)
 

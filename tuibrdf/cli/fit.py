@@ -11,9 +11,11 @@ from __future__ import annotations
 import argparse
 import json
 
-from ..core.fit import STRIDE, albedo_table, fit_file
-from ..core.models import get_model
 from .common import UsageError, fmt, fmt_params, json_params, parse_params
+
+#: ``tuibrdf.core.fit.STRIDE``, repeated so that ``--help`` does not import numpy (a test
+#: checks that they agree)
+STRIDE = (1, 3, 15)
 
 OBJECTIVE = "rms of log(1 + f*cos(theta_i)*cos(theta_o)) - log(1 + f_data*cos*cos) over bins"
 
@@ -50,6 +52,9 @@ def stride_type(text: str) -> tuple[int, int, int]:
 
 
 def run(args: argparse.Namespace) -> int:
+    from ..core.fit import albedo_table, fit_file
+    from ..core.models import get_model
+
     model = get_model(args.model)
     fixed = parse_params(model, args.param)
     if args.save_preset:

@@ -10,7 +10,6 @@ import argparse
 import json
 from typing import Any
 
-from ..core.models import MODELS, get_model
 from ..core.params import Model, Param
 from .common import fmt
 
@@ -71,6 +70,8 @@ def model_text(m: Model) -> list[str]:
 
 
 def run(args: argparse.Namespace) -> int:
+    from ..core.models import MODELS, get_model
+
     models = [get_model(n) for n in args.names] if args.names else list(MODELS.values())
     if args.json:
         print(json.dumps([model_doc(m) for m in models], indent=2, ensure_ascii=False,
