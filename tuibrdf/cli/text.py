@@ -23,7 +23,9 @@ HANDLER = "tuibrdf-ascii"
 #: stand-ins for the non-ASCII characters tuibrdf prints (anything else becomes "?")
 ASCII = {
     "θ": "theta", "Θ": "Theta", "φ": "phi", "Φ": "Phi", "ψ": "psi", "α": "alpha", "σ": "sigma",
-    "π": "pi", "ω": "omega", "Λ": "Lambda", "μ": "mu", "ρ": "rho", "η": "eta",
+    "π": "pi", "ω": "omega", "Λ": "Lambda", "μ": "mu", "ρ": "rho", "η": "eta", "β": "beta",
+    "Δ": "d", "δ": "delta", "γ": "gamma", "ε": "eps", "λ": "lambda", "τ": "tau",
+    "≳": ">~", "∈": "in", "⌊": "floor(", "⌋": ")", "§": "S", "ᴸ": "L",
     "⁻¹": "^-1", "⁻": "^-", "¹": "1", "²": "^2", "³": "^3", "⁴": "^4", "⁵": "^5",
     "·": "*", "×": "x", "°": " deg", "±": "+-", "−": "-", "–": "-", "—": "--", "…": "...",
     "≤": "<=", "≥": ">=", "≲": "<~", "≈": "~", "≠": "!=", "∫": "int", "√": "sqrt", "∞": "inf",
