@@ -11,7 +11,8 @@ to break the kernels — z = 0 exactly, subnormal z (5e-324, 1e-320, 1e-310), z 
 the normal range (2.2e-308, 1e-308, 1e-300), z where z² underflows (1e-160, 1e-154), directions
 a hair apart, equal, mirrored and antipodal — all valid unit vectors.  Before the guards in
 ``core/microfacet.py``, cook-torrance, ggx and gltf raised FloatingPointError on 9 % of them
-(72 124 of 779 100 cases of the first version of this sweep).
+(72 124 of 779 100 cases of the first version of this sweep); directions just below the
+horizon are included because a first version of those guards forgot that H can point down.
 """
 
 from __future__ import annotations
@@ -109,6 +110,8 @@ def adversarial_directions() -> np.ndarray:
             d.append([s * math.cos(r), s * math.sin(r), z])
     d += [[0, 0, 1], [1e-310, 0, 1], [1e-160, 0, 1], [1e-8, 0, 1], [0, 1e-310, 1],
           [-1e-310, 0, 1]]
+    # a hair below the horizon, and straight down: H can point down (a guard once forgot)
+    d += [[1, 0, -1e-310], [1, 0, -1e-8], [0.6, 0, -0.8], [0, 0, -1]]
     return np.array(d)
 
 

@@ -121,7 +121,8 @@ def vcavity_g_over_cos(cos_h, cos_i, cos_o, cos_psi):
     a = safe_div(1.0, ci_co, ci_co > 1.0 / HUGE, fill=np.inf)
     two_h = 2.0 * cos_h
     po, pi = cos_psi * cos_o, cos_psi * cos_i
-    b = safe_div(two_h, po, po > two_h * (1.0 / HUGE), fill=np.inf)
-    c = safe_div(two_h, pi, pi > two_h * (1.0 / HUGE), fill=np.inf)
+    small = np.abs(two_h) * (1.0 / HUGE)  # |·|: below the horizon H can point down
+    b = safe_div(two_h, po, po > small, fill=np.inf)
+    c = safe_div(two_h, pi, pi > small, fill=np.inf)
     g = np.minimum(np.minimum(a, b), c)
     return np.where(np.isfinite(g), 0.25 * g, 0.0)

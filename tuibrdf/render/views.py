@@ -191,12 +191,13 @@ def map_picture(
         marks.append(Mark(r // 2, c, **INCIDENT_MARK))
     image = HalfBlockImage(index, pal, marks, color_system=color)
     what = "f·cosθr" if cosine else "f"
-    unit = "sr⁻¹" if not cosine else "sr⁻¹·cos"
+    unit = "sr⁻¹"  # f·cos θr is in sr⁻¹ too (the cosine has no unit)
     uniform = info.vmin >= info.peak_value * (1.0 - 1e-12)  # Lambert: no "the" peak
     if uniform:
         peak, where = f"{what} = {fmt_value(info.peak_value)} {unit}", "everywhere"
     else:  # ints: never "φ=-0°"
         th, ph = round(info.peak_theta_deg), round(info.peak_phi_deg)
+        ph = ph + 360 if ph <= -180 else ph  # one convention: φ in (−180°, 180°]
         peak, where = f"{what} peak {fmt_value(info.peak_value)} {unit}", f"at θ={th}° φ={ph}°"
     bar_cmap = "grey" if (data.ndim == 3 and rgb_mode == "color") else cmap
     bar = colorbar(col.scale, bar_cmap, width, levels=levels, unit=unit, color_system=color)
