@@ -11,7 +11,6 @@ import os
 import sys
 
 from .. import __version__
-from ..core.params import unknown_message
 from . import albedo as _albedo
 from . import eval as _eval
 from . import fit as _fit
@@ -19,7 +18,7 @@ from . import models as _models
 from . import render as _render
 from . import text
 from . import view as _view
-from .common import Parser, UsageError
+from .common import Parser, UsageError, unknown
 
 #: (name, module, one-line help) — the order of ``tuibrdf --help``
 SUBCOMMANDS = [
@@ -85,7 +84,7 @@ def _main(argv: list[str] | None) -> int:
     commands = [name for name, _, _ in SUBCOMMANDS]
     first = next((a for a in argv if not a.startswith("-")), None)
     if first is not None and first not in commands:  # a typo gets a close match
-        _error(unknown_message("unknown command", first, commands))
+        _error(unknown("unknown command", first, commands))
         return 2
     try:
         args = parser.parse_args(argv)

@@ -41,8 +41,10 @@ def add_args(parser: argparse.ArgumentParser) -> None:
 
 
 def stride_type(text: str) -> tuple[int, int, int]:
+    from .common import parse_int
+
     try:
-        vals = tuple(int(v) for v in text.split(","))
+        vals = tuple(parse_int(v) for v in text.split(","))
     except ValueError:
         vals = ()
     if len(vals) != 3 or not all(1 <= v <= 45 for v in vals):
@@ -53,9 +55,9 @@ def stride_type(text: str) -> tuple[int, int, int]:
 
 def run(args: argparse.Namespace) -> int:
     from ..core.fit import albedo_table, fit_file
-    from ..core.models import get_model
+    from .common import find_model
 
-    model = get_model(args.model)
+    model = find_model(args.model)
     fixed = parse_params(model, args.param)
     if args.save_preset:
         from ..app.presets import preset_path  # plain Python, no Textual

@@ -70,9 +70,10 @@ def model_text(m: Model) -> list[str]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..core.models import MODELS, get_model
+    from ..core.models import MODELS
+    from .common import find_model
 
-    models = [get_model(n) for n in args.names] if args.names else list(MODELS.values())
+    models = [find_model(n) for n in args.names] if args.names else list(MODELS.values())
     if args.json:
         print(json.dumps([model_doc(m) for m in models], indent=2, ensure_ascii=False,
                          allow_nan=False))

@@ -16,7 +16,7 @@ import argparse
 import os
 import sys
 
-from .common import UsageError, add_theta_i, choices_type, parse_params
+from .common import UsageError, add_theta_i, choices_type, parse_params, unknown
 
 COLORS = ("auto", "truecolor", "256", "none")
 
@@ -59,9 +59,7 @@ def build_state(args: argparse.Namespace):
         tokens = [f"file={name}", *tokens]
         name = "merl"
     if name not in MODELS:
-        from ..core.params import unknown_message
-
-        raise UsageError(unknown_message("unknown model", name, list(MODELS)))
+        raise UsageError(unknown("unknown model", name, list(MODELS)))
     model = MODELS[name]
     values = model.resolve(parse_params(model, tokens))
     state = ViewerState(sides=[Side(model.name, values)], theta_i=float(args.theta_i))
