@@ -105,10 +105,11 @@ def test_view_has_no_color(monkeypatch, capsys):
     seen = []
     monkeypatch.setattr(view, "check_terminal", lambda: None)
     monkeypatch.setattr(view, "open_viewer", lambda state, color: seen.append(color))
-    monkeypatch.delenv("NO_COLOR", raising=False)
+    # view.run sets NO_COLOR itself: setenv first, so monkeypatch restores "unset" afterwards
+    monkeypatch.setenv("NO_COLOR", "")
+    monkeypatch.delenv("NO_COLOR")
     assert main(["view", "phong", "--no-color"]) == 0
     assert seen == ["none"] and os.environ.get("NO_COLOR") == "1"
-    monkeypatch.delenv("NO_COLOR", raising=False)
 
 
 # ------------------------------------------------------------------ output conventions
