@@ -25,9 +25,10 @@ import math
 import re
 import sys
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from ..core.params import Model, Param, unknown_message
+if TYPE_CHECKING:  # the declarations import dataclasses and difflib: not for --help
+    from ..core.params import Model, Param
 
 
 class UsageError(Exception):
@@ -171,6 +172,8 @@ def unknown(what: str, name: str, valid: Sequence[str]) -> str:
     folded = [v for v in valid if v.casefold() == name.casefold()]
     if folded:
         return f"{what} {name!r} (did you mean {folded[0]!r}?); valid: {', '.join(valid)}"
+    from ..core.params import unknown_message
+
     return unknown_message(what, name, valid)
 
 
@@ -209,7 +212,7 @@ def parse_params(model: Model, tokens: Iterable[str]) -> dict[str, Any]:
 def parse_value(model: Model, p: Param, raw: str) -> Any:
     """One ``-p`` value, validated: raises :class:`UsageError`."""
     if p.kind == "choice" and raw.lower() not in p.choices:
-        raise UsageError(unknown_message(f"{model.name}: {p.name}: unknown choice", raw,
+        raise UsageError(unknown(f"{model.name}: {p.name}: unknown choice", raw,
                                          list(p.choices)))
     if p.kind == "path":
         from ..core.files import describe

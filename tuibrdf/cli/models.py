@@ -8,9 +8,10 @@ from __future__ import annotations
 
 import argparse
 import json
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from ..core.params import Model, Param
+if TYPE_CHECKING:
+    from ..core.params import Model, Param
 from .common import fmt
 
 COLUMNS = ("name", "symbol", "range", "default", "unit", "meaning")
