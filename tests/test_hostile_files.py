@@ -345,3 +345,52 @@ def test_save_permission_or_read_only_filesystem(cfg, monkeypatch, code, words):
     with pytest.raises(PresetError, match=words) as e:
         save_preset(STATE, "x")
     assert "'x'" in str(e.value) and str(cfg) in str(e.value)
+
+
+def test_fit_save_preset_fails_before_the_fit(tmp_path, capsys, monkeypatch):
+    """A presets path that cannot be written is reported before minutes of fitting."""
+    import tuibrdf.core.fit as core_fit
+
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path / "cfg"))
+    (tmp_path / "cfg").write_text("a file")
+    called = []
+    monkeypatch.setattr(core_fit, "fit_file", lambda *a, **k: called.append(a))
+    rc = main(["fit", str(tmp_path / "x.binary"), "--model", "gltf", "--save-preset", "p"])
+    assert rc == 2 and not called
+    assert "cannot save preset 'p'" in one_line_error(capsys.readouterr().err)
+
+
+KILLER = """
+import os, sys, time
+from tuibrdf.app import presets
+from tuibrdf.app.state import Side, ViewerState
+state = ViewerState(sides=[Side.of("phong", {"kd": 0.1})], theta_i=20.0)
+presets.save_preset(state, "k")          # a complete preset first
+def slow(fd):
+    print("writing", flush=True)
+    time.sleep(60)                        # killed here, the temporary file written
+presets.os.fsync = slow
+presets.save_preset(state, "k")
+"""
+
+
+@pytest.mark.skipif(not hasattr(os, "kill"), reason="needs signals")
+def test_sigkill_mid_save_leaves_the_old_preset_and_a_removable_temporary(cfg):
+    """The issue's 400 SIGKILLs: never half a preset (kept), 281 leftover .tmp files (fixed:
+    they are recognisable and removed once stale)."""
+    import signal
+
+    p = subprocess.Popen([sys.executable, "-c", KILLER], stdout=subprocess.PIPE, text=True,
+                         env={**os.environ, "PYTHONPATH": str(ROOT)})
+    try:
+        assert p.stdout.readline().strip() == "writing"
+    finally:
+        p.send_signal(signal.SIGKILL)
+        p.wait(timeout=TIMEOUT)
+        p.stdout.close()
+    left = [f for f in cfg.iterdir() if f.name.endswith(presets.TMP_SUFFIX)]
+    assert len(left) == 1 and left[0].name.startswith(".k.toml.")
+    assert load_preset("k")[0] == 20.0  # the old preset, whole
+    assert presets.clean_stale(cfg) == 0  # fresh: maybe a save in progress, kept
+    assert presets.clean_stale(cfg, now=time.time() + presets.STALE_SECONDS + 1) == 1
+    assert sorted(f.name for f in cfg.iterdir()) == ["k.toml"]

@@ -131,6 +131,23 @@ def to_toml(state: ViewerState) -> str:
     return "\n".join(lines) + "\n"
 
 
+def check_can_save(name: str) -> Path:
+    """Raise :class:`PresetError` now if preset ``name`` could not be saved (bad name, the
+    directory cannot be created or written): for a caller about to spend time computing
+    what it will save (``tuibrdf fit --save-preset``).  Returns the path."""
+    path = preset_path(name)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise PresetError(f"cannot save preset {name!r}: cannot create {path.parent}: "
+                          f"{_why(e)}") from None
+    if path.is_dir():
+        raise PresetError(f"cannot save preset {name!r}: {path} is a directory")
+    if not os.access(path.parent, os.W_OK | os.X_OK):
+        raise PresetError(f"cannot save preset {name!r} to {path.parent}: permission denied")
+    return path
+
+
 def save_preset(state: ViewerState, name: str) -> Path:
     """Write ``state`` as preset ``name`` atomically; return the path.  Raises
     :class:`PresetError` naming the path and the problem when it cannot be written (read-only

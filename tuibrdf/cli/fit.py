@@ -60,9 +60,9 @@ def run(args: argparse.Namespace) -> int:
     model = find_model(args.model)
     fixed = parse_params(model, args.param)
     if args.save_preset:
-        from ..app.presets import preset_path  # plain Python, no Textual
+        from ..app.presets import check_can_save  # plain Python, no Textual
 
-        preset_path(args.save_preset)  # a bad name fails now, not after the fit
+        check_can_save(args.save_preset)  # a bad name or place fails now, not after the fit
         if not model.rgb and not args.mean:
             raise UsageError(f"--save-preset: a preset holds one parameter set and {model.name} "
                              "is fitted per channel: add --mean (or fit an RGB model, e.g. gltf)")
