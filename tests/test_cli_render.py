@@ -90,13 +90,35 @@ def test_render_goldens(capsys, name):
     - cook-torrance-incidence-48x16: the seed's example at 60°: the light's line up and to the
       left, the lobe on the right beyond the mirror direction (peak 6.14 at θ ≈ 62°).
     - phong-map-16x8-truecolor: 24-bit escapes, peak (50+2)/(2π) = 8.28.
+    - cook-torrance-perpendicular-48x16: the section through the peak (θ = 62.0°) across the
+      plane of incidence at 60°: a thin lobe straight up (FWHM 6.6°, too long for the title at
+      this width), reaching the max 6.14 (the outer guide at 6; guides every 2).
+    - phong-plane-40x14 / cook-torrance-plane-40x14 (the seed's specular pair at θi = 75°,
+      exposure 0.5): Phong's highlight is round (about 28 cells × 13 rows = 28 × 26 square
+      pixels down to the faintest '.'), Cook-Torrance's a vertical streak about 6 cells wide
+      and 12 rows (24 pixels) tall, reaching the horizon (row 1, blank: the sky is not drawn
+      in plain text).
+    - cook-torrance-sphere-32x14: kd = 0.5, m = 0.2, light 45° to the left: brightest ('%')
+      left of centre (x ≈ −0.42 R), near where the normal is the half vector (22.5° left:
+      x = −0.38 R; the Lambert term, brightest at 45°, pulls it further left); the right
+      edge falls to ':' toward the terminator (normals 90° from the light just beyond the rim).
+    - blinn-phong-slice-48x16: θh-only model: every row the same, bright at θh = 0 falling off
+      by θh ≈ 20° (the √θh axis spreads it over a third of the width); max (58/8π)·0.6 +
+      0.1/π = 1.42.
+    - blinn-phong-theta-h-48x12: the same curve against θh: 1.42 at 0, half at about 9.5°
+      (cos⁵⁰ θh = ½), flat kd/π = 0.032 beyond.
+    - cook-torrance-theta-d-48x12 (defaults, log, θh = 5°): rising with θd as 1/cos² θd, the
+      scale set at θ ≤ 85° (120 sr⁻¹) and the curve leaving the top near θd = 85°.
+    - phong-sphere-24x10-truecolor: 24-bit escapes; the specular spot saturates (255) left of
+      centre.
     """
     rc, out, err = run(capsys, *GOLDENS[name])
     assert rc == 0, err
     assert out == (ROOT / "tests" / "golden" / name).read_text(encoding="utf-8")
 
 
-@pytest.mark.parametrize("view", ["map", "incidence", "perpendicular", "solid", "albedo", "all"])
+@pytest.mark.parametrize("view", ["map", "incidence", "perpendicular", "solid", "albedo", "all",
+                                  "sphere", "plane", "slice", "theta-h", "theta-d"])
 @pytest.mark.parametrize("model", ["phong", "oren-nayar", "gltf"])
 def test_render_every_view_is_deterministic_and_fits(capsys, view, model):
     argv = ["render", model, "--theta-i", "45", "--view", view, "--width", "40",
@@ -113,7 +135,7 @@ def test_render_every_view_is_deterministic_and_fits(capsys, view, model):
     none, true, c256 = outs
     assert "\x1b" not in none and not any(ln != ln.rstrip() for ln in none.splitlines())
     assert "\x1b[" in true and "\x1b[" in c256
-    if view in ("map", "solid", "all"):
+    if view in ("map", "solid", "all", "sphere", "plane", "slice"):
         assert "\x1b[38;2;" in true and "\x1b[38;5;" in c256
 
 
@@ -179,6 +201,12 @@ BAD = [
     (["render", "phong", "--theta-i", "95"], "expected [0, 90]"),
     (["render", "phong", "--theta-i", "nan"], "out of range"),
     (["albedo", "phong", "--theta-i", "-1"], "expected [0, 90]"),
+    (["render", "phong", "--view", "plane", "--exposure", "-1"], "exposure"),
+    (["render", "phong", "--view", "sphere", "--gamma", "0"], "gamma"),
+    (["render", "phong", "--view", "theta-h", "--theta-d", "91"], "theta-d"),
+    (["render", "phong", "--view", "slice", "--phi-d", "nan"], "phi-d"),
+    (["render", "phong", "--view", "perpendicular", "--section-azimuth", "x"], "azimuth"),
+    (["render", "phong", "--view", "sphre"], "did you mean 'sphere'"),
     (["albedo", "lamberd"], "did you mean 'lambert'"),
     (["albedo", "phong", "-p", "ks=1.5"], "expected in [0, 1]"),
 ]

@@ -75,6 +75,7 @@ LOCALES = {
 }
 VALID = {
     "models": ["models"],
+    "materials": ["materials"],
     "help": ["--help"],
     "eval help": ["eval", "--help"],
     "albedo": ["albedo", "phong", "--theta-i", "30"],
@@ -126,6 +127,7 @@ def test_to_ascii_stand_ins():
     assert to_ascii("─") == "-" and to_ascii("│") == "|" and to_ascii("┼") == "+"
     assert to_ascii("█") == "@" and to_ascii("▀") in ".:-=+*#%@"
     assert to_ascii("\u2800") == " " and to_ascii("\u28ff") == "#"
+    assert to_ascii("ö") == "o" and to_ascii("é") == "e" and to_ascii("☃") == "?"
     latin = io.TextIOWrapper(io.BytesIO(), encoding="latin-1")
     assert to_stream("30° sr⁻¹ ·", latin) == "30° sr^-1 ·"  # what Latin-1 has stays
     assert can_encode(io.StringIO())  # a str buffer takes anything

@@ -14,6 +14,7 @@ from .. import __version__
 from . import albedo as _albedo
 from . import eval as _eval
 from . import fit as _fit
+from . import materials as _materials
 from . import models as _models
 from . import render as _render
 from . import text
@@ -23,6 +24,7 @@ from .common import Parser, UsageError, unknown
 #: (name, module, one-line help) — the order of ``tuibrdf --help``
 SUBCOMMANDS = [
     ("models", _models, "list the models and their parameters"),
+    ("materials", _materials, "list the 100 MERL materials of the abc and sgd fits"),
     ("eval", _eval, "print BRDF values for given directions"),
     ("albedo", _albedo, "print the directional albedo a(θi)"),
     ("render", _render, "print a picture of the BRDF (deterministic, for docs and tests)"),

@@ -211,9 +211,8 @@ def parse_params(model: Model, tokens: Iterable[str]) -> dict[str, Any]:
 
 def parse_value(model: Model, p: Param, raw: str) -> Any:
     """One ``-p`` value, validated: raises :class:`UsageError`."""
-    if p.kind == "choice" and raw.lower() not in p.choices:
-        raise UsageError(unknown(f"{model.name}: {p.name}: unknown choice", raw,
-                                         list(p.choices)))
+    if p.kind == "choice" and p.choice(raw) is None:
+        raise UsageError(p.unknown_choice(raw, model.name))
     if p.kind == "path":
         from ..core.files import describe
 

@@ -2,8 +2,11 @@
 
 Prints the fitted parameters (one set per channel for a scalar model, one for an RGB model),
 the residual (RMS of ``log(1 + f·cos θi·cos θo)`` differences, see :mod:`tuibrdf.core.fit`),
-and the albedo of data and fit at θi = 0, 30, 60°.  A missing or malformed file, an unknown
-model or one without continuous parameters: one line on stderr, exit 2.
+and the albedo of data and fit at θi = 0, 30, 60°.  A file named after a MERL material
+(``gold-metallic-paint.binary``) also gets the residuals of the published ABC and SGD fits of
+that material (models ``abc``, ``sgd``) on the same objective, for comparison.  A missing or
+malformed file, an unknown model or one without continuous parameters: one line on stderr,
+exit 2.
 """
 
 from __future__ import annotations
@@ -54,7 +57,7 @@ def stride_type(text: str) -> tuple[int, int, int]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..core.fit import albedo_table, fit_file
+    from ..core.fit import albedo_table, fit_file, published_scores
     from .common import find_model
 
     model = find_model(args.model)
@@ -69,6 +72,7 @@ def run(args: argparse.Namespace) -> int:
     data, result = fit_file(args.file, args.model, stride=args.stride, mean=args.mean,
                             fixed=fixed)
     albedo = albedo_table(data, result)
+    published = published_scores(data, args.stride)
     saved = save_comparison(args.save_preset, data.path, result) if args.save_preset else None
     if args.json:
         doc = {
@@ -85,6 +89,8 @@ def run(args: argparse.Namespace) -> int:
             "albedo": albedo,
             "invalid_bins": list(data.n_invalid),
         }
+        if published:
+            doc["published"] = published
         if saved:
             doc["preset"] = str(saved)
         print(json.dumps(doc, indent=2, allow_nan=False))
@@ -96,6 +102,10 @@ def run(args: argparse.Namespace) -> int:
         print(f"{c:>4}  {fmt_params(p)}")
         print(f"      as options: {' '.join(f'-p {k}={fmt(v)}' for k, v in p.items())}")
     print(f"residual {fmt(result.residual)}")
+    if published:
+        print(f"published fits of {published['material']}, same objective: "
+              f"abc residual {fmt(published['abc'])} (Löw et al. 2012), "
+              f"sgd residual {fmt(published['sgd'])} (Bagher et al. 2012)")
     print(f"{'theta_i':>7}  {'albedo data (R,G,B)':>26}  {'albedo fit (R,G,B)':>26}")
     for row in albedo:
         print(f"{fmt(row['theta_i']):>7}  {fmt(tuple(row['data'])):>26}  "

@@ -3,10 +3,13 @@
 ``tuibrdf render MODEL [-p NAME=VALUE ...] [--theta-i DEG] [--view VIEW] [--width W]
 [--height H] [--color auto|truecolor|256|none | --no-color] [--cmap NAME] [--log] [--cosine]``
 
-Views: ``map`` (Lambert equal-area map, the default), ``incidence`` and ``perpendicular`` (polar
-cross-sections), ``solid`` (3D photometric solid), ``albedo`` (a(θi) over 0–90°), or ``all``:
-map, both cross-sections and the albedo curve one below the other, each ``W × H`` cells, with
-a blank line between them.
+Views: ``map`` (Lambert equal-area map, the default), ``incidence`` (polar cross-section in the
+plane of incidence), ``perpendicular`` (the section through the lobe's peak across the plane of
+incidence, ``--section-azimuth`` turns it), ``solid`` (3D photometric solid), ``albedo`` (a(θi)
+over 0–90°), ``sphere`` and ``plane`` (the material lit from θi, ``--exposure``, ``--gamma``),
+``slice`` (θh × θd image at ``--phi-d``), ``theta-h`` (f against θh at ``--theta-d``),
+``theta-d`` (f against θd at ``--theta-h``), or ``all``: map, both cross-sections and the albedo
+curve one below the other, each ``W × H`` cells, with a blank line between them.
 
 Determinism: the size never comes from the terminal (default 80×24), and the console is built
 with every setting Rich would otherwise read from the environment (width, colour system,
@@ -29,6 +32,9 @@ from .common import add_model_args, add_theta_i, bounded, choices_type, int_in, 
 #: the picture views of ``tuibrdf.render.views.VIEWS`` (kept here so ``--help`` stays light;
 #: tests check they agree), plus ``all``
 VIEWS = ("map", "incidence", "perpendicular", "solid", "albedo")
+#: the views of ``tuibrdf.render.extra_views.EXTRA_VIEWS`` not in ``VIEWS`` (drawn by it, as is
+#: ``perpendicular``)
+EXTRA = ("sphere", "plane", "slice", "theta-h", "theta-d")
 ALL = ("map", "incidence", "perpendicular", "albedo")
 CMAPS = ("grey", "viridis", "inferno")
 COLORS = ("auto", "truecolor", "256", "none")
@@ -39,7 +45,7 @@ MAX_SIZE = 1000
 def add_args(parser: argparse.ArgumentParser) -> None:
     add_model_args(parser)
     add_theta_i(parser, default=30.0)
-    views = (*VIEWS, "all")
+    views = (*VIEWS, *EXTRA, "all")
     parser.add_argument("--view", type=choices_type("view", views), default="map",
                         metavar="|".join(views),
                         help="what to draw (default: map); all = map, both cross-sections "
@@ -68,6 +74,29 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         metavar="DEG", help="3D solid: view azimuth in degrees (default -60)")
     parser.add_argument("--elevation", type=bounded("elevation", -90.0, 90.0), default=25.0,
                         metavar="DEG", help="3D solid: view elevation in degrees (default 25)")
+    add_extra_args(parser)
+
+
+def add_extra_args(parser: argparse.ArgumentParser) -> None:
+    """Options of the perpendicular, lit and half/difference views."""
+    parser.add_argument("--section-azimuth", type=bounded("section azimuth", -180.0, 180.0),
+                        default=90.0, metavar="DEG",
+                        help="perpendicular: turn the section about the lobe's peak; 90 "
+                             "(default) is across the plane of incidence, 0 the plane itself")
+    parser.add_argument("--exposure", type=bounded("exposure", 0.0, 1e6, ""), default=1.0,
+                        metavar="X", help="sphere, plane: radiance scale before the clip at "
+                                          "white (default 1: a white Lambert surface facing "
+                                          "the light is white)")
+    parser.add_argument("--gamma", type=bounded("gamma", 0.1, 10.0, ""), default=2.2,
+                        metavar="G", help="sphere, plane: display gamma (default 2.2)")
+    parser.add_argument("--theta-d", type=bounded("theta-d", 0.0, 90.0), default=30.0,
+                        metavar="DEG", help="theta-h: the fixed θd (default 30)")
+    parser.add_argument("--theta-h", type=bounded("theta-h", 0.0, 90.0), default=0.0,
+                        metavar="DEG", help="theta-d: the fixed θh (default 0)")
+    parser.add_argument("--phi-d", type=bounded("phi-d", 0.0, 180.0), default=90.0,
+                        metavar="DEG", help="slice, theta-h, theta-d: the fixed φd (default 90)")
+    parser.add_argument("--linear-theta-h", action="store_true",
+                        help="slice: a linear θh axis instead of MERL's √θh")
 
 
 def color_system(choice: str, environ: os._Environ | dict = os.environ,
@@ -107,12 +136,28 @@ def picture(model, values, args: argparse.Namespace, color: str) -> str:
             opts.pop("cosine")  # a(θi) is the integral of f·cos already
         if i:
             con.print()
+        if view == "perpendicular" or view in EXTRA:
+            con.print(extra_picture(view, model, values, args, color))
+            continue
         con.print(render_view(view, model, values, args.theta_i, args.width, args.height,
                               **opts))
     text = buf.getvalue()
     if color == "none":  # for logs and docs: no trailing spaces
         text = "\n".join(line.rstrip() for line in text.split("\n"))
     return text
+
+
+def extra_picture(view: str, model, values, args: argparse.Namespace, color: str):
+    """The renderable of a view of ``tuibrdf.render.extra_views``."""
+    from ..render.braille import charset_for
+    from ..render.extra_views import render_extra
+
+    return render_extra(view, model, values, args.theta_i, args.width, args.height, color=color,
+                        cmap=args.cmap, log=args.log, cosine=args.cosine,
+                        section_azimuth_deg=args.section_azimuth, exposure=args.exposure,
+                        gamma=args.gamma, theta_d_deg=args.theta_d, theta_h_deg=args.theta_h,
+                        phi_d_deg=args.phi_d, sqrt_h=not args.linear_theta_h,
+                        charset=charset_for(getattr(sys.stdout, "encoding", None)))
 
 
 #: stand-ins in a picture for a stream that cannot encode them (plot grids are dotted with ·)

@@ -79,7 +79,11 @@ def to_ascii(ch: str) -> str:
         return _block(ch)
     if 0x2800 <= o <= 0x28FF:
         return _braille(ch)
-    return "?"
+    import unicodedata
+
+    # a letter with a diacritic (the ö of Löw) or a compatibility form: its ASCII base letter
+    base = unicodedata.normalize("NFKD", ch).encode("ascii", "ignore").decode("ascii")
+    return base or "?"
 
 
 def _stand_in(s: str, i: int) -> tuple[str, int]:

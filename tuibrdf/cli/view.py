@@ -8,6 +8,12 @@ the viewer saves one) or, when no file has that name, one of the seed's comparis
 read whole, as ``eval`` reads it), so bad input is one line on stderr and exit status 2; so is
 a missing terminal (stdin and stdout must both be one).  ``--color`` and ``NO_COLOR`` are
 handed to Textual through its environment variables (``TEXTUAL_COLOR_SYSTEM``, ``NO_COLOR``).
+
+``--material NAME`` opens the published fit of a MERL material (``tuibrdf materials`` lists
+them): model ``abc`` (Löw et al. 2012), or ``sgd`` (Bagher et al. 2012) with ``--fit sgd``.
+Compare mode from the command line: ``--compare-fit`` puts the ABC fit (A) and the SGD fit (B)
+of the material side by side; ``--compare-material OTHER`` puts a second material (B, same fit)
+next to the first.
 """
 
 from __future__ import annotations
@@ -19,6 +25,7 @@ import sys
 from .common import UsageError, add_theta_i, choices_type, parse_params, unknown
 
 COLORS = ("auto", "truecolor", "256", "none")
+FITS = ("abc", "sgd")
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -36,6 +43,49 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                              "256, none")
     parser.add_argument("--no-color", dest="color", action="store_const", const="none",
                         help="no colours, the same as --color none")
+    parser.add_argument("--material", metavar="NAME",
+                        help="a MERL material's published fit instead of MODEL (see 'tuibrdf "
+                             "materials'): ABC, or SGD with --fit sgd")
+    parser.add_argument("--fit", type=choices_type("fit", FITS), default=None,
+                        metavar="|".join(FITS), help="with --material: which fit (default abc)")
+    parser.add_argument("--compare-fit", action="store_true",
+                        help="with --material: the ABC (A) and SGD (B) fits side by side")
+    parser.add_argument("--compare-material", metavar="NAME",
+                        help="with --material: a second material (B, same fit) side by side")
+
+
+def material_sides(args: argparse.Namespace):
+    """The sides ``--material`` asks for (one, or two in compare mode), or None without it;
+    raises UsageError for a bad combination or name."""
+    from ..app.state import Side
+    from ..core.models import MODELS
+
+    material = getattr(args, "material", None)
+    extra = [flag for flag, on in (("--fit", args.fit), ("--compare-fit", args.compare_fit),
+                                   ("--compare-material", args.compare_material)) if on]
+    if material is None:
+        if extra:
+            raise UsageError(f"{extra[0]} needs --material NAME")
+        return None
+    if args.model:
+        raise UsageError(f"give a MODEL ({args.model}) or --material, not both")
+    if args.preset:
+        raise UsageError("--preset and --material both choose what to show: give one")
+    if args.compare_fit and args.compare_material:
+        raise UsageError("--compare-fit and --compare-material: give one")
+    if args.compare_fit and args.fit:
+        raise UsageError("--compare-fit shows both fits: drop --fit")
+    fit = MODELS[args.fit or "abc"]
+    values = fit.resolve(parse_params(fit, [f"material={material}", *args.param]))
+    if args.compare_fit:
+        other = MODELS["sgd"]
+        return [Side(fit.name, values),
+                Side(other.name, other.resolve(parse_params(other, [f"material={material}"])))]
+    sides = [Side(fit.name, values)]
+    if args.compare_material:
+        sides.append(Side(fit.name, fit.resolve(
+            parse_params(fit, [f"material={args.compare_material}", *args.param]))))
+    return sides
 
 
 def build_state(args: argparse.Namespace):
@@ -45,6 +95,9 @@ def build_state(args: argparse.Namespace):
     from ..core.merl import check_file, load_cached
     from ..core.models import MODELS
 
+    sides = material_sides(args)
+    if sides is not None:
+        return ViewerState(sides=sides, theta_i=float(args.theta_i))
     name = args.model or "lambert"
     tokens = list(args.param)
     if name.lower().endswith(".binary"):

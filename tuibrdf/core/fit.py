@@ -350,6 +350,46 @@ def albedo_table(data: MerlData, result: Fit, thetas=ALBEDO_THETAS) -> list[dict
     return rows
 
 
+# ------------------------------------------------------------------------------ published fits
+
+
+def score(data: MerlData, model: str | Model, values: Mapping[str, Any],
+          stride: tuple[int, int, int] = STRIDE) -> float:
+    """The objective's ``√E`` of ``model`` with fixed user ``values`` on ``data``'s sample set
+    (what :func:`fit` reports as ``residual``, for a model that is not fitted)."""
+    m = get_model(model)
+    samples = sample_set(data, stride)
+    with kernel_errstate():
+        f = evaluate_resolved(m, m.resolve(values), samples.wi, samples.wo)
+    f = np.asarray(f)
+    if f.ndim == 1:
+        f = np.repeat(f[:, None], 3, axis=1)
+    return math.sqrt(float(np.mean((samples.compressed(f) - samples.compressed(samples.data))
+                                   ** 2)))
+
+
+def material_of(path: str) -> str | None:
+    """The MERL material a file is named after: its stem is a material's name
+    (``gold-metallic-paint.binary``) or one of the SGD data's other names; else None."""
+    from pathlib import Path
+
+    from .models.fitted import MATERIAL
+
+    return MATERIAL.choice(Path(path).stem)
+
+
+def published_scores(data: MerlData, stride: tuple[int, int, int] = STRIDE
+                     ) -> dict[str, Any] | None:
+    """``{"material": name, "abc": √E, "sgd": √E}`` when the file is named after a MERL
+    material: how the tabulated ABC and SGD fits (:mod:`tuibrdf.core.models.fitted`) score on
+    the objective :func:`fit` minimises; None otherwise."""
+    name = material_of(data.path)
+    if name is None:
+        return None
+    return {"material": name,
+            **{m: score(data, m, {"material": name}, stride) for m in ("abc", "sgd")}}
+
+
 def fit_file(path: str, model: str | Model, **kw) -> tuple[MerlData, Fit]:
     """:func:`load_cached` then :func:`fit`."""
     data = load_cached(path)
@@ -357,4 +397,5 @@ def fit_file(path: str, model: str | Model, **kw) -> tuple[MerlData, Fit]:
 
 
 __all__ = ["ALBEDO_THETAS", "Fit", "Samples", "Space", "albedo_table", "fit",
-           "fit_file", "nelder_mead", "sample_set"]
+           "fit_file", "material_of", "nelder_mead", "published_scores", "sample_set",
+           "score"]

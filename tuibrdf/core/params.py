@@ -44,6 +44,11 @@ class Param:
     choices: tuple[str, ...] = ()
     #: coarse step (shift + key); defaults to 10 steps
     coarse: float | None = None
+    #: other accepted spellings of a choice, ``((alias, canonical), ...)``; validation maps
+    #: an alias to its canonical choice (e.g. the names the SGD paper's data uses)
+    aliases: tuple[tuple[str, str], ...] = ()
+    #: for a long list of choices: the text errors and listings show instead of all of them
+    choices_doc: str = ""
 
     @property
     def coarse_step(self) -> float:
@@ -52,7 +57,7 @@ class Param:
     def range_text(self) -> str:
         """The valid values, as every error message and listing shows them."""
         if self.kind == "choice":
-            return "one of " + ", ".join(self.choices)
+            return self.choices_doc or "one of " + ", ".join(self.choices)
         if self.kind == "path":
             return "a file path"
         unit = "°" if self.unit == "deg" else (f" {self.unit}" if self.unit else "")
@@ -64,8 +69,11 @@ class Param:
         where = f"{model}: " if model else ""
         bad = f"{where}{self.name} = {value!r} is invalid: expected {self.range_text()}"
         if self.kind == "choice":
-            if isinstance(value, str) and value.lower() in self.choices:
-                return value.lower()
+            canonical = self.choice(value)
+            if canonical is not None:
+                return canonical
+            if self.choices_doc and isinstance(value, str):
+                raise ValueError(self.unknown_choice(value, model))
             raise ValueError(bad)
         if self.kind == "path":
             if isinstance(value, str | bytes) or hasattr(value, "__fspath__"):
@@ -90,6 +98,25 @@ class Param:
         if not self._in_range(v):
             raise ValueError(bad)
         return v
+
+    def choice(self, value: Any) -> str | None:
+        """The canonical choice ``value`` names (case-insensitive, aliases mapped), or None."""
+        if not isinstance(value, str):
+            return None
+        v = value.lower()
+        if v in self.choices:
+            return v
+        return dict(self.aliases).get(v)
+
+    def unknown_choice(self, value: str, model: str = "") -> str:
+        """``abc: material: unknown choice 'x' (did you mean 'y'?); valid: ...`` — the valid
+        names, or :attr:`choices_doc` when there are too many to list on one line."""
+        where = f"{model}: " if model else ""
+        names = [*self.choices, *(a for a, _ in self.aliases)]
+        msg = unknown_message(f"{where}{self.name}: unknown choice", value, names)
+        if self.choices_doc:
+            msg = msg[: msg.index("; valid: ")] + f"; valid: {self.choices_doc}"
+        return msg
 
     def _in_range(self, v: float) -> bool:
         return math.isfinite(v) and self.min <= v <= self.max

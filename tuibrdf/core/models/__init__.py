@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from ..merl import MERL
 from ..params import Model, unknown_message
-from . import diffuse, microfacet_models, phong
+from . import diffuse, fitted, microfacet_models, phong
 
 MODELS: dict[str, Model] = {}
 
@@ -30,6 +30,7 @@ register(
     microfacet_models.UE4,
     MERL,
 )
+register(fitted.ABC, fitted.SGD)  # the published fits of the 100 MERL materials
 
 
 def get_model(name: str | Model) -> Model:

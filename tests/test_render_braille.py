@@ -1,0 +1,206 @@
+"""The braille plot canvas (``tuibrdf.render.braille``) and the polar sections drawn with it
+(``tuibrdf.render.polar_braille``).
+
+Expected dots come from the Unicode braille layout (dot k of a cell is bit k−1; dots 1-2-3-7
+run down the left column, 4-5-6-8 the right one) and from the canvas's documented mapping:
+data x0 … x1 over ``2W`` dot columns, y1 … y0 over ``4H`` dot rows, dot centres at integer
+coordinates.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from rich.console import Console
+
+from tuibrdf.core.models import get_model
+from tuibrdf.render.braille import BrailleCanvas, charset_for, legend_sample
+from tuibrdf.render.polar_braille import fwhm_text, peak_section_view, section_view
+
+
+def lit_dots(canvas: BrailleCanvas) -> set[tuple[int, int]]:
+    """Decode the characters back into (dot row, dot column): an independent reading of the
+    output, through the Unicode layout rather than the canvas's own arrays."""
+    bit_of = {(0, 0): 0, (1, 0): 1, (2, 0): 2, (0, 1): 3, (1, 1): 4, (2, 1): 5, (3, 0): 6,
+              (3, 1): 7}
+    dots = set()
+    for r, line in enumerate(canvas.lines()):
+        for c, ch in enumerate(line):
+            code = ord(ch) - 0x2800 if ch != " " else 0
+            assert 0 <= code < 256, ch
+            for (dr, dc), bit in bit_of.items():
+                if code >> bit & 1:
+                    dots.add((4 * r + dr, 2 * c + dc))
+    return dots
+
+
+def test_horizontal_line_lights_exactly_its_row():
+    # 10 × 3 cells = 20 × 12 dots over x 0..20, y 0..12: dot (row, col) has its centre at
+    # x = col + 0.5, y = 12 − row − 0.5.  y = 6.5 is dot row 5 (cell row 1, dot row 1 = dot 2/5,
+    # bits 0x02 | 0x10); x from 2.5 to 9.5 are dot columns 2..9
+    cv = BrailleCanvas(10, 3, (0.0, 20.0), (0.0, 12.0), color="none")
+    cv.polyline(np.array([2.5, 9.5]), np.array([6.5, 6.5]), cv.layer(None))
+    assert lit_dots(cv) == {(5, c) for c in range(2, 10)}
+    assert cv.lines()[1] == " " + "⠒" * 4 + " " * 5
+    assert cv.lines()[0] == cv.lines()[2] == " " * 10
+
+
+def test_vertical_and_diagonal_lines_are_connected():
+    cv = BrailleCanvas(8, 4, (0.0, 16.0), (0.0, 16.0), color="none")
+    lid = cv.layer(None)
+    cv.polyline(np.array([0.5, 15.5]), np.array([15.5, 0.5]), lid)  # the anti-diagonal
+    dots = lit_dots(cv)
+    assert dots == {(k, k) for k in range(16)}  # one dot per row and per column, no gaps
+
+
+def test_circle_dots_lie_within_half_a_dot_of_the_radius():
+    # square dots: 40 × 20 cells = 80 × 80 dots over a 80 × 80 data square; centre (40, 40)
+    cv = BrailleCanvas(40, 20, (0.0, 80.0), (0.0, 80.0), color="none")
+    cv.circle(40.0, 40.0, 30.0, cv.layer(None))
+    dots = lit_dots(cv)
+    rows = np.array([d[0] for d in dots])
+    cols = np.array([d[1] for d in dots])
+    x, y = cols + 0.5, 80.0 - rows - 0.5  # dot centres in data units (1 unit = 1 dot)
+    r = np.hypot(x - 40.0, y - 40.0)
+    # rounding a point of the circle to the nearest dot centre moves it ≤ ½ dot in x and in y:
+    # ≤ ½·√2 radially in the worst case, ≤ ½ in the direction of the radius along the axes
+    assert np.all(np.abs(r - 30.0) <= 0.5 * np.sqrt(2) + 1e-9)
+    assert np.mean(np.abs(r - 30.0)) < 0.3
+    # closed: every dot column the circle spans (10..69) is lit
+    assert set(cols.tolist()) == set(range(10, 70))
+
+
+def test_patterns_differ_and_survive_plain_text():
+    # two parallel lines, solid and dotted: in plain text (no colours) the dotted one has half
+    # the dots of the solid one
+    cv = BrailleCanvas(20, 2, (0.0, 40.0), (0.0, 8.0), color="none")
+    a, b = cv.layer("red", "solid"), cv.layer("cyan", "dotted")
+    cv.polyline(np.array([0.5, 39.5]), np.array([7.5, 7.5]), a)
+    cv.polyline(np.array([0.5, 39.5]), np.array([0.5, 0.5]), b)
+    dots = lit_dots(cv)
+    top = sorted(c for r, c in dots if r == 0)
+    bottom = sorted(c for r, c in dots if r == 7)
+    assert top == list(range(40)) and bottom == list(range(0, 40, 2))
+    assert legend_sample("solid", "braille", "*") != legend_sample("dotted", "braille", "o")
+
+
+def test_colours_per_curve_and_none_has_no_styles():
+    cv = BrailleCanvas(10, 2, (0.0, 20.0), (0.0, 8.0), color="truecolor")
+    a, b = cv.layer("red"), cv.layer("cyan")
+    cv.polyline(np.array([0.5, 9.5]), np.array([7.5, 7.5]), a)  # cells 0..4 of row 0
+    cv.polyline(np.array([10.5, 19.5]), np.array([7.5, 7.5]), b)  # cells 5..9 of row 0
+    row = cv.rows()[0]
+    assert [(s.text, s.style.color.name if s.style.color else None) for s in row] == [
+        ("⠉" * 5, "red"), ("⠉" * 5, "cyan")]
+    cv.color = "none"
+    assert all(s.style.color is None for s in cv.rows()[0])
+
+
+def test_ascii_fallback_uses_markers_per_layer():
+    cv = BrailleCanvas(10, 2, (0.0, 20.0), (0.0, 8.0), color="none", charset="ascii")
+    g, a = cv.layer("color(244)", "sparse", "."), cv.layer("red", "solid", "*")
+    cv.polyline(np.array([0.5, 19.5]), np.array([0.5, 0.5]), g)
+    cv.polyline(np.array([0.5, 9.5]), np.array([7.5, 7.5]), a)
+    # sparse: 1 dot in 4 along the path, dots 0, 4, 8, 12, 16 → every 2nd cell
+    assert cv.lines() == ["*****     ", ". . . . . "]
+    assert all(ord(ch) < 128 for line in cv.lines() for ch in line)
+
+
+def test_text_overlay_and_non_finite_points():
+    cv = BrailleCanvas(10, 2, (0.0, 20.0), (0.0, 8.0), color="none")
+    lid = cv.layer(None)
+    # a NaN breaks the line: the two halves are drawn, nothing joins them
+    cv.polyline(np.array([0.5, 3.5, np.nan, 16.5, 19.5]), np.full(5, 7.5), lid)
+    cv.text(1, 2, "hello, world")  # cropped at the right edge
+    assert cv.lines() == ["⠉⠉      ⠉⠉", "  hello, w"]
+
+
+def test_charset_for_encoding():
+    assert charset_for("utf-8") == "braille"
+    assert charset_for("ascii") == "ascii"
+    assert charset_for("latin-1") == "ascii"
+    assert charset_for(None) == "braille"  # io.StringIO: text, written as UTF-8
+
+
+def test_bad_canvas_arguments():
+    with pytest.raises(ValueError):
+        BrailleCanvas(0, 3, (0, 1), (0, 1))
+    with pytest.raises(ValueError):
+        BrailleCanvas(3, 3, (1, 1), (0, 1))
+    with pytest.raises(ValueError):
+        BrailleCanvas(3, 3, (0, 1), (0, 1), charset="ebcdic")
+    with pytest.raises(ValueError):
+        BrailleCanvas(3, 3, (0, 1), (0, 1)).layer("red", "wavy")
+
+
+# -- polar views -------------------------------------------------------------------------------
+def render(renderable, width: int) -> list[str]:
+    con = Console(width=width, color_system=None, file=None, record=False, force_terminal=False)
+    with con.capture() as cap:
+        con.print(renderable)
+    return cap.get().splitlines()
+
+
+SEED_CT = {"kd": 0.0, "f0": 0.04, "m": 0.07}
+
+
+def test_section_view_matches_polar_geometry():
+    # modified Phong kd = 0, ks = 1, n = 200 at θi = 0: the lobe points straight up with peak
+    # (n+2)/(2π) = 32.15 and FWHM 2·acos(0.5^(1/200)) = 9.5°: the topmost lit dot of the plot
+    # is the peak, on the centre column, at the top of the outer circle
+    m = get_model("phong")
+    values = m.resolve({"kd": 0.0, "ks": 1.0, "n": 200})
+    lines = render(section_view("incidence", m, values, 0.0, 80, 24, color="none"), 80)
+    assert len(lines) == 24 and all(len(ln) <= 80 for ln in lines)
+    assert "max 32.1" in lines[0] and "circles every 10" in lines[0]
+    # the lobe's tip (r = 32.1) reaches above the outer guide circle (r = 30): the topmost
+    # lit cell row holds the tip alone, on the centre columns (the plot is 80 cells wide)
+    first = next(ln for ln in lines[1:] if ln.strip())
+    assert {i for i, ch in enumerate(first) if ch != " "} <= {39, 40}
+
+
+def test_peak_section_view_title_and_width():
+    m = get_model("cook-torrance")
+    values = m.resolve(SEED_CT)
+    lines = render(peak_section_view(m, values, 60.0, 100, 24, color="none"), 100)
+    # issue 13: the width across the lobe at 60° is 6.6°; the peak sits at θ = 62.0°
+    assert "perpendicular through peak θ=62.0°" in lines[0] and "FWHM 6.6°" in lines[0]
+    assert "max 6.14" in lines[0]
+    lines = render(peak_section_view(m, values, 60.0, 100, 24, azimuth_deg=0.0, color="none"),
+                   100)
+    assert "section ψ=0° through peak" in lines[0] and "FWHM 13.8°" in lines[0]
+
+
+def test_fwhm_text_of_a_triangle():
+    # a triangle of half-width 10 has FWHM 10 exactly (linear between samples)
+    t = np.linspace(-20.0, 20.0, 41)
+    assert fwhm_text(t, np.maximum(0.0, 10.0 - np.abs(t))) == "FWHM 10.0°"
+    assert fwhm_text(t, np.ones_like(t)) == ""
+
+
+@pytest.mark.parametrize("charset", ["braille", "ascii"])
+def test_rgb_sections_have_a_legend_and_are_deterministic(charset):
+    m = get_model("gltf")
+    values = m.resolve({"base_color": [0.9, 0.3, 0.1]})
+    a = render(section_view("incidence", m, values, 30.0, 60, 16, color="none",
+                            charset=charset), 60)
+    b = render(section_view("incidence", m, values, 30.0, 60, 16, color="none",
+                            charset=charset), 60)
+    assert a == b
+    assert [ln[4:5] for ln in a[1:4]] == ["R", "G", "B"]
+    if charset == "ascii":
+        assert all(ord(ch) < 128 for ln in a[1:] for ch in ln)
+        assert a[1][:3] == "***" and a[2][:3] == "ooo" and a[3][:3] == "+++"
+
+
+def test_points_far_outside_are_clipped_not_sampled():
+    # a value 1e30 times the axis (a grazing microfacet value) must draw the visible part of
+    # its segment, not allocate 1e30 samples: the segment from (0.5, 0.5) to (0.5, 1e30) is
+    # the left dot column, all 8 rows of a 1 × 2 cell canvas over 0..2 × 0..8
+    cv = BrailleCanvas(1, 2, (0.0, 2.0), (0.0, 8.0), color="none")
+    cv.polyline(np.array([0.5, 0.5]), np.array([0.5, 1e30]), cv.layer(None))
+    assert lit_dots(cv) == {(r, 0) for r in range(8)}
+    # a segment entirely outside draws nothing
+    cv2 = BrailleCanvas(1, 2, (0.0, 2.0), (0.0, 8.0), color="none")
+    cv2.polyline(np.array([5.0, 9.0]), np.array([1e10, 1e30]), cv2.layer(None))
+    assert lit_dots(cv2) == set()

@@ -1,0 +1,224 @@
+"""Half/difference-angle views (:mod:`tuibrdf.core.halfdiff`): the θh × θd image at fixed φd
+and the line plots f(θh) at fixed θd, f(θd) at fixed θh.
+
+**Image slice** (:func:`slice_view`): θh along x (0° left … 90° right, uniform in √θh by
+default as MERL's table), θd along y (0° at the bottom … 90° at the top), half-block pixels in
+the chosen colour map (RGB models in colour with ``grey``), background where ``wi`` or ``wo``
+is below the horizon; θd tick labels on the left, θh ticks underneath, then the colour bar.
+
+**Line plots** (:func:`theta_h_view`, :func:`theta_d_view`): braille curves (:mod:`.braille`)
+over 0–90° with y ticks (linear, or decades in log mode); the curve stops where the angles
+leave the hemisphere.  RGB models get one curve per channel, told apart by colour and by dot
+pattern.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from rich.console import Console, ConsoleOptions, Group, RenderResult
+from rich.measure import Measurement
+from rich.segment import Segment
+from rich.text import Text
+
+from ..core.halfdiff import (
+    DEFAULT_PHI_D,
+    SCALE_LIMIT_DEG,
+    scale_max,
+    slice_image,
+    theta_d_curve,
+    theta_h_curve,
+)
+from ..core.params import Model
+from .braille import BrailleCanvas, curve_layers, draw_legend, nice_ticks
+from .colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize, fmt_value
+from .halfblock import HalfBlockImage
+from .polar import channel_curves, curve_color
+from .text import title
+
+#: width of the y tick labels and the space after them
+MARGIN = 8
+TICKS_DEG = (0, 15, 30, 45, 60, 75, 90)
+GUIDE = "color(244)"
+
+
+class LeftLabelled:
+    """Rows of a renderable (:class:`HalfBlockImage` or :class:`BrailleCanvas`) with a text
+    label before each row (``labels[k]`` right-aligned in :data:`MARGIN` − 1 cells)."""
+
+    def __init__(self, body, labels: list[str], system: str | None = None) -> None:
+        self.body, self.labels, self.system = body, labels, system
+
+    def _rows(self) -> list[list[Segment]]:
+        if isinstance(self.body, HalfBlockImage):
+            return self.body.rows(self.system or "truecolor")
+        return self.body.rows()
+
+    def __rich_console__(self, console: Console, options: ConsoleOptions) -> RenderResult:
+        for k, row in enumerate(self._rows()):
+            yield Segment(self.labels[k].rjust(MARGIN - 1)[: MARGIN - 1] + " ")
+            yield from row
+            yield Segment.line()
+
+    def __rich_measure__(self, console: Console, options: ConsoleOptions) -> Measurement:
+        return Measurement(self.body.width + MARGIN, self.body.width + MARGIN)
+
+
+def axis_line(width: int, positions: list[float], labels: list[str], name: str) -> Text:
+    """Tick labels centred on cell ``positions`` (fractions 0..1 of ``width``), skipping any that
+    would touch the previous one, after the axis ``name`` in the margin."""
+    line = [" "] * width
+    last = -2
+    for p, s in zip(positions, labels, strict=True):
+        c0 = int(round(p * (width - 1))) - len(s) // 2
+        c0 = min(max(c0, 0), width - len(s))
+        if c0 <= last + 1:
+            continue
+        line[c0:c0 + len(s)] = s
+        last = c0 + len(s) - 1
+    head = name.rjust(MARGIN - 1)[: MARGIN - 1] + " "
+    return Text(head + "".join(line).rstrip(), no_wrap=True, overflow="crop")
+
+
+def scale_note(f: np.ndarray, valid: np.ndarray, vmax: float) -> list[tuple[str, int]]:
+    """Title parts: ``max 0.65 sr⁻¹``, or ``scale 0.65 sr⁻¹ (θ≤85°)`` and (less important)
+    ``max 1e+32`` when grazing values clip."""
+    v = f[valid] if f.ndim == valid.ndim else f[valid].max(axis=-1)
+    peak = float(v.max()) if v.size else 0.0
+    if peak > vmax * (1 + 1e-9):
+        return [(f"scale {fmt_value(vmax)} sr⁻¹ (θ≤{SCALE_LIMIT_DEG:g}°)", 1),
+                (f"max {fmt_value(peak)}", 3)]
+    return [(f"max {fmt_value(peak)} sr⁻¹", 1)]
+
+
+def slice_view(
+    model: Model,
+    values: dict[str, Any],
+    width: int,
+    height: int,
+    *,
+    phi_d_deg: float = DEFAULT_PHI_D,
+    sqrt_h: bool = True,
+    log: bool = False,
+    cmap: str = "grey",
+    levels: int = DEFAULT_LEVELS,
+    rgb_mode: str = "auto",
+    color: str = "truecolor",
+) -> Group:
+    """Title, θh × θd image (``height − 4`` rows: title, θh ticks and a two-line colour bar
+    take the rest) with θd labels, θh ticks and the colour bar."""
+    img_w, rows = int(width) - MARGIN, int(height) - 4
+    if img_w < 4 or rows < 2:
+        raise ValueError(f"view size {width}×{height} too small for the θh × θd image")
+    f, valid, th, td = slice_image(model, values, phi_d_deg, n_h=img_w, n_d=2 * rows,
+                                   sqrt_h=sqrt_h)
+    data = np.where(valid[..., None] if f.ndim == 3 else valid, f, np.nan)[::-1]  # θd up
+    if rgb_mode == "auto":
+        rgb_mode = "color" if cmap == "grey" else "luminance"
+    vmax = scale_max(f, th[None, :], td[:, None], phi_d_deg)
+    scale = Scale(vmax if vmax > 0 else 1.0, log)  # all zero: the lowest colour, no division
+    col = colorize(data, cmap, levels=levels, log=log, rgb_mode=rgb_mode, scale=scale)
+    image = HalfBlockImage(col.index, col.palette, color_system=color)
+    labels = [""] * rows
+    for deg in (90, 45, 0):  # θd of the cell rows: row r covers pixels 2r, 2r+1 from the top
+        r = min(int((90.0 - deg) / 90.0 * rows), rows - 1)
+        labels[r] = f"{deg}°"
+    labels[0] = labels[0] or "θd"
+    if not labels[rows // 4]:
+        labels[rows // 4] = "θd"
+    if sqrt_h:
+        ticks = [0, 5, 10, 20, 45, 90]
+        pos = [np.sqrt(t / 90.0) for t in ticks]
+    else:
+        ticks = list(TICKS_DEG)
+        pos = [t / 90.0 for t in ticks]
+    axis = axis_line(img_w, pos, [f"{t}°" for t in ticks], "θh")
+    bar_cmap = "grey" if (data.ndim == 3 and rgb_mode == "color") else cmap
+    bar = colorbar(col.scale, bar_cmap, int(width), levels=levels, color_system=color)
+    head = title([(model.name, 2), (f"θh×θd at φd={phi_d_deg:g}°", 0),
+                  *scale_note(f, valid, vmax),
+                  ("√θh axis" if sqrt_h else "linear θh", 3)], int(width))
+    return Group(head, LeftLabelled(image, labels, color), axis, bar)
+
+
+def line_view(
+    title_parts: list[tuple[str, int]],
+    xs: np.ndarray,
+    f: np.ndarray,
+    valid: np.ndarray,
+    label: str,
+    scale: float,
+    width: int,
+    height: int,
+    *,
+    xlabel: str,
+    log: bool = False,
+    decades: float = LOG_DECADES,
+    color: str = "truecolor",
+    charset: str = "braille",
+) -> Group:
+    """Title, a braille line plot of ``f(x)`` over 0–90° (y ticks on the left) and the x axis."""
+    plot_w, rows = int(width) - MARGIN, int(height) - 2
+    if plot_w < 4 or rows < 2:
+        raise ValueError(f"view size {width}×{height} too small for a line plot")
+    f_raw = f
+    f = np.where(valid[:, None] if f.ndim == 2 else valid, f, np.nan)  # a break, not a drop
+    curves = [(lab, xs, v) for lab, v in channel_curves(label, f)]
+    vmax = scale if scale > 0 else 1.0  # all zero: a unit axis, no division
+    if log:
+        lo = vmax * 10.0 ** -decades
+        ys = [np.log10(np.maximum(v, lo)) for _, _, v in curves]  # ≥ lo > 0
+        ylim = (np.log10(lo), np.log10(vmax) + 0.05 * decades)
+        ticks = np.arange(np.ceil(ylim[0] - 1e-9), np.floor(ylim[1]) + 1)
+        tick_labels = [fmt_value(10.0**t) for t in ticks]
+    else:
+        ys = [v for _, _, v in curves]
+        ylim = (0.0, vmax * 1.05)
+        ticks = nice_ticks(0.0, ylim[1], 4)
+        tick_labels = [fmt_value(t) for t in ticks]
+    canvas = BrailleCanvas(plot_w, rows, (0.0, 90.0), ylim, color=color, charset=charset)
+    guide = canvas.layer(GUIDE, "sparse", ".")
+    for t in ticks:
+        canvas.polyline(np.array([0.0, 90.0]), np.array([t, t]), guide)
+    for x in TICKS_DEG[1:-1]:
+        canvas.polyline(np.array([x, x]), np.array(ylim), guide)
+    colors = [curve_color(lab, j) for j, (lab, _, _) in enumerate(curves)]
+    ids = curve_layers(canvas, curves, colors)
+    for y, lid in zip(ys, ids, strict=True):
+        canvas.polyline(xs, y, lid)
+    if len(curves) > 1:
+        draw_legend(canvas, curves, ids, col=1)
+    labels = [""] * rows
+    for t, s in zip(ticks, tick_labels, strict=True):
+        r = int((ylim[1] - t) / (ylim[1] - ylim[0]) * rows)  # ylim[1] > ylim[0]
+        if 0 <= r < rows:
+            labels[r] = s
+    axis = axis_line(plot_w, [t / 90.0 for t in TICKS_DEG], [f"{t}°" for t in TICKS_DEG],
+                     xlabel)
+    parts = [*title_parts, *scale_note(f_raw, valid, scale)]
+    if log:
+        parts.append((f"log, {decades:g} decades", 4))
+    return Group(title(parts, int(width)), LeftLabelled(canvas, labels), axis)
+
+
+def theta_h_view(model: Model, values: dict[str, Any], width: int, height: int, *,
+                 theta_d_deg: float = 0.0, phi_d_deg: float = DEFAULT_PHI_D,
+                 log: bool = False, color: str = "truecolor", charset: str = "braille") -> Group:
+    """f against θh at fixed θd and φd."""
+    xs, f, valid = theta_h_curve(model, values, theta_d_deg, phi_d_deg, n=361)
+    scale = scale_max(f, xs, theta_d_deg, phi_d_deg)
+    return line_view([(model.name, 2), (f"f(θh) at θd={theta_d_deg:g}° φd={phi_d_deg:g}°", 0)],
+                     xs, f, valid, model.name, scale, width, height, xlabel="θh", log=log,
+                     color=color, charset=charset)
+
+
+def theta_d_view(model: Model, values: dict[str, Any], width: int, height: int, *,
+                 theta_h_deg: float = 0.0, phi_d_deg: float = DEFAULT_PHI_D,
+                 log: bool = False, color: str = "truecolor", charset: str = "braille") -> Group:
+    """f against θd at fixed θh and φd."""
+    xs, f, valid = theta_d_curve(model, values, theta_h_deg, phi_d_deg, n=361)
+    scale = scale_max(f, theta_h_deg, xs, phi_d_deg)
+    return line_view([(model.name, 2), (f"f(θd) at θh={theta_h_deg:g}° φd={phi_d_deg:g}°", 0)],
+                     xs, f, valid, model.name, scale, width, height, xlabel="θd", log=log,
+                     color=color, charset=charset)
