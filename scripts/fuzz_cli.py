@@ -37,17 +37,20 @@ ROOT = Path(__file__).resolve().parents[1]
 TIMEOUT = 60  # seconds per case: a hang, not a slow machine
 
 MODELS = ["lambert", "phong", "blinn-phong", "cook-torrance", "oren-nayar", "oren-nayar-simple",
-          "ggx", "gltf", "disney-diffuse", "ue4", "merl"]
+          "ggx", "gltf", "disney-diffuse", "ue4", "merl", "abc", "sgd"]
+MATERIALS = ["gold-metallic-paint", "alum-bronze", "blue-metallic-paint", "GOLD-METALLIC-PAINT",
+             "gold", "", "x\ny", "nothere"]
 MODEL_NOISE = ["Phong", "GGX", "cook-torance", "phong2", "", "-", "lamb\nert", "ggx\x1b[2J",
                "merl.binary", "ｐｈｏｎｇ"]
 PARAMS = ["kd", "ks", "n", "f0", "m", "alpha", "fresnel", "sigma", "base_color", "metallic",
-          "roughness", "file", "lookup", "distribution", "KD", "M", "k\nd", ""]
+          "roughness", "file", "lookup", "distribution", "KD", "M", "k\nd", "", "material"]
 NUMBERS = ["0", "1", "0.5", "30", "45", "89.9", "90", "95", "-1", "-0", "1e-300", "5e-324",
            "1e308", "1e999", "nan", "inf", "-inf", "1_0", "٣", "３", "0x10", "1e", ".", "",
            " 3", "3\n0", "9" * 400, "9" * 5000, "1,2,3", "0.1,0.2", "0.5,0.5,0.5", "abc",
            "10000", "1e4", "360", "-360", "361", "180", "-180"]
 CHOICES = ["exact", "schlick", "Exact", "nearest", "trilinear", "ggx", "beckmann", "x"]
-VIEWS = ["map", "incidence", "perpendicular", "solid", "albedo", "all", "MAP", "mapp", ""]
+VIEWS = ["map", "incidence", "perpendicular", "solid", "albedo", "all", "sphere", "plane",
+         "slice", "theta-h", "theta-d", "MAP", "mapp", ""]
 COLORS = ["auto", "truecolor", "256", "none", "None", "16"]
 SIZES = ["12", "20", "6", "11", "1001", "0", "-5", "x", "1_2", "٣٠"]
 STRIDES = ["9,9,45", "45,45,45", "1,3,15", "0,1,1", "1,1", "a,b,c", "46,1,1", "1,٣,1"]
@@ -57,10 +60,13 @@ OPTIONS = {
     "eval": ["--theta-i", "--theta-r", "--phi-r", "--cosine", "--json", "-p", "--theta"],
     "albedo": ["--theta-i", "--json", "-p"],
     "render": ["--theta-i", "--view", "--width", "--height", "--color", "--no-color", "--cmap",
-               "--log", "--cosine", "--azimuth", "--elevation", "-p"],
+               "--log", "--cosine", "--azimuth", "--elevation", "-p", "--section-azimuth",
+               "--exposure", "--gamma", "--theta-d", "--theta-h", "--phi-d", "--linear-theta-h"],
     "fit": ["--model", "-p", "--stride", "--mean", "--json", "--save-preset"],
-    "view": ["--theta-i", "--preset", "--color", "--no-color", "-p"],
+    "view": ["--theta-i", "--preset", "--color", "--no-color", "-p", "--material", "--fit",
+             "--compare-fit", "--compare-material"],
     "models": ["--json"],
+    "materials": ["--json", "--color", "--no-color"],
 }
 COMMANDS = [*OPTIONS, "Models", "evl", "", "-h", "--version", "--help"]
 
@@ -132,9 +138,15 @@ def random_argv(rng: random.Random, box: Sandbox) -> list[str]:
             name = rng.choice(PARAMS)
             value = rng.choice(box.files if name == "file" else
                                CHOICES if name in ("fresnel", "lookup", "distribution")
-                               else NUMBERS)
+                               else MATERIALS if name == "material" else NUMBERS)
             argv.append(rng.choice([f"{name}={value}", f"{name}", f"={value}", f"{name}=="]))
-        elif o in ("--theta-i", "--theta-r", "--phi-r", "--azimuth", "--elevation"):
+        elif o in ("--material", "--compare-material"):
+            argv.append(rng.choice(MATERIALS))
+        elif o == "--fit":
+            argv.append(rng.choice(["abc", "sgd", "ABC", "x"]))
+        elif o in ("--theta-i", "--theta-r", "--phi-r", "--azimuth", "--elevation",
+                   "--section-azimuth", "--exposure", "--gamma", "--theta-d", "--theta-h",
+                   "--phi-d"):
             argv += rng.sample(NUMBERS, rng.randint(1, 2 if cmd == "albedo" else 1))
         elif o == "--view":
             argv.append(rng.choice(VIEWS))
