@@ -10,11 +10,24 @@ The public Python API is numpy only (importing it never loads textual or rich)::
 
 from __future__ import annotations
 
-from .core.evaluate import evaluate
-from .core.models import MODELS, get_model
+from typing import Any
 
 __all__ = ["MODELS", "evaluate", "get_model", "albedo"]
 __version__ = "0.1.0"
+
+
+def __getattr__(name: str) -> Any:
+    """``evaluate``, ``MODELS`` and ``get_model`` are imported on first use (PEP 562), so
+    that ``tuibrdf --help`` does not pay for numpy."""
+    if name == "evaluate":
+        from .core.evaluate import evaluate
+
+        return evaluate
+    if name in ("MODELS", "get_model"):
+        from .core import models
+
+        return getattr(models, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def albedo(model, params=None, theta_i_deg=0.0, **kwargs):

@@ -11,15 +11,15 @@ import os
 import sys
 
 from .. import __version__
-from ..core.params import unknown_message
 from . import albedo as _albedo
 from . import eval as _eval
 from . import fit as _fit
 from . import materials as _materials
 from . import models as _models
 from . import render as _render
+from . import text
 from . import view as _view
-from .common import Parser, UsageError
+from .common import Parser, UsageError, unknown
 
 #: (name, module, one-line help) — the order of ``tuibrdf --help``
 SUBCOMMANDS = [
@@ -46,35 +46,95 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the command line; returns the exit status.
+
+    0 success; 2 bad input (one line on stderr, no traceback); 1 the output could not be
+    written (closed stdout, full disk: one line); 141 the reader of a pipe left; 130 Ctrl-C;
+    70 an internal error (one line; ``TUIBRDF_DEBUG=1`` shows the traceback).
+    """
+    text.install()  # a Latin-1 or ASCII locale gets ASCII stand-ins, not UnicodeEncodeError
+    if sys.stdout is None:  # started with stdout closed (`tuibrdf ... >&-`)
+        _error("standard output is closed: nothing can be printed")
+        return 1
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        return 130
+    except BrokenPipeError:  # `tuibrdf models | head`: the reader left; no traceback
+        return _broken_pipe()
+    except OSError as e:  # writing the output failed (/dev/full, a closed stream)
+        where = f"{e.filename}: " if e.filename else "cannot write output: "
+        _error(f"{where}{e.strerror or e}")
+        _silence_stdout()
+        return 1
+    except MemoryError:
+        _error("out of memory")
+        return 1
+    except Exception as e:  # a bug: one line here, the traceback on request
+        if os.environ.get("TUIBRDF_DEBUG"):
+            raise
+        _error(f"internal error: {type(e).__name__}: {e} (TUIBRDF_DEBUG=1 shows the "
+               "traceback; please report it)")
+        return 70
+
+
+def _main(argv: list[str] | None) -> int:
     parser = build_parser()
     argv = sys.argv[1:] if argv is None else list(argv)
-    if not argv and sys.stdin.isatty() and sys.stdout.isatty():
+    if not argv and _isatty(sys.stdin) and _isatty(sys.stdout):
         argv = ["view"]  # plain `tuibrdf` in a terminal opens the viewer (else: the help)
     commands = [name for name, _, _ in SUBCOMMANDS]
     first = next((a for a in argv if not a.startswith("-")), None)
     if first is not None and first not in commands:  # a typo gets a close match
-        print(f"tuibrdf: error: {unknown_message('unknown command', first, commands)}",
-              file=sys.stderr)
+        _error(unknown("unknown command", first, commands))
         return 2
     try:
         args = parser.parse_args(argv)
     except SystemExit as e:  # --help (0) or a one-line argparse error (2)
-        return e.code if isinstance(e.code, int) else 2
+        code = e.code if isinstance(e.code, int) else 2
+        if code == 0:
+            sys.stdout.flush()  # a write error of the help is reported here, not at exit
+        return code
     if args.command is None:
         parser.print_help()
+        sys.stdout.flush()
         return 0
     try:
-        return args.run(args)
-    except (UsageError, ValueError) as e:
-        print(f"tuibrdf: error: {e}", file=sys.stderr)
+        code = args.run(args)
+        sys.stdout.flush()
+        return code
+    except (UsageError, ValueError, OverflowError) as e:
+        _error(str(e))
         return 2
-    except BrokenPipeError:  # `tuibrdf models | head`: the reader left; no traceback
-        return _broken_pipe()
+
+
+def _isatty(stream) -> bool:
+    try:
+        return stream is not None and stream.isatty()
+    except (OSError, ValueError):
+        return False
+
+
+def _error(message: str) -> None:
+    """``tuibrdf: error: MESSAGE`` on stderr, always one line (control characters escaped)."""
+    if sys.stderr is None:
+        return
+    try:
+        print(f"tuibrdf: error: {text.one_line(message)}", file=sys.stderr, flush=True)
+    except (OSError, ValueError):  # stderr is gone too: the exit status says it
+        pass
+
+
+def _silence_stdout() -> None:
+    # Python flushes stdout again at exit and would print a second error: point stdout at
+    # /dev/null first (the recipe in the `signal` module's documentation)
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):
+        pass
 
 
 def _broken_pipe() -> int:
-    # Python flushes stdout again at exit and would print a second BrokenPipeError: point
-    # stdout at /dev/null first (the recipe in the `signal` module's documentation)
-    devnull = os.open(os.devnull, os.O_WRONLY)
-    os.dup2(devnull, sys.stdout.fileno())
+    _silence_stdout()
     return 141  # 128 + SIGPIPE, what a C tool killed by the signal reports

@@ -14,9 +14,6 @@ from __future__ import annotations
 import argparse
 import json
 
-import numpy as np
-
-from ..core.conventions import ENERGY_TOL  # a > 1 + ENERGY_TOL is flagged
 from .common import add_model_args, add_theta_i, fmt, fmt_params, json_params, resolve
 
 DEFAULT_THETAS = (0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0)
@@ -28,8 +25,10 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
-def albedos(model, params, thetas) -> np.ndarray:
+def albedos(model, params, thetas):
     """a(θi) for each θi: shape ``(n,)``, or ``(n, 3)`` for an RGB model."""
+    import numpy as np
+
     from ..core.quadrature import albedo_resolved
 
     return np.array([np.asarray(albedo_resolved(model, params, t), dtype=float)
@@ -37,6 +36,10 @@ def albedos(model, params, thetas) -> np.ndarray:
 
 
 def run(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from ..core.conventions import ENERGY_TOL  # a > 1 + ENERGY_TOL is flagged
+
     model, params = resolve(args)
     thetas = [float(t) for t in args.theta_i]
     a = albedos(model, params, thetas)

@@ -22,13 +22,13 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
+import re
 import sys
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from ..core.models import get_model
-from ..core.params import Model, Param, unknown_message
+if TYPE_CHECKING:  # the declarations import dataclasses and difflib: not for --help
+    from ..core.params import Model, Param
 
 
 class UsageError(Exception):
@@ -40,8 +40,15 @@ class Parser(argparse.ArgumentParser):
     instead of a usage block, so a log keeps one line per mistake."""
 
     def error(self, message: str):  # noqa: D401 — argparse's hook
-        print(f"{self.prog}: error: {message} (see '{self.prog} --help')", file=sys.stderr)
+        from .text import one_line  # a newline typed in an argument stays escaped
+
+        print(f"{self.prog}: error: {one_line(message)} (see '{self.prog} --help')",
+              file=sys.stderr)
         raise SystemExit(2)
+
+    def _print_message(self, message, file=None):  # argparse's writer, which hides OSError
+        if message:  # --help > /dev/full must fail loudly (main reports it in one line)
+            (file or sys.stderr).write(message)
 
 
 # --------------------------------------------------------------------------- formatting
@@ -66,6 +73,31 @@ def json_params(values: Mapping[str, Any]) -> dict[str, Any]:
     return {k: list(v) if isinstance(v, tuple) else v for k, v in values.items()}
 
 
+# --------------------------------------------------------------------------- numbers
+
+#: a number as typed on a command line: ASCII digits, an optional point and exponent, or the
+#: words inf / nan (which the range checks then refuse with the range in the message).
+#: Python's float() also takes "1_000", "٣" (Arabic-Indic three), full-width digits and
+#: surrounding whitespace: none of that is a number a user means to type here.
+NUMBER_RE = re.compile(r"[+-]?(?:(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
+                       r"|(?i:inf|infinity|nan))")
+INTEGER_RE = re.compile(r"[+-]?[0-9]+")
+
+
+def parse_float(text: str) -> float:
+    """``text`` as a float, ASCII syntax only; ``ValueError`` otherwise."""
+    if not isinstance(text, str) or not NUMBER_RE.fullmatch(text):
+        raise ValueError(f"not a number: {text!r}")
+    return float(text)
+
+
+def parse_int(text: str) -> int:
+    """``text`` as an int, ASCII digits only (at most 30 of them); ``ValueError`` otherwise."""
+    if not isinstance(text, str) or not INTEGER_RE.fullmatch(text) or len(text) > 30:
+        raise ValueError(f"not an integer: {text!r}")
+    return int(text)
+
+
 # --------------------------------------------------------------------------- argparse types
 
 
@@ -75,7 +107,7 @@ def bounded(name: str, lo: float, hi: float, unit: str = "°") -> Callable[[str]
 
     def parse(text: str) -> float:
         try:
-            v = float(text)
+            v = parse_float(text)
         except ValueError:
             raise argparse.ArgumentTypeError(
                 f"{name} = {text!r} is not a number: expected a value in {rng}"
@@ -94,7 +126,7 @@ def int_in(name: str, lo: int, hi: int) -> Callable[[str], int]:
 
     def parse(text: str) -> int:
         try:
-            v = int(text)
+            v = parse_int(text)
         except ValueError:
             raise argparse.ArgumentTypeError(
                 f"{name} = {text!r} is not an integer: expected {lo} to {hi}"
@@ -131,8 +163,31 @@ def add_model_args(parser: argparse.ArgumentParser) -> None:
 
 def resolve(args: argparse.Namespace) -> tuple[Model, dict[str, Any]]:
     """The model named by ``args.model`` and its validated parameters (defaults filled)."""
-    model = get_model(args.model)
+    model = find_model(args.model)
     return model, model.resolve(parse_params(model, args.param))
+
+
+def unknown(what: str, name: str, valid: Sequence[str]) -> str:
+    """:func:`~tuibrdf.core.params.unknown_message`, whose close match also tries the name
+    case-insensitively (``-p M=0.1`` → did you mean 'm'?; difflib alone finds no match for
+    a one-letter name in the wrong case)."""
+    folded = [v for v in valid if v.casefold() == name.casefold()]
+    if folded:
+        return f"{what} {name!r} (did you mean {folded[0]!r}?); valid: {', '.join(valid)}"
+    from ..core.params import unknown_message
+
+    return unknown_message(what, name, valid)
+
+
+def find_model(name: str) -> Model:
+    """The registered model ``name``; :class:`UsageError` with a close match otherwise."""
+    from ..core.models import MODELS, get_model  # numpy: only once a command runs
+
+    if isinstance(name, str) and name not in MODELS:
+        folded = [m for m in MODELS if m.casefold() == name.casefold()]
+        if folded:
+            raise UsageError(unknown("unknown model", name, list(MODELS)))
+    return get_model(name)
 
 
 def parse_params(model: Model, tokens: Iterable[str]) -> dict[str, Any]:
@@ -147,7 +202,7 @@ def parse_params(model: Model, tokens: Iterable[str]) -> dict[str, Any]:
             raise UsageError(f"-p {token!r}: missing parameter name before '='; "
                              f"{model.name} has: {', '.join(names) or '(no parameters)'}")
         if name not in names:
-            raise UsageError(unknown_message(f"{model.name}: unknown parameter", name, names))
+            raise UsageError(unknown(f"{model.name}: unknown parameter", name, names))
         p = model.param(name)
         if not sep:
             raise UsageError(f"-p {token!r}: missing value, expected -p {name}=VALUE with "
@@ -160,14 +215,25 @@ def parse_value(model: Model, p: Param, raw: str) -> Any:
     """One ``-p`` value, validated: raises :class:`UsageError`."""
     if p.kind == "choice" and p.choice(raw) is None:
         raise UsageError(p.unknown_choice(raw, model.name))
-    if p.kind == "path" and not os.path.isfile(raw):
-        raise UsageError(f"{model.name}: {p.name} = {raw!r}: no such file")
+    if p.kind == "path":
+        from ..core.files import describe
+
+        problem = describe(raw) if raw else "empty file name"
+        if problem:  # "no such file", "is a directory, not a regular file", ...
+            raise UsageError(f"{model.name}: {p.name} = {raw!r}: {problem}")
     value: Any = raw
-    if p.kind == "rgb" and "," not in raw:
-        try:  # one grey value: validate() repeats a number over R, G, B
-            value = float(raw)
+    if p.kind in ("float", "rgb"):
+        parts = raw.split(",") if p.kind == "rgb" else [raw]
+        try:
+            nums = [parse_float(x.strip()) for x in parts]
         except ValueError:
-            pass  # keep the text so the error shows what was typed
+            nums = None  # keep the text so the error shows what was typed
+        if nums is None:
+            grey = " or one grey value" if p.kind == "rgb" else ""
+            raise UsageError(f"{model.name}: {p.name} = {raw!r} is invalid: expected "
+                             f"{p.range_text()}{grey}")
+        # one grey value: validate() repeats a number over R, G, B
+        value = nums[0] if len(nums) == 1 else tuple(nums)
     try:
         return p.validate(value, model.name)
     except ValueError as e:
@@ -184,7 +250,8 @@ def add_theta_i(parser: argparse.ArgumentParser, *, many: bool = False,
     else:
         kw["default"] = default
     parser.add_argument("--theta-i", type=bounded("theta_i", 0.0, 90.0), metavar="DEG",
-                        help="incidence angle(s) θi in degrees, in [0, 90]"
+                        help=("incidence angles θi in degrees, each in [0, 90]" if many
+                              else "incidence angle θi in degrees, in [0, 90]")
                              + (f" (default: {fmt(default)})" if default is not None else ""),
                         **kw)
 
@@ -195,7 +262,7 @@ def choices_type(name: str, valid: Sequence[str]) -> Callable[[str], str]:
     def parse(text: str) -> str:
         if text in valid:
             return text
-        raise argparse.ArgumentTypeError(unknown_message(f"unknown {name}", text, list(valid)))
+        raise argparse.ArgumentTypeError(unknown(f"unknown {name}", text, list(valid)))
 
     parse.__name__ = name
     return parse

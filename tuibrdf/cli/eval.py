@@ -12,10 +12,6 @@ from __future__ import annotations
 import argparse
 import json
 
-import numpy as np
-
-from ..core.evaluate import evaluate_resolved
-from ..core.frame import from_degrees, incident
 from .common import (
     add_model_args,
     add_theta_i,
@@ -41,9 +37,14 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
-def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False) -> np.ndarray:
+def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False):
     """f(θi; θr, φr) over the outer product θr × φr: shape ``(len θr, len φr)`` (+ ``(3,)``
     for an RGB model)."""
+    import numpy as np  # here, not at the top: --help stays light
+
+    from ..core.evaluate import evaluate_resolved
+    from ..core.frame import from_degrees, incident
+
     wi = incident(theta_i)
     wo = from_degrees(np.asarray(theta_r, dtype=float)[:, None],
                       np.asarray(phi_r, dtype=float)[None, :])

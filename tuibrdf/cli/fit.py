@@ -14,9 +14,11 @@ from __future__ import annotations
 import argparse
 import json
 
-from ..core.fit import STRIDE, albedo_table, fit_file, published_scores
-from ..core.models import get_model
 from .common import UsageError, fmt, fmt_params, json_params, parse_params
+
+#: ``tuibrdf.core.fit.STRIDE``, repeated so that ``--help`` does not import numpy (a test
+#: checks that they agree)
+STRIDE = (1, 3, 15)
 
 OBJECTIVE = "rms of log(1 + f*cos(theta_i)*cos(theta_o)) - log(1 + f_data*cos*cos) over bins"
 
@@ -42,8 +44,10 @@ def add_args(parser: argparse.ArgumentParser) -> None:
 
 
 def stride_type(text: str) -> tuple[int, int, int]:
+    from .common import parse_int
+
     try:
-        vals = tuple(int(v) for v in text.split(","))
+        vals = tuple(parse_int(v) for v in text.split(","))
     except ValueError:
         vals = ()
     if len(vals) != 3 or not all(1 <= v <= 45 for v in vals):
@@ -53,12 +57,15 @@ def stride_type(text: str) -> tuple[int, int, int]:
 
 
 def run(args: argparse.Namespace) -> int:
-    model = get_model(args.model)
+    from ..core.fit import albedo_table, fit_file, published_scores
+    from .common import find_model
+
+    model = find_model(args.model)
     fixed = parse_params(model, args.param)
     if args.save_preset:
-        from ..app.presets import preset_path  # plain Python, no Textual
+        from ..app.presets import check_can_save  # plain Python, no Textual
 
-        preset_path(args.save_preset)  # a bad name fails now, not after the fit
+        check_can_save(args.save_preset)  # a bad name or place fails now, not after the fit
         if not model.rgb and not args.mean:
             raise UsageError(f"--save-preset: a preset holds one parameter set and {model.name} "
                              "is fitted per channel: add --mean (or fit an RGB model, e.g. gltf)")

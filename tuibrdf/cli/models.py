@@ -8,10 +8,10 @@ from __future__ import annotations
 
 import argparse
 import json
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from ..core.models import MODELS, get_model
-from ..core.params import Model, Param
+if TYPE_CHECKING:
+    from ..core.params import Model, Param
 from .common import fmt
 
 COLUMNS = ("name", "symbol", "range", "default", "unit", "meaning")
@@ -71,7 +71,10 @@ def model_text(m: Model) -> list[str]:
 
 
 def run(args: argparse.Namespace) -> int:
-    models = [get_model(n) for n in args.names] if args.names else list(MODELS.values())
+    from ..core.models import MODELS
+    from .common import find_model
+
+    models = [find_model(n) for n in args.names] if args.names else list(MODELS.values())
     if args.json:
         print(json.dumps([model_doc(m) for m in models], indent=2, ensure_ascii=False,
                          allow_nan=False))

@@ -157,8 +157,17 @@ def extra_picture(view: str, model, values, args: argparse.Namespace, color: str
                         charset=charset_for(getattr(sys.stdout, "encoding", None)))
 
 
+#: stand-ins in a picture for a stream that cannot encode them (plot grids are dotted with ·)
+PICTURE_ASCII = {"·": "."}
+
+
 def run(args: argparse.Namespace) -> int:
+    from .text import can_encode, to_stream
+
     model, values = resolve(args)
-    sys.stdout.write(picture(model, values, args, color_system(args.color)))
+    color = color_system(args.color)
+    if color != "none" and not can_encode(sys.stdout, "▀"):
+        color = "none"  # no half blocks in this locale: the ASCII ramp of --color none
+    sys.stdout.write(to_stream(picture(model, values, args, color), sys.stdout, PICTURE_ASCII))
     sys.stdout.flush()
     return 0

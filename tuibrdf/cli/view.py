@@ -1,13 +1,15 @@
 """``tuibrdf view``: open the interactive viewer (also what plain ``tuibrdf`` does).
 
 ``tuibrdf view [MODEL | FILE] [-p NAME=VALUE ...] [--theta-i DEG] [--preset NAME]
-[--color auto|truecolor|256|none]``.  A ``.binary`` path opens the measured MERL material
-(model ``merl`` with ``file=PATH``); a ``.brdf``, ``.bparam``, ``.py`` or ``.bsdf`` file opens
-through the model registry (:mod:`tuibrdf.core.userfiles`).  ``--preset NAME`` loads a saved
-preset (``s`` in the viewer saves one) or, when no file has that name, one of the seed's
-comparisons (``diffuse``, ``specular``).  Everything is validated before Textual is imported,
-so bad input is one line on stderr and exit status 2; ``--color`` and ``NO_COLOR`` are handed
-to Textual through its environment variables (``TEXTUAL_COLOR_SYSTEM``, ``NO_COLOR``).
+[--color auto|truecolor|256|none | --no-color]``.  A ``.binary`` path opens the measured MERL
+material (model ``merl`` with ``file=PATH``); a ``.brdf``, ``.bparam``, ``.py`` or ``.bsdf`` file
+opens through the model registry (:mod:`tuibrdf.core.userfiles`).  ``--preset NAME`` loads a
+saved preset (``s`` in the viewer saves one) or, when no file has that name, one of the seed's
+comparisons (``diffuse``, ``specular``).  Everything is validated before Textual is imported (a
+MERL file is read whole, as ``eval`` reads it), so bad input is one line on stderr and exit
+status 2; so is a missing terminal (stdin and stdout must both be one).  ``--color`` and
+``NO_COLOR`` are handed to Textual through its environment variables (``TEXTUAL_COLOR_SYSTEM``,
+``NO_COLOR``).
 
 ``--material NAME`` opens the published fit of a MERL material (``tuibrdf materials`` lists
 them): model ``abc`` (Löw et al. 2012), or ``sgd`` (Bagher et al. 2012) with ``--fit sgd``.
@@ -20,10 +22,9 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
 
-from ..core.merl import check_file
-from ..core.models import MODELS
-from .common import UsageError, add_theta_i, choices_type, parse_params
+from .common import UsageError, add_theta_i, choices_type, parse_params, unknown
 
 COLORS = ("auto", "truecolor", "256", "none")
 FITS = ("abc", "sgd")
@@ -43,6 +44,8 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         metavar="|".join(COLORS),
                         help="colours: auto (Textual detects; NO_COLOR respected), truecolor, "
                              "256, none")
+    parser.add_argument("--no-color", dest="color", action="store_const", const="none",
+                        help="no colours, the same as --color none")
     parser.add_argument("--material", metavar="NAME",
                         help="a MERL material's published fit instead of MODEL (see 'tuibrdf "
                              "materials'): ABC, or SGD with --fit sgd")
@@ -58,6 +61,7 @@ def material_sides(args: argparse.Namespace):
     """The sides ``--material`` asks for (one, or two in compare mode), or None without it;
     raises UsageError for a bad combination or name."""
     from ..app.state import Side
+    from ..core.models import MODELS
 
     material = getattr(args, "material", None)
     extra = [flag for flag, on in (("--fit", args.fit), ("--compare-fit", args.compare_fit),
@@ -91,6 +95,8 @@ def build_state(args: argparse.Namespace):
     """The viewer's initial state from the arguments (no Textual); raises UsageError."""
     from ..app.presets import PresetError, apply_loaded, list_presets, load_preset, preset_path
     from ..app.state import COMPARE_PRESETS, Side, ViewerState
+    from ..core.merl import check_file, load_cached
+    from ..core.models import MODELS
 
     sides = material_sides(args)
     if sides is not None:
@@ -101,17 +107,19 @@ def build_state(args: argparse.Namespace):
         if "merl" not in MODELS:
             raise UsageError(f"{name}: MERL files need the 'merl' model, which this build "
                              "does not have yet")
-        if not os.path.isfile(name):
-            raise UsageError(f"{name}: no such file")
+        from ..core.files import describe
+
+        problem = describe(name)  # "no such file", "is a FIFO (named pipe), ..."
+        if problem:
+            raise UsageError(f"{name}: {problem}")
         tokens = [f"file={name}", *tokens]
         name = "merl"
     if name not in MODELS:
         from ..core.models import get_model
-        from ..core.params import unknown_message
         from ..core.userfiles import looks_like_path
 
         if not looks_like_path(name):
-            raise UsageError(unknown_message("unknown model", name, list(MODELS)))
+            raise UsageError(unknown("unknown model", name, list(MODELS)))
         model = get_model(name)  # a user file (.brdf, .bparam, .py, .bsdf): ValueError → exit 2
     else:
         model = MODELS[name]
@@ -120,16 +128,18 @@ def build_state(args: argparse.Namespace):
     if args.preset:
         seed = {p.name for p in COMPARE_PRESETS}
         try:
-            exists = preset_path(args.preset).is_file()
+            path = preset_path(args.preset)
         except PresetError as e:
             raise UsageError(str(e)) from None
-        if exists or args.preset not in seed:
+        exists = os.path.lexists(path)  # a FIFO or a directory of that name: say what it is
+        if not exists and args.preset not in seed:
+            have = ", ".join(list_presets() + sorted(seed))
+            raise UsageError(f"no preset named {args.preset!r} in {path.parent} "
+                             f"(available: {have})")
+        if exists:
             try:
                 theta, sides = load_preset(args.preset)
             except PresetError as e:
-                if args.preset not in seed:
-                    have = ", ".join(list_presets() + sorted(seed))
-                    raise UsageError(f"{e} (available: {have})") from None
                 raise UsageError(str(e)) from None
             apply_loaded(state, theta, sides)
         else:
@@ -139,20 +149,43 @@ def build_state(args: argparse.Namespace):
     for side in state.sides:  # a bad MERL file is one line here, not a message in the viewer
         for p in side.spec.params:
             if p.kind == "path":
-                check_file(side.values[p.name])
+                check_file(side.values[p.name])  # cheap: kind of file, header, size
+                # then the whole file, as `eval` reads it (NaN and inf are found only there);
+                # the viewer's own load is then a cache hit
+                load_cached(side.values[p.name])
     return state
+
+
+def check_terminal(stdin=None, stdout=None) -> None:
+    """The viewer needs a terminal on both ends; without one Textual would wait for keys that
+    never come (``tuibrdf view < /dev/null``) or draw escape codes into a file."""
+    stdin = sys.stdin if stdin is None else stdin
+    stdout = sys.stdout if stdout is None else stdout
+    for what, stream in (("standard input", stdin), ("standard output", stdout)):
+        try:
+            tty = stream is not None and stream.isatty()
+        except (OSError, ValueError):  # a closed stream
+            tty = False
+        if not tty:
+            raise UsageError(f"view needs a terminal, and {what} is not one (for a picture "
+                             "in a pipe or a file: tuibrdf render)")
+
+
+def open_viewer(state, color: str | None) -> int:
+    """Run the Textual app (the only place Textual is imported); its exit status."""
+    from ..app.app import BrdfApp
+
+    app = BrdfApp(state, color=color)
+    app.run()  # a crash: Textual restores the terminal, prints the error, sets return_code 1
+    return app.return_code or 0
 
 
 def run(args: argparse.Namespace) -> int:
     state = build_state(args)
+    check_terminal()
     if args.color == "none":
         os.environ["NO_COLOR"] = "1"
     elif args.color != "auto":
         os.environ["TEXTUAL_COLOR_SYSTEM"] = "truecolor" if args.color == "truecolor" \
             else "256"
-    from ..app.app import BrdfApp  # Textual only here
-
-    color = None if args.color == "auto" else args.color
-    app = BrdfApp(state, color=color)
-    app.run()  # a crash: Textual restores the terminal, prints the error, sets return_code 1
-    return app.return_code or 0
+    return open_viewer(state, None if args.color == "auto" else args.color)

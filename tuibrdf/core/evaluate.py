@@ -1,4 +1,21 @@
-"""``evaluate``: validated, broadcasting evaluation of a registered model."""
+"""``evaluate``: validated, broadcasting evaluation of a registered model.
+
+Input contract of the directions (docs/numerics.md, "Input contract of evaluate"):
+
+* ``wi`` and ``wo`` are float arrays of shape ``(..., 3)`` that broadcast together; anything
+  else is a ``ValueError`` naming the argument and the shape;
+* every component is finite: NaN or ±inf is a ``ValueError`` naming the argument and the
+  first bad index;
+* a direction is a direction: any non-zero vector is **normalised** first, so ``(0, 0, 2)``,
+  ``(0, 0, 1e200)`` and ``(0, 0, 1e-310)`` all mean the normal.  The length is computed
+  without overflow or underflow (the vector is divided by its largest component first), and a
+  unit vector moves by at most a few ulps.  The zero vector has no direction:
+  ``ValueError`` with its index;
+* directions below the horizon (z < 0) are allowed and give 0 (the BRDF is defined on the
+  upper hemisphere).
+
+The kernels themselves (:func:`evaluate_resolved`) assume unit vectors and do not check.
+"""
 
 from __future__ import annotations
 
@@ -12,13 +29,37 @@ from .numerics import kernel_errstate
 from .params import Model
 
 
+def _first(mask: np.ndarray) -> str:
+    """The index of the first True in ``mask``, as text (``""`` for a single vector)."""
+    if mask.ndim == 0:
+        return ""
+    return str(tuple(int(i) for i in np.argwhere(mask)[0]))
+
+
 def as_directions(w: Any, name: str) -> np.ndarray:
-    w = np.asarray(w, dtype=float)
+    """``w`` as unit vectors of shape ``(..., 3)``, validated (see the module docstring)."""
+    try:
+        w = np.asarray(w, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{name} must be an array of numbers of shape (..., 3)") from None
     if w.ndim == 0 or w.shape[-1] != 3:
         raise ValueError(f"{name} must have shape (..., 3), got {w.shape}")
-    if not np.all(np.isfinite(w)):
-        raise ValueError(f"{name} contains NaN or inf")
-    return w
+    finite = np.isfinite(w).all(axis=-1)
+    if not finite.all():
+        at = _first(~finite)
+        raise ValueError(f"{name}{at and '[' + at[1:-1].rstrip(',') + ']'} contains NaN or inf")
+    # |w| without overflow (1e200² = inf) or underflow (1e-310² = 0): scale by the largest
+    # component first, so the scaled vector has components in [-1, 1] and a length in [1, √3]
+    # (a subnormal vector keeps only the bits it has)
+    big = np.max(np.abs(w), axis=-1)
+    zero = big == 0.0
+    if zero.any():
+        at = _first(zero)
+        raise ValueError(f"{name}{at and '[' + at[1:-1].rstrip(',') + ']'} is the zero vector: "
+                         "a direction must be non-zero")
+    s = w / big[..., None]  # no overflow: |s| ≤ 1; big > 0 checked above
+    n = np.sqrt(np.sum(s * s, axis=-1))  # in [1, √3]
+    return s / n[..., None]
 
 
 def evaluate(
@@ -27,8 +68,10 @@ def evaluate(
     wi: Any,
     wo: Any,
 ) -> np.ndarray:
-    """BRDF value(s) in sr⁻¹ (no cosine factor) for unit directions ``wi`` (toward the light)
-    and ``wo`` (toward the viewer), arrays of shape ``(..., 3)`` that broadcast together.
+    """BRDF value(s) in sr⁻¹ (no cosine factor) for directions ``wi`` (toward the light) and
+    ``wo`` (toward the viewer), arrays of shape ``(..., 3)`` that broadcast together.  Each
+    direction is normalised first; NaN, inf or the zero vector is a ``ValueError`` (see the
+    module docstring for the whole contract).
 
     ``params`` maps parameter names to user-unit values (degrees for angles, a 3-sequence for
     RGB); missing names take their defaults.  Returns shape ``(...)`` for scalar models and

@@ -57,6 +57,7 @@ from functools import partial
 
 import numpy as np
 
+from .files import open_regular
 from .numerics import safe_div
 from .params import Model, Param
 
@@ -130,7 +131,7 @@ def check_file(path: str | os.PathLike) -> None:
     if not name:
         raise MerlError(NO_FILE)
     try:
-        with open(name, "rb") as f:
+        with open_regular(name) as f:  # never blocks on a FIFO
             _check_open(f, name)
     except OSError as e:
         raise MerlError(f"{name}: cannot read: {e.strerror or e}") from None
@@ -155,7 +156,7 @@ def load(path: str | os.PathLike,
     bad = partial(_bad, name)
     report(0.0)
     try:
-        with open(name, "rb") as f:
+        with open_regular(name) as f:  # never blocks on a FIFO
             _check_open(f, name)
             data = np.empty(3 * N_SAMPLES, dtype="<f8")  # the one copy
             raw = memoryview(data).cast("B")

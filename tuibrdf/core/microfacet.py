@@ -25,6 +25,12 @@ import numpy as np
 
 from .numerics import safe_div, safe_sqrt
 
+#: A quotient at or above this counts as infinite.  Cosines a few hundred decades below 1 (a
+#: direction given as (1, 0, 1e-310): a valid unit vector, on the horizon to the last bit)
+#: make 1/cos overflow; guarding ``den > num / HUGE`` divides only where the quotient is finite
+#: and below HUGE, so that products with D (≤ 1/(π·ALPHA_MIN²) ≈ 3e5) stay finite too.
+HUGE = 1e300
+
 #: Smallest distribution width; a roughness of 0 (a perfect mirror, a Dirac lobe that no
 #: mesh or pixel can show) is clamped to this, as pbrt-v4 and Mitsuba 3 clamp theirs.
 ALPHA_MIN = 1e-3
@@ -37,9 +43,11 @@ def alpha_from_roughness(roughness) -> float:
 
 def beckmann_d(cos2_h: np.ndarray, sin2_h: np.ndarray, m: float) -> np.ndarray:
     m2 = m * m
-    ok = cos2_h > 0.0
-    # tan²θh/m² = sin²/(m² cos²): infinite on the horizon, where D's limit is 0 (exp wins)
-    x = safe_div(sin2_h, m2 * cos2_h, ok, fill=np.inf)
+    den = m2 * cos2_h
+    # tan²θh/m² = sin²/(m² cos²): infinite on the horizon, where D's limit is 0 (exp wins);
+    # also where it would overflow (cos²θh ~ 1e-320 from a subnormal z): exp(-1e300) is 0 too
+    ok = den > sin2_h * (1.0 / HUGE)
+    x = safe_div(sin2_h, den, ok, fill=np.inf)
     # exp(-x) underflows harmlessly to 0 for a sharp lobe; 1/cos⁴ only where exp(-x) > 0,
     # because cos⁴ underflows to 0 (divide by zero) well before x = sin²/(m²cos²) is large
     # enough to flush exp(-x): cos² < 1e-154 → x > 1e148 for m ≤ 1.
@@ -83,7 +91,10 @@ def ggx_g2_over_cos(
     den = cos_i * cos_o + cos_o * ggx_lambda_cos(cos_i, sin2_i, alpha) + cos_i * ggx_lambda_cos(
         cos_o, sin2_o, alpha
     )
-    return safe_div(0.25, den, den > 0.0)
+    # den ≥ cos_other·α sinθ/2 with α ≥ 1e-3: below 0.25/HUGE only when both directions are on
+    # the horizon to ~1e-297 (e.g. z = 1e-310 and z = 0): the "both on the horizon" case, 0;
+    # dividing there would overflow
+    return safe_div(0.25, den, den > 0.25 / HUGE)
 
 
 def vcavity_g_over_cos(cos_h, cos_i, cos_o, cos_psi):
@@ -93,9 +104,13 @@ def vcavity_g_over_cos(cos_h, cos_i, cos_o, cos_psi):
     terms stay finite (the limit); where both are 0 every term is infinite and the value is 0.
     """
     ci_co = cos_i * cos_o
-    a = safe_div(1.0, ci_co, ci_co > 0.0, fill=np.inf)
+    # each quotient only where it is below HUGE; at or above it counts as +inf, which min()
+    # passes over: the horizon limit, now also for cosines like 1e-310 that overflow 1/x
+    a = safe_div(1.0, ci_co, ci_co > 1.0 / HUGE, fill=np.inf)
     two_h = 2.0 * cos_h
-    b = safe_div(two_h, cos_psi * cos_o, (cos_psi * cos_o) > 0.0, fill=np.inf)
-    c = safe_div(two_h, cos_psi * cos_i, (cos_psi * cos_i) > 0.0, fill=np.inf)
+    po, pi = cos_psi * cos_o, cos_psi * cos_i
+    small = np.abs(two_h) * (1.0 / HUGE)  # |·|: below the horizon H can point down
+    b = safe_div(two_h, po, po > small, fill=np.inf)
+    c = safe_div(two_h, pi, pi > small, fill=np.inf)
     g = np.minimum(np.minimum(a, b), c)
     return np.where(np.isfinite(g), 0.25 * g, 0.0)

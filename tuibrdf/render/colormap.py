@@ -230,9 +230,12 @@ class Scale:
         v = np.asarray(values, dtype=float)
         if not self.log:
             return np.clip(v / self.vmax, 0.0, 1.0)  # vmax > 0 by construction
-        # values ≤ vmin (zeros included) go to 0; log10 only sees values above vmin > 0
-        above = np.where(v > self.vmin, v, self.vmin)
-        t = 1.0 + np.log10(above / self.vmax) / self.decades
+        # values ≤ vmin (zeros included) go to 0; log10 only sees values above lo > 0.  For a
+        # subnormal vmax (< 5e-321) vmin = vmax·10⁻³ underflows to 0 and log10(0) would warn:
+        # lo is then the smallest subnormal, and vmax/lo ≤ 10³ keeps t ≥ 0
+        lo = max(self.vmin, 5e-324)
+        above = np.where(v > lo, v, lo)
+        t = np.where(v > lo, 1.0 + np.log10(above / self.vmax) / self.decades, 0.0)
         return np.where(np.isnan(v), np.nan, np.clip(t, 0.0, 1.0))
 
     def value_at(self, t: float) -> float:

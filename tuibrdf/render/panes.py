@@ -259,8 +259,8 @@ def stats_text(res: FrameResult, view: str, look: Look) -> Text:
         pk = shown_peak(side, view, look)
         what = "f·cos peak" if res.request.cosine else "peak"
         ch = f" ({pk.label})" if pk.label else ""
-        at = f"({round(pk.theta_deg)}°,{round(pk.phi_deg)}°)" if compare else \
-            f"at {where(pk.theta_deg, pk.phi_deg)}"
+        at = where(pk.theta_deg, pk.phi_deg)
+        at = f"({at.replace('θ=', '').replace(' φ=', ',')})" if compare else f"at {at}"
         line.append(f"  {what} {fmt_value(pk.value)}{ch} {at}")
     return line
 

@@ -63,9 +63,11 @@ def radius(values: np.ndarray, vmax: float, log: bool, decades: float) -> np.nda
     v = np.asarray(values, dtype=float)
     if not log:
         return v
-    lo = vmax * 10.0**-decades
-    # values at or below the centre value (zeros included) sit at the centre
-    return np.clip(1.0 + np.log10(np.maximum(v, lo) / vmax) / decades, 0.0, 1.0)
+    # values at or below the centre value (zeros included) sit at the centre; lo > 0 even for
+    # a subnormal vmax, whose vmax·10⁻³ underflows to 0 (log10(0) would warn)
+    lo = max(vmax * 10.0**-decades, 5e-324)
+    r = 1.0 + np.log10(np.maximum(v, lo) / vmax) / decades
+    return np.clip(np.where(v > lo, r, 0.0), 0.0, 1.0)
 
 
 def polar_plot(

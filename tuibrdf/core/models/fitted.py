@@ -50,7 +50,7 @@ import numpy as np
 
 from ..frame import Geometry, theta_of
 from ..materials import material_aliases, material_names, table
-from ..microfacet import vcavity_g_over_cos
+from ..microfacet import HUGE, vcavity_g_over_cos
 from ..numerics import safe_div, safe_sqrt
 from ..params import Model, Param
 
@@ -106,8 +106,11 @@ def abc(wi, wo, material: str):
 def sgd_ndf(cos_h: np.ndarray, sin2_h: np.ndarray, alpha, p, kappa) -> np.ndarray:
     """``κ·exp(−a)/(π·a^p·cos⁴θh)``, ``a = α + tan²θh/α``; ``(..., 3)`` for RGB parameters."""
     c2 = (cos_h * cos_h)[..., None]
-    # tan²θh = sin²/cos²: infinite on the horizon, where exp(−a) makes D's limit 0
-    tan2 = safe_div(sin2_h[..., None], c2, c2 > 0.0, fill=np.inf)
+    # tan²θh = sin²/cos²: infinite on the horizon, where exp(−a) makes D's limit 0; also where
+    # the quotient would reach HUGE (cos²θh ~ 1e-320 from a unit vector with subnormal z: the
+    # division overflowed), since exp(−1e300/α) is 0 as well
+    s2 = sin2_h[..., None]
+    tan2 = safe_div(s2, c2, c2 > s2 * (1.0 / HUGE), fill=np.inf)
     a = alpha + tan2 / alpha  # α > 0 (checked when the table is read); inf stays inf
     e = np.exp(-a)  # underflows harmlessly to 0 for a sharp lobe
     live = e > 0.0  # a < 746 here: a^p is finite, and cos²θh > 1/(1 + 746α) is far from 0
