@@ -198,7 +198,10 @@ def test_view_command_exits_nonzero_and_prints_the_error(monkeypatch, capsys):
 
             return super().run(headless=True, auto_pilot=crash)
 
+    import tuibrdf.cli.view as view_module
+
     monkeypatch.setattr(app_module, "BrdfApp", Headless)
+    monkeypatch.setattr(view_module, "check_terminal", lambda: None)  # pytest has no terminal
     rc = main(["view", "phong"])
     captured = capsys.readouterr()
     assert rc == 1

@@ -508,7 +508,7 @@ def test_cli_eval_with_a_brdf_file(capsys):
 
 @pytest.mark.parametrize("argv,what", [
     (["eval", "{bad}", "--theta-i", "0", "--theta-r", "0", "--phi-r", "0"], "bad.brdf:"),
-    (["render", "{good}", "-p", "alpha=5"], "alpha = '5' is invalid: expected in [0.001, 1]"),
+    (["render", "{good}", "-p", "alpha=5"], "alpha = 5.0 is invalid: expected in [0.001, 1]"),
     (["albedo", "{tmp}/synth.bin"], "unknown file type '.bin'"),
 ])
 def test_cli_errors_are_one_line_exit_2(tmp_path, capsys, argv, what):

@@ -661,9 +661,10 @@ def test_opposite_directions_on_the_horizon_have_no_specular_term(model, params,
 
 
 # A synthetic table linear in the bin indices, channel c: a_c + b_c·iθh + c_c·iθd + d_c·iφd.
-# Trilinear interpolation of a linear function is the function itself, so at a direction with
-# continuous bin coordinates (tθh, tθd, tφd) (SPEC §6) trilinear gives a + b tθh + c tθd + d tφd,
-# and nearest gives the same at ⌊t⌋.
+# Bin i's value sits at the bin's centre, bin coordinate i + ½ (SPEC §6), and trilinear
+# interpolation of a linear function is the function itself, so at a direction with continuous
+# bin coordinates (tθh, tθd, tφd) trilinear gives the linear function at index t − ½, and
+# nearest gives it at ⌊t⌋ (bin i covers [i, i + 1)).
 LIN = np.array([[0.5, 0.01, 0.003, 0.0005],
                 [0.3, 0.02, 0.001, 0.0007],
                 [0.2, 0.005, 0.002, 0.0002]])
@@ -695,9 +696,10 @@ def merl_coordinates(wi, wo) -> tuple[float, float, float]:
 @pytest.mark.parametrize("pair", [NEAR_MIRROR, BACK, SAME, SIDE])
 def test_merl_lookups(linear_merl, pair):
     t = merl_coordinates(*pair)
-    # interior coordinates: no clamping at the last samples
-    assert all(0.0 < x < n - 1 for x, n in zip(t, (90, 90, 180), strict=True))
-    for lookup, coords in (("trilinear", t), ("nearest", [math.floor(x) for x in t])):
+    # interior coordinates, between the first and last bin centres: no end handling
+    assert all(0.5 < x < n - 0.5 for x, n in zip(t, (90, 90, 180), strict=True))
+    for lookup, coords in (("trilinear", [x - 0.5 for x in t]),
+                           ("nearest", [math.floor(x) for x in t])):
         want = [c[0] + c[1] * coords[0] + c[2] * coords[1] + c[3] * coords[2] for c in LIN]
         got = value("merl", {"file": linear_merl, "lookup": lookup}, *pair)
         assert_close(got, want, rtol=1e-10)  # t passes through sqrt/acos: a few ulps of 90

@@ -188,4 +188,4 @@ def run(args: argparse.Namespace) -> int:
     elif args.color != "auto":
         os.environ["TEXTUAL_COLOR_SYSTEM"] = "truecolor" if args.color == "truecolor" \
             else "256"
-    return open_viewer(state, None if args.color == "auto" else args.color)
+    return open_viewer(state, None if args.color == "auto" else args.color) or 0

@@ -41,10 +41,10 @@ from functools import partial
 
 import numpy as np
 
+from .files import UserFileError
 from .glsl import BUILTIN_NAMES, RESERVED, GlslError, Shader, compile_shader
 from .numerics import shader_errstate
 from .params import Model, Param, unknown_message
-from .userfiles import UserFileError
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z_0-9]*$")
 BOOL_CHOICES = ("off", "on")

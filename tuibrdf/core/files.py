@@ -27,6 +27,12 @@ _KINDS = (
 )
 
 
+
+class UserFileError(ValueError):
+    """A user file that cannot be used: the message names the file (and line) and the
+    problem, in one line.  Here, below every reader, so that the readers and the resolver
+    (:mod:`.userfiles`) can all raise it without importing each other."""
+
 def kind_of(mode: int) -> tuple[str, int]:
     """``(description, errno)`` of a non-regular file mode (``("", 0)`` for a regular file)."""
     if stat.S_ISREG(mode):

@@ -36,8 +36,8 @@ from dataclasses import replace
 
 import numpy as np
 
+from .files import UserFileError
 from .params import Model, Param
-from .userfiles import UserFileError
 
 
 def _user_line(exc: BaseException, path: str) -> int | None:

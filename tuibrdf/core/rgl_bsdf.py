@@ -53,9 +53,9 @@ from functools import partial
 
 import numpy as np
 
+from .files import UserFileError
 from .numerics import safe_div
 from .params import Model
-from .userfiles import UserFileError
 
 MAGIC = b"tensor_file\0"
 DTYPES = {1: "<u1", 2: "<i1", 3: "<u2", 4: "<i2", 5: "<u4", 6: "<i4", 7: "<u8", 8: "<i8",

@@ -33,6 +33,7 @@ from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import replace
 
+from .files import UserFileError  # the readers' error, re-exported here
 from .params import Model
 
 #: extension → what it is (for messages and docs)
@@ -44,11 +45,6 @@ EXTENSIONS = {
     ".binary": "MERL measured BRDF",
 }
 ENTRY_POINT_GROUP = "tuibrdf.models"
-
-
-class UserFileError(ValueError):
-    """A user file that cannot be used: the message names the file (and line) and the
-    problem, in one line."""
 
 
 def understood() -> str:

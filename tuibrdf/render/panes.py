@@ -71,7 +71,8 @@ def _label(res: FrameResult, k: int) -> str:
 
 
 def _unit(cosine: bool) -> str:
-    return "sr⁻¹·cos" if cosine else "sr⁻¹"
+    """f and f·cos θr are both in sr⁻¹ (the cosine has no unit); the title says which."""
+    return "sr⁻¹"
 
 
 def peak_text(peak: Peak, cosine: bool) -> str:
