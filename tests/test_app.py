@@ -56,9 +56,50 @@ async def test_param_keys_use_the_declared_steps():
         assert app.state.side.values["kd"] == pytest.approx(0.2 - kd.step)
         await pilot.press("down", "down")  # third row: n
         await pilot.press("right_curly_bracket")
-        assert app.state.side.values["n"] == pytest.approx(20.0 + n.coarse_step)
+        assert n.relative  # an exponent: the coarse step doubles it (issue 12 item 7)
+        assert app.state.side.values["n"] == pytest.approx(2 * 20.0)
         await pilot.press("r")
         assert app.state.side.values["n"] == n.default
+
+
+async def test_typed_entry_sets_a_parameter_and_refuses_out_of_range():
+    app = make(kd=0.2, ks=0.3, n=20.0)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("down", "down", "equals_sign")  # n: = opens the input
+        await pilot.pause()
+        assert type(app.screen).__name__ == "ValueScreen"
+        await pilot.press("ctrl+u", *"20000", "enter")  # out of [0, 10000]: stays open
+        await pilot.pause()
+        assert type(app.screen).__name__ == "ValueScreen"
+        assert app.state.side.values["n"] == 20.0
+        await pilot.press("ctrl+u", *"1000", "enter")
+        await pilot.pause()
+        assert type(app.screen).__name__ != "ValueScreen"
+        assert app.state.side.values["n"] == 1000.0
+        await pilot.press("t", "ctrl+u", *"12.5", "enter")  # θi typed
+        await pilot.pause()
+        assert app.state.theta_i == 12.5
+        await pilot.press("enter", "escape")  # Esc cancels: nothing changes
+        await pilot.pause()
+        assert app.state.side.values["n"] == 1000.0
+
+
+async def test_choice_picker_filters_the_names():
+    from tuibrdf.app.state import Side, ViewerState
+
+    app = BrdfApp(ViewerState(sides=[Side.of("abc")]), sync=True)
+    p = MODELS["abc"].param("material")
+    target = p.choices[-1]
+    async with app.run_test(size=(100, 30)) as pilot:
+        app.state.side.selected = [r.param.name for r in app.state.side.rows()].index(
+            "material")
+        await pilot.press("enter")
+        await pilot.pause()
+        await pilot.press(*target)  # typing the full name leaves it first in the list
+        await pilot.pause()
+        await pilot.press("enter")
+        await pilot.pause()
+        assert app.state.side.values["material"] == target
 
 
 async def test_constraint_refused_and_values_unchanged():

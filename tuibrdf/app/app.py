@@ -26,6 +26,7 @@ from textual.widgets import Footer, Static
 from textual.worker import Worker, get_current_worker
 
 from ..core import scene
+from ..core.params import _fmt
 from ..core.scene import FrameRequest, FrameResult
 from ..render import MIN_HEIGHT, MIN_WIDTH, panes
 from ..render.views import map_pixels
@@ -33,12 +34,13 @@ from . import keys
 from .layout import CSS, arrange
 from .loading import MeasuredData
 from .presets import PresetError, apply_loaded, list_presets, load_preset, preset_dir, save_preset
-from .screens import HelpScreen, SafeCommandPalette, SaveScreen
+from .screens import HelpScreen, SafeCommandPalette, SaveScreen, ValueScreen
 from .state import ViewerState
 from .text import PANES, legend_text, status_text, visible_panes
 from .widgets import ParamPanel, Picture, StatusLine
 
 RETRY_S = 0.02  # re-check a busy writer after this long
+FILE_POLL_S = 1.0  # how often a model file's mtime is checked (an edit redraws)
 #: colour levels of the maps: 32 keeps a full 160×48 map update near 50 KiB (docs/app.md)
 LEVELS = 32
 #: what a pane or a worker shows as a message instead of stopping the viewer: bad data
@@ -46,7 +48,7 @@ LEVELS = 32
 #: one, core/numerics.py; a picture is not worth losing the session over)
 DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
 #: the actions of the viewer itself (not of a modal screen)
-VIEWER_ACTIONS = frozenset({"state", "save", "load_next", "help"})
+VIEWER_ACTIONS = frozenset({"state", "save", "load_next", "help", "type_value", "type_theta"})
 
 
 class BrdfApp(MeasuredData, App):
@@ -93,9 +95,22 @@ class BrdfApp(MeasuredData, App):
 
     def on_mount(self) -> None:
         self._changed(self.message, relayout=True)
+        self.set_interval(FILE_POLL_S, self._check_files)
 
     def on_resize(self, event) -> None:
         self._changed(self.message, relayout=True)
+
+    def _check_files(self) -> None:
+        """A model file edited on disk (mtime or size changed): re-read, redraw."""
+        for side in self.state.sides:
+            try:
+                new = side.material.refreshed()
+            except ValueError as e:
+                self._changed(f"{side.material.label} changed on disk and cannot be read: {e}")
+                continue
+            if new is not side.material:
+                side.material = new
+                self._changed(f"{new.label} changed on disk: redrawn")
 
     @property
     def look(self) -> panes.Look:
@@ -281,6 +296,32 @@ class BrdfApp(MeasuredData, App):
 
     def action_help(self) -> None:
         self.push_screen(HelpScreen())
+
+    def action_type_value(self) -> None:
+        """Enter or =: type the selected parameter's value (a filtered list for choices)."""
+        s = self.state
+        row = s.row
+        p = row.param
+        current = _fmt(s.row_value(row))
+        prompt = f"{s.side.spec.title} {row.label} ({p.doc or p.name})\n" \
+                 f"now {current}; {p.range_text()}"
+        if p.kind == "choice":
+            prompt += "\ntype to filter, ↑/↓, Enter applies, Esc cancels"
+        else:
+            prompt += "\nEnter applies, Esc cancels"
+        self.push_screen(ValueScreen(prompt, current, s.type_value, p.choices),
+                         partial(self._typed, row.label))
+
+    def action_type_theta(self) -> None:
+        s = self.state
+        prompt = f"θi (angle of incidence, degrees)\nnow {s.theta_i:g}°; in [0, 90]°" \
+                 "\nEnter applies, Esc cancels"
+        self.push_screen(ValueScreen(prompt, f"{s.theta_i:g}", s.type_theta),
+                         partial(self._typed, "θi"))
+
+    def _typed(self, label: str, text: str | None) -> None:
+        self._changed(f"{label} = {text}" if text is not None else f"{label} unchanged",
+                      relayout=True)
 
     def action_save(self) -> None:
         def done(name: str | None) -> None:

@@ -59,5 +59,5 @@ def arrange(app) -> None:
     if s.compare:
         for pane in ("map-a", "map-b", "solid-a", "solid-b"):
             k = PANES[pane][1]
-            app.query_one(f"#{pane}").border_title = f"{'AB'[k]}: {s.sides[k].model}"
+            app.query_one(f"#{pane}").border_title = f"{'AB'[k]}: {s.sides[k].material.label}"
         app.query_one("#diff").border_title = "A − B"

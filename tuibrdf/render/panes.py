@@ -66,7 +66,7 @@ def shown_peak(side: SideFrame, view: str, look: Look) -> Peak:
 
 
 def _label(res: FrameResult, k: int) -> str:
-    name = res.sides[k].material.name
+    name = res.sides[k].material.label
     return name if len(res.sides) == 1 else f"{SIDE_LABELS[k]}: {name}"
 
 
@@ -167,7 +167,7 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
     compare = len(res.sides) > 1
     curves = []
     for k, s in enumerate(res.sides):
-        name = s.material.name
+        name = s.material.label
         for label, v in channel_curves(name, s.sections[plane]):
             label = f"{SIDE_LABELS[k]}:{name}" if compare and label == name else label
             curves.append((label, SECTION_THETAS, v))
@@ -176,12 +176,12 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
     text, caption = polar_plot(curves, w, h - 1, log=look.log, color=look.color,
                                theta_i_deg=t if plane == "incidence" else None, vmax=vmax)
     if compare:
-        a, b = (s.material.name for s in res.sides)
+        a, b = (s.material.label for s in res.sides)
         parts = [(plane, 0), (f"A {a} vs B {b}", 2)]
     else:
         sides = "φ 180°|0°" if plane == "incidence" else "φ 270°|90°"
         what = "f·cosθr" if res.request.cosine else "f"
-        parts = [(res.sides[0].material.name, 2), (f"θi={t:g}°", 3), (plane, 0),
+        parts = [(res.sides[0].material.label, 2), (f"θi={t:g}°", 3), (plane, 0),
                  (f"({sides})", 4), (what, 1)]
     return Group(title([*parts, *caption_parts(caption)], w), plot_body(text, look.color))
 
@@ -213,7 +213,7 @@ def albedo_pane(res: FrameResult, w: int, h: int, look: Look) -> RenderableType:
     t = res.request.theta_i
     if len(res.sides) == 1:
         s = res.sides[0]
-        curves = channel_curves(s.material.name, s.curve)
+        curves = channel_curves(s.material.label, s.curve)
     else:
         curves = [(_label(res, k), luminance(s.curve) if s.curve.ndim == 2 else s.curve)
                   for k, s in enumerate(res.sides)]
@@ -222,7 +222,7 @@ def albedo_pane(res: FrameResult, w: int, h: int, look: Look) -> RenderableType:
     flag = f"a>1 (max {fmt_value(top)}): not energy-conserving" if over else ""
     text = albedo_plot(CURVE_THETAS, curves, w, h - 1, theta_i_deg=t, color=look.color)
     if len(res.sides) == 1:
-        parts = [(res.sides[0].material.name, 2),
+        parts = [(res.sides[0].material.label, 2),
                  (f"a(θi={t:g}°) = {albedo_text(res.sides[0].albedo)}", 0), (flag, 1)]
     else:
         parts = [("directional albedo a(θi) = ∫ f cos θr dω", 0), ("(line: a = 1)", 2),
