@@ -385,3 +385,35 @@ async def test_a_failing_picture_is_a_message_not_a_crash(monkeypatch):
         assert "cannot draw map-a: overflow" in text
         await pilot.press("right")
         assert app.state.theta_i == 31.0
+
+
+async def test_preset_io_runs_off_the_event_loop_in_a_daemon_thread(config_home, monkeypatch):
+    # issue 17: a preset read stuck on a slow disk must not freeze the keys, and the thread
+    # doing it must be a daemon (a pool thread is joined at exit: q would hang)
+    import threading
+
+    from tuibrdf.app import app as app_module
+
+    release, seen = threading.Event(), {}
+
+    def slow_load(name):
+        seen["daemon"] = threading.current_thread().daemon
+        release.wait(10)
+        return 10.0, [Side.of("lambert")]
+
+    monkeypatch.setattr(app_module, "list_presets", lambda: ["slow"])
+    monkeypatch.setattr(app_module, "load_preset", slow_load)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))  # not sync
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("P")
+        await pilot.pause()
+        await pilot.press("right")  # the key is handled while the preset is still read
+        await pilot.pause()
+        assert app.state.theta_i == 31.0 and app.state.side.model == "phong"
+        assert seen.get("daemon") is True
+        release.set()
+        for _ in range(100):
+            await pilot.pause(0.05)
+            if app.state.side.model == "lambert":
+                break
+        assert app.state.theta_i == 10.0 and app.message == "loaded preset slow"

@@ -15,6 +15,7 @@ only when what it shows changed.
 
 from __future__ import annotations
 
+import threading
 from functools import partial
 
 from rich.text import Text
@@ -51,6 +52,21 @@ DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
 VIEWER_ACTIONS = frozenset({"state", "save", "load_next", "help", "type_value", "type_theta"})
 
 
+def _list_presets() -> list[str]:
+    try:
+        return list_presets()
+    except (PresetError, OSError):
+        return []
+
+
+def _read_preset(name: str):
+    """``(θi, sides)`` of a saved preset, or the message saying why it cannot be read."""
+    try:
+        return load_preset(name)
+    except (PresetError, OSError) as e:
+        return str(e)
+
+
 class BrdfApp(MeasuredData, App):
     """``BrdfApp(state, color=None)``; ``color`` ∈ truecolor/256/none overrides detection.
     ``sync=True`` (tests) computes every frame on the event loop, deterministically."""
@@ -75,6 +91,7 @@ class BrdfApp(MeasuredData, App):
         self._worker_for: FrameRequest | None = None
         self._changes = 0  # changes so far; only the last one queued updates the screen
         self._relayout = False  # a change since the last update may show other panes
+        self._preset_names: list[str] = []  # the saved presets, for the command palette
 
     # -- layout ------------------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -96,6 +113,7 @@ class BrdfApp(MeasuredData, App):
     def on_mount(self) -> None:
         self._changed(self.message, relayout=True)
         self.set_interval(FILE_POLL_S, self._check_files)
+        self.background(_list_presets, self._listed)
 
     def on_resize(self, event) -> None:
         self._changed(self.message, relayout=True)
@@ -323,41 +341,80 @@ class BrdfApp(MeasuredData, App):
         self._changed(f"{label} = {text}" if text is not None else f"{label} unchanged",
                       relayout=True)
 
+    def background(self, work, done) -> None:
+        """``done(work())`` on the event loop, ``work`` in a daemon thread: disk I/O (presets,
+        data files) never blocks a key, and a read stuck on a slow disk or a FIFO does not keep
+        the process alive after q (a pool thread would: Python joins those at exit).  In sync
+        mode (tests) both run here."""
+        if self.sync:
+            done(work())
+            return
+
+        def run() -> None:
+            result = work()
+            try:
+                self.call_from_thread(done, result)
+            except RuntimeError:  # the app has closed meanwhile
+                pass
+
+        threading.Thread(target=run, name="tuibrdf-io", daemon=True).start()
+
     def action_save(self) -> None:
+        state = self.state
+
+        def write(name: str) -> str:
+            try:
+                return f"saved {save_preset(state, name)}"
+            except (PresetError, OSError) as e:
+                return f"not saved: {e}"
+
         def done(name: str | None) -> None:
             if not name:
                 self._changed("save cancelled")
                 return
-            try:
-                path = save_preset(self.state, name)
-            except (PresetError, OSError) as e:
-                self._changed(f"not saved: {e}")
-                return
-            self._changed(f"saved {path}")
+            self._changed(f"saving preset {name} …")
+            self.background(partial(write, name), self._saved)
 
         self.push_screen(SaveScreen(), done)
 
+    def _saved(self, message: str) -> None:
+        self._changed(message)
+        self.background(_list_presets, self._listed)
+
+    def _listed(self, names: list[str]) -> None:
+        self._preset_names = names
+
     def action_load_next(self) -> None:
-        names = list_presets()
-        if not names:
-            self._changed(f"no saved presets in {preset_dir()} (s saves one)")
-            return
-        i = names.index(self._loaded) if self._loaded in names else -1
-        self.load_and_show(names[(i + 1) % len(names)])
+        loaded = self._loaded
+
+        def work() -> tuple[str, object]:
+            names = _list_presets()
+            if not names:
+                return "", f"no saved presets in {preset_dir()} (s saves one)"
+            i = names.index(loaded) if loaded in names else -1
+            name = names[(i + 1) % len(names)]
+            return name, _read_preset(name)
+
+        self.background(work, self._show_loaded)
 
     def load_and_show(self, name: str) -> None:
-        msg = self.load(name)
-        if msg is None:
-            self._loaded = name
-        self._changed(msg or f"loaded preset {name}", relayout=True)
+        self.background(lambda: (name, _read_preset(name)), self._show_loaded)
+
+    def _show_loaded(self, result: tuple[str, object]) -> None:
+        name, got = result
+        if isinstance(got, str):  # why it cannot be loaded
+            self._changed(got)
+            return
+        apply_loaded(self.state, *got)
+        self._loaded = name
+        self._changed(f"loaded preset {name}", relayout=True)
 
     def load(self, name: str) -> str | None:
-        """Load a saved preset into the viewer; a message if it cannot be."""
-        try:
-            theta, sides = load_preset(name)
-        except PresetError as e:
-            return str(e)
-        apply_loaded(self.state, theta, sides)
+        """Load a saved preset into the viewer now; a message if it cannot be."""
+        got = _read_preset(name)
+        if isinstance(got, str):
+            return got
+        apply_loaded(self.state, *got)
         return None
 
     def action_command_palette(self) -> None:
@@ -366,7 +423,7 @@ class BrdfApp(MeasuredData, App):
 
     def get_system_commands(self, screen):
         yield from super().get_system_commands(screen)
-        for name in list_presets():
+        for name in self._preset_names:  # listed off the event loop (on mount, on save)
             yield SystemCommand(f"Load preset {name}", f"{preset_dir() / name}.toml",
                                 partial(self.load_and_show, name))
         for k in keys.palette_keys():
