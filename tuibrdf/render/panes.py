@@ -127,7 +127,7 @@ def map_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     r, c = info.incident_px
     if (r // 2, c) != (marks[0].row, marks[0].col):
         marks.append(Mark(r // 2, c, **INCIDENT_MARK))
-    image = HalfBlockImage(index, pal, marks, color_system=look.color)
+    image = HalfBlockImage(index, pal, marks, color_system=look.color, ring=ring_index)
     if info.vmin >= peak.value * (1.0 - 1e-12):  # Lambert: no "the" peak
         what = "f·cosθr" if cosine else "f"
         head, at = f"{what} = {fmt_value(peak.value)} {_unit(cosine)}", "everywhere"
