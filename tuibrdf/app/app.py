@@ -134,7 +134,7 @@ class BrdfApp(MeasuredData, App):
     def look(self) -> panes.Look:
         s = self.state
         return panes.Look(self.color_system(), s.cmap, s.log, LEVELS, "auto", s.azimuth,
-                          s.elevation)
+                          s.elevation, s.channel)
 
     def color_system(self) -> str:
         if self._color:
@@ -294,8 +294,8 @@ class BrdfApp(MeasuredData, App):
         what = (req.materials, req.theta_i, req.cosine)
         key = {"map": (what, req.map_px, look), "diff": (what, req.map_px, look.color),
                "solid": (what, look), "albedo": (req.materials, req.theta_i, look.color,
-                                                 res.complete)}.get(view)
-        key = (pane, w, h, key or (what, look.color, look.log))
+                                                 res.complete, look.channel)}.get(view)
+        key = (pane, w, h, key or (what, look.color, look.log, look.channel))
         if pic.shown_for == key:
             return
         try:

@@ -66,6 +66,8 @@ KEYS: tuple[Key, ...] = (
     Key("l", _s("toggle_log"), "log", "linear / log colour scale"),
     Key("k", _s("cycle_cmap"), "cmap", "next colour map"),
     Key("o", _s("toggle_cosine"), "f·cos", "show f or f·cos θr"),
+    Key("C", _s("cycle_channel"), "channel",
+        "curves of RGB models: R,G,B → luminance → R → G → B"),
     Key("c", _s("toggle_compare"), "compare", "compare two models (B starts as A)", footer=True),
     Key("tab", _s("switch_side"), "side", "compare: keys act on A or B", priority=True),
     Key("p", _s("next_preset"), "preset",

@@ -31,6 +31,9 @@ from ..core.models import MODELS
 from ..core.params import Model, Param, Value
 from ..render import CMAPS
 
+CHANNEL_NAMES = {"rgb": "R, G and B", "lum": "luminance (Rec.709)", "R": "red only",
+                 "G": "green only", "B": "blue only"}
+
 #: the main views ``v`` cycles through (the cross-sections are always shown beside them)
 MAIN_VIEWS = ("map", "solid", "albedo")
 
@@ -172,6 +175,8 @@ class ViewerState:
     #: the sides (and active side) before the first preset: ``p`` past the last preset
     #: returns to them, so a preset never throws tuned values away
     before_preset: tuple[list[Side], int] | None = None
+    #: the curves of an RGB model (sections, albedo curve): all three, luminance or one
+    channel: str = "rgb"
     #: models read from files (absolute paths) the session has shown: ``m`` cycles back
     files: list[str] = field(default_factory=list)
     #: values last used for each model, so cycling away and back keeps them
@@ -319,6 +324,14 @@ class ViewerState:
         i = CMAPS.index(self.cmap) if self.cmap in CMAPS else -1
         self.cmap = CMAPS[(i + delta) % len(CMAPS)]
         return None
+
+    def cycle_channel(self) -> str | None:
+        """The curves of RGB models: R, G, B → luminance → R → G → B → all three."""
+        order = ("rgb", "lum", "R", "G", "B")
+        self.channel = order[(order.index(self.channel) + 1) % len(order)]
+        if not any(x.spec.rgb for x in self.sides):
+            return f"curves of RGB models: {CHANNEL_NAMES[self.channel]} (no RGB model shown)"
+        return f"curves of RGB models: {CHANNEL_NAMES[self.channel]}"
 
     def toggle_cosine(self) -> str | None:
         self.cosine = not self.cosine

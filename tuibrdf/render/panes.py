@@ -31,7 +31,7 @@ from ..core.scene import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
 from .albedo_plot import albedo_plot
 from .colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize
 from .halfblock import HalfBlockImage, Mark
-from .polar import caption_parts, channel_curves, plot_body, polar_plot
+from .polar import caption_parts, plot_body, polar_plot, side_curves
 from .solid import solid_image
 from .text import INCIDENT_MARK, MIRROR_MARK, RING_RGB, mark_legend, title, where
 
@@ -51,6 +51,8 @@ class Look:
     rgb_mode: str = "auto"  # auto | color | luminance
     azimuth: float = -60.0  # the 3D solid's camera
     elevation: float = 25.0
+    #: the curves of an RGB model (sections, albedo): rgb (three) | lum | R | G | B
+    channel: str = "rgb"
 
     @property
     def rgb(self) -> str:
@@ -155,9 +157,32 @@ def diff_pane(res: FrameResult, w: int, h: int, look: Look) -> Group:
     stops = np.array(DIVERGING, dtype=float)
     x = np.linspace(0, 1, levels)
     pal = np.stack([np.interp(x, [0, 0.5, 1], stops[:, c]) for c in range(3)], -1)
-    img = HalfBlockImage(idx, np.rint(pal).astype(np.uint8), (), color_system=look.color)
     head = title([("A − B", 1), (f"max |Δ| {fmt_value(m)}", 0)], w)
+    if look.color == "none":  # no colour to tell the sign: characters that say it
+        return Group(head, signed_text(np.where(finite, t - 0.5, np.nan)),
+                     title([("+# A>B  -= B>A  . same", 0)], w))
+    img = HalfBlockImage(idx, np.rint(pal).astype(np.uint8), (), color_system=look.color)
     return Group(head, img, title([("red: A>B  blue: B>A", 0)], w))
+
+
+def signed_text(d: np.ndarray) -> Text:
+    """The difference map in plain text, one character per cell (two pixel rows): ``.``
+    within 5 % of the largest |Δ| of each other, ``+``/``#`` A larger (under/over half of
+    it), ``-``/``=`` B larger; blank outside the disc."""
+    if d.shape[0] % 2:
+        d = np.vstack([d, np.full((1, d.shape[1]), np.nan)])
+    pair = d.reshape(d.shape[0] // 2, 2, d.shape[1])
+    ok = np.isfinite(pair)
+    inside = ok.any(axis=1)
+    # the mean of the finite halves; max(count, 1): no 0/0 outside the disc
+    v = np.where(ok, pair, 0.0).sum(axis=1) / np.maximum(ok.sum(axis=1), 1)
+    chars = np.full(v.shape, " ")
+    chars[inside] = "."
+    chars[inside & (v > 0.025)] = "+"
+    chars[inside & (v > 0.25)] = "#"
+    chars[inside & (v < -0.025)] = "-"
+    chars[inside & (v < -0.25)] = "="
+    return Text("\n".join("".join(row) for row in chars), no_wrap=True)
 
 
 # ----------------------------------------------------------------------- cross-sections
@@ -165,12 +190,8 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
     """The sides' values along ``plane`` (R, G, B curves for an RGB model alone), both planes
     and both sides on one radius scale; the caption gives the section max."""
     compare = len(res.sides) > 1
-    curves = []
-    for k, s in enumerate(res.sides):
-        name = s.material.label
-        for label, v in channel_curves(name, s.sections[plane]):
-            label = f"{SIDE_LABELS[k]}:{name}" if compare and label == name else label
-            curves.append((label, SECTION_THETAS, v))
+    curves = [(label, SECTION_THETAS, v, *style) for label, v, *style in side_curves(
+        [(s.material.label, s.sections[plane]) for s in res.sides], look.channel)]
     vmax = max(s.section_max for s in res.sides)
     t = res.request.theta_i
     text, caption = polar_plot(curves, w, h - 1, log=look.log, color=look.color,
@@ -211,12 +232,7 @@ def albedo_pane(res: FrameResult, w: int, h: int, look: Look) -> RenderableType:
     if any(s.curve is None for s in res.sides):
         return Text("computing a(θi) over 0–90° …", justify="center")
     t = res.request.theta_i
-    if len(res.sides) == 1:
-        s = res.sides[0]
-        curves = channel_curves(s.material.label, s.curve)
-    else:
-        curves = [(_label(res, k), luminance(s.curve) if s.curve.ndim == 2 else s.curve)
-                  for k, s in enumerate(res.sides)]
+    curves = side_curves([(s.material.label, s.curve) for s in res.sides], look.channel)
     top = max(float(np.max(s.curve)) for s in res.sides)
     over = any(exceeds_one(s.curve) for s in res.sides)
     flag = f"a>1 (max {fmt_value(top)}): not energy-conserving" if over else ""
