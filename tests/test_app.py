@@ -312,7 +312,7 @@ async def test_measured_file_loads_in_the_background_then_draws(tmp_path):
         # a constant BRDF of 0.1 sr⁻¹ in every channel gives the albedo 0.1·π at any θi
         assert await wait_for(pilot, lambda: not app._loading and app.frames > 0)
         assert await wait_for(pilot, lambda: "a(θi)=(0.314,0.314,0.314)" in status(app))
-        assert app.state.side.model == "merl" and f"loaded {path}" in status(app)
+        assert app.state.side.model == "merl" and f"loaded {path}" in app.message
 
 
 async def test_a_bad_measured_file_is_a_message_not_a_crash(tmp_path):
@@ -326,7 +326,7 @@ async def test_a_bad_measured_file_is_a_message_not_a_crash(tmp_path):
     async with app.run_test(size=(100, 30)) as pilot:
         assert await wait_for(pilot, lambda: app.state.side.model == "lambert")
         await pilot.pause()
-        assert "NaN value in channel G" in app.message and "showing lambert" in status(app)
+        assert "NaN value in channel G" in app.message and "showing lambert" in app.message
         await pilot.press("right")  # still running, keys work
         assert app.state.theta_i == 31.0
 
@@ -417,3 +417,27 @@ async def test_preset_io_runs_off_the_event_loop_in_a_daemon_thread(config_home,
             if app.state.side.model == "lambert":
                 break
         assert app.state.theta_i == 10.0 and app.message == "loaded preset slow"
+
+
+async def test_a_long_message_does_not_wrap_the_status_line():
+    # issue 12 item 10: a bad preset name wrapped the status line to a third row
+    app = make()
+    async with app.run_test(size=(80, 24)) as pilot:
+        app._changed("x" * 300)
+        await pilot.pause()
+        await pilot.pause()
+        assert app.query_one("#status").size.height == 2
+
+
+async def test_compare_mode_below_its_minimum_says_so_and_c_returns():
+    app = make()
+    async with app.run_test(size=(60, 18)) as pilot:
+        await pilot.press("c")
+        await pilot.pause()
+        assert app.screen.has_class("small")
+        assert "compare mode needs at least 80×24" in str(app.query_one("#toosmall").render())
+        await pilot.press("c")
+        await pilot.pause()
+        assert not app.screen.has_class("small")
+        # at 18 rows one section is shown, with the rows both would share
+        assert app.query_one("#incidence").display and not app.query_one("#perpendicular").display

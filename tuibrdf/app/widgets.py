@@ -123,3 +123,14 @@ class StatusLine(QuietStatic):
     """Two lines: θi and the frame's numbers; the view, scale, colour map and a message."""
 
     DEFAULT_CSS = "StatusLine { height: auto; max-height: 3; padding: 0 1; }"
+
+    def show_text(self, text: Text) -> None:
+        """The numbers may wrap; the last line (view, scale, message) is cut with "…" at the
+        width, so a long message never pushes the status to a third row."""
+        width = self.size.width - 2  # the padding
+        lines = text.split("\n")
+        if width > 10 and len(lines) > 1:
+            last = lines[-1]
+            last.truncate(width, overflow="ellipsis")
+            text = Text("\n").join([*lines[:-1], last])
+        super().show_text(text)
