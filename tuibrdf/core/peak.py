@@ -101,6 +101,8 @@ def _angles(w: np.ndarray) -> tuple[float, float]:
 def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
                cosine: bool = False, level: int = PEAK_LEVEL) -> tuple[Peak, ...]:
     """``(Peak,)`` for a scalar model, ``(Y, R, G, B)`` peaks for an RGB one (see module)."""
+    if not 0.0 <= float(theta_i_deg) <= 90.0:  # also refuses NaN
+        raise ValueError(f"theta_i = {theta_i_deg!r} is invalid: expected in [0, 90]°")
     wi = incident(theta_i_deg)
     s_dir = mirror(wi)
     cand = np.concatenate([hemisphere(level).vertices, [s_dir, HORIZON_MIRROR, NORMAL]])
