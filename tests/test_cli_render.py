@@ -93,6 +93,18 @@ def test_albedo_sharp_mirror_lobe_is_not_flagged_and_shows_its_error(capsys):
     assert json.loads(out)["values"][1]["albedo"] == pytest.approx(0.99993, abs=1e-4)
 
 
+def test_render_albedo_plot_flags_only_a_model_that_gains_energy(capsys):
+    # the albedo view's flag is the same test (albedo − error > 1) over the whole curve: ggx
+    # α = 0.001, f0 = 1, kd = 0 stays ≤ 1 at every θi (sharp lobe, grazing included); ggx
+    # kd = 1 with a specular lobe on top exceeds 1 (its Lambert term alone reflects exactly 1)
+    common = ("--view", "albedo", "--color", "none", "--width", "70", "--height", "14")
+    rc, out, _ = run(capsys, "render", "ggx", "-p", "kd=0", "-p", "f0=1", "-p", "alpha=0.001",
+                     *common)
+    assert rc == 0 and "not energy-conserving" not in out
+    rc, out, _ = run(capsys, "render", "ggx", "-p", "kd=1", "-p", "f0=0.5", *common)
+    assert rc == 0 and "not energy-conserving" in out.splitlines()[0]
+
+
 # -- render ---------------------------------------------------------------------------------
 @pytest.mark.parametrize("name", sorted(GOLDENS))
 def test_render_goldens(capsys, name):
