@@ -252,3 +252,22 @@ def test_changed_span_is_what_differs_between_two_strips():
     assert x1 <= x0
     assert changed_span(strip("ab", "cd", "ef"), strip("aB", "cd", "ef")) == (0, 2)
     assert changed_span(strip("abcdef"), strip("abcdeF")) == (0, 6)
+
+
+async def test_status_line_grows_and_shrinks_with_its_text():
+    # the status line re-lays out the screen only when its height may change; a message that
+    # wraps must still get its lines (2 lines normally, 3 at most: its CSS max-height) and the
+    # line count must come back when the message goes
+    app = BrdfApp(sync=True)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.pause()
+        st = app.query_one("#status")
+        assert st.size.height == 2
+        app._changed("long " * 60)
+        await pilot.pause()
+        await pilot.pause()
+        assert st.size.height == 3 and "long long" in status(app)
+        app._changed("short")
+        await pilot.pause()
+        await pilot.pause()
+        assert st.size.height == 2

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from rich.cells import cell_len
 from rich.console import RenderableType
 from rich.segment import Segment
 from rich.style import Style
@@ -96,11 +95,10 @@ class QuietStatic(Static):
     _rows: tuple | None = None
 
     def _row_count(self, text: Text) -> tuple:
-        lines = text.plain.split("\n")
         width = max(1, self.content_region.width)
         if text.no_wrap or self.styles.text_wrap == "nowrap":
-            return len(lines), width
-        return sum(max(1, -(-cell_len(line) // width)) for line in lines), width
+            return text.plain.count("\n") + 1, width
+        return len(text.wrap(self.app.console, width)), width  # Rich's own word wrap
 
     def show_text(self, text: Text) -> None:
         key = (text.plain, tuple(text.spans), str(text.style))  # Text == ignores the style
