@@ -73,6 +73,8 @@ def dense_max(model: str, params: dict, theta_i: float, channel=None) -> tuple[f
     ("oren-nayar", {}, 60.0),  # back-scattering: peak on the light's side
     ("disney-diffuse", {}, 85.0),  # RGB, grazing
     ("phong", {}, 30.0),
+    ("cook-torrance", {}, 37.0),  # the search from the mirror climbs a lower local maximum
+    ("gltf", {}, 37.0),
 ])
 def test_peak_is_at_least_the_dense_grid_maximum(model, params, theta_i):
     m = MODELS[model]
