@@ -73,8 +73,10 @@ class Material:
     def label(self) -> str:
         """The name a title shows: a model read from a file by its file name (``ggx.brdf``),
         not its absolute path."""
-        return os.path.basename(self.name) if self.stamp is not None or os.path.isabs(
-            self.name) else self.name
+        if self.stamp is not None or os.path.isabs(self.name):
+            return os.path.basename(self.name)
+        data = dict(self.items).get("file")  # measured data (merl): the data file's name
+        return os.path.basename(str(data)) if data else self.name
 
     def refreshed(self) -> Material:
         """This material again if its model file is unchanged on disk, else re-read (a new
