@@ -248,3 +248,34 @@ def test_missing_and_badly_named_preset(config):
         presets.load_preset("absent")
     with pytest.raises(presets.PresetError, match="invalid"):
         presets.preset_path("../evil")
+
+
+def test_a_model_file_is_titled_by_its_name_reread_when_edited_and_cycled_back_to(tmp_path):
+    # issues 14/12: a file model's name is its absolute path; titles show the file's name, an
+    # edited file (mtime/size change) is another material (another cache key), m returns to it
+    import os
+    import shutil
+    from pathlib import Path
+
+    from tuibrdf.core.material import Material
+
+    src = Path(__file__).parent / "data" / "brdf" / "lambert.brdf"
+    path = tmp_path / "mine.brdf"
+    shutil.copy(src, path)
+    s = ViewerState(sides=[Side.of(str(path))])
+    assert s.side.material.label == "mine.brdf"
+    before = s.side.material
+    assert before.refreshed() is before  # unchanged on disk: the same material
+    path.write_text(path.read_text() + "\n")  # a size change, still a valid file
+    st = os.stat(path)
+    os.utime(path, ns=(st.st_atime_ns, st.st_mtime_ns + 10**9))
+    after = before.refreshed()
+    assert after is not before and after != before and hash(after) != hash(before)
+    assert after == Material(str(path), before.values)
+    s.cycle_model(1)
+    assert s.side.model != str(path)
+    for _ in range(len(MODELS) + 1):
+        if s.side.model == str(path):
+            break
+        s.cycle_model(1)
+    assert s.side.model == str(path)
