@@ -56,9 +56,50 @@ async def test_param_keys_use_the_declared_steps():
         assert app.state.side.values["kd"] == pytest.approx(0.2 - kd.step)
         await pilot.press("down", "down")  # third row: n
         await pilot.press("right_curly_bracket")
-        assert app.state.side.values["n"] == pytest.approx(20.0 + n.coarse_step)
+        assert n.relative  # an exponent: the coarse step doubles it (issue 12 item 7)
+        assert app.state.side.values["n"] == pytest.approx(2 * 20.0)
         await pilot.press("r")
         assert app.state.side.values["n"] == n.default
+
+
+async def test_typed_entry_sets_a_parameter_and_refuses_out_of_range():
+    app = make(kd=0.2, ks=0.3, n=20.0)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("down", "down", "equals_sign")  # n: = opens the input
+        await pilot.pause()
+        assert type(app.screen).__name__ == "ValueScreen"
+        await pilot.press("ctrl+u", *"20000", "enter")  # out of [0, 10000]: stays open
+        await pilot.pause()
+        assert type(app.screen).__name__ == "ValueScreen"
+        assert app.state.side.values["n"] == 20.0
+        await pilot.press("ctrl+u", *"1000", "enter")
+        await pilot.pause()
+        assert type(app.screen).__name__ != "ValueScreen"
+        assert app.state.side.values["n"] == 1000.0
+        await pilot.press("t", "ctrl+u", *"12.5", "enter")  # θi typed
+        await pilot.pause()
+        assert app.state.theta_i == 12.5
+        await pilot.press("enter", "escape")  # Esc cancels: nothing changes
+        await pilot.pause()
+        assert app.state.side.values["n"] == 1000.0
+
+
+async def test_choice_picker_filters_the_names():
+    from tuibrdf.app.state import Side, ViewerState
+
+    app = BrdfApp(ViewerState(sides=[Side.of("abc")]), sync=True)
+    p = MODELS["abc"].param("material")
+    target = p.choices[-1]
+    async with app.run_test(size=(100, 30)) as pilot:
+        app.state.side.selected = [r.param.name for r in app.state.side.rows()].index(
+            "material")
+        await pilot.press("enter")
+        await pilot.pause()
+        await pilot.press(*target)  # typing the full name leaves it first in the list
+        await pilot.pause()
+        await pilot.press("enter")
+        await pilot.pause()
+        assert app.state.side.values["material"] == target
 
 
 async def test_constraint_refused_and_values_unchanged():
@@ -271,7 +312,7 @@ async def test_measured_file_loads_in_the_background_then_draws(tmp_path):
         # a constant BRDF of 0.1 sr⁻¹ in every channel gives the albedo 0.1·π at any θi
         assert await wait_for(pilot, lambda: not app._loading and app.frames > 0)
         assert await wait_for(pilot, lambda: "a(θi)=(0.314,0.314,0.314)" in status(app))
-        assert app.state.side.model == "merl" and f"loaded {path}" in status(app)
+        assert app.state.side.model == "merl" and f"loaded {path}" in app.message
 
 
 async def test_a_bad_measured_file_is_a_message_not_a_crash(tmp_path):
@@ -285,7 +326,7 @@ async def test_a_bad_measured_file_is_a_message_not_a_crash(tmp_path):
     async with app.run_test(size=(100, 30)) as pilot:
         assert await wait_for(pilot, lambda: app.state.side.model == "lambert")
         await pilot.pause()
-        assert "NaN value in channel G" in app.message and "showing lambert" in status(app)
+        assert "NaN value in channel G" in app.message and "showing lambert" in app.message
         await pilot.press("right")  # still running, keys work
         assert app.state.theta_i == 31.0
 
@@ -344,3 +385,59 @@ async def test_a_failing_picture_is_a_message_not_a_crash(monkeypatch):
         assert "cannot draw map-a: overflow" in text
         await pilot.press("right")
         assert app.state.theta_i == 31.0
+
+
+async def test_preset_io_runs_off_the_event_loop_in_a_daemon_thread(config_home, monkeypatch):
+    # issue 17: a preset read stuck on a slow disk must not freeze the keys, and the thread
+    # doing it must be a daemon (a pool thread is joined at exit: q would hang)
+    import threading
+
+    from tuibrdf.app import app as app_module
+
+    release, seen = threading.Event(), {}
+
+    def slow_load(name):
+        seen["daemon"] = threading.current_thread().daemon
+        release.wait(10)
+        return 10.0, [Side.of("lambert")]
+
+    monkeypatch.setattr(app_module, "list_presets", lambda: ["slow"])
+    monkeypatch.setattr(app_module, "load_preset", slow_load)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))  # not sync
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("P")
+        await pilot.pause()
+        await pilot.press("right")  # the key is handled while the preset is still read
+        await pilot.pause()
+        assert app.state.theta_i == 31.0 and app.state.side.model == "phong"
+        assert seen.get("daemon") is True
+        release.set()
+        for _ in range(100):
+            await pilot.pause(0.05)
+            if app.state.side.model == "lambert":
+                break
+        assert app.state.theta_i == 10.0 and app.message == "loaded preset slow"
+
+
+async def test_a_long_message_does_not_wrap_the_status_line():
+    # issue 12 item 10: a bad preset name wrapped the status line to a third row
+    app = make()
+    async with app.run_test(size=(80, 24)) as pilot:
+        app._changed("x" * 300)
+        await pilot.pause()
+        await pilot.pause()
+        assert app.query_one("#status").size.height == 2
+
+
+async def test_compare_mode_below_its_minimum_says_so_and_c_returns():
+    app = make()
+    async with app.run_test(size=(60, 18)) as pilot:
+        await pilot.press("c")
+        await pilot.pause()
+        assert app.screen.has_class("small")
+        assert "compare mode needs at least 80×24" in str(app.query_one("#toosmall").render())
+        await pilot.press("c")
+        await pilot.pause()
+        assert not app.screen.has_class("small")
+        # at 18 rows one section is shown, with the rows both would share
+        assert app.query_one("#incidence").display and not app.query_one("#perpendicular").display

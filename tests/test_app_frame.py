@@ -255,10 +255,13 @@ def test_changed_span_is_what_differs_between_two_strips():
 
 
 async def test_status_line_grows_and_shrinks_with_its_text():
-    # the status line re-lays out the screen only when its height may change; a message that
-    # wraps must still get its lines (2 lines normally, 3 at most: its CSS max-height) and the
-    # line count must come back when the message goes
-    app = BrdfApp(sync=True)
+    # the status line re-lays out the screen only when its height may change; numbers that
+    # wrap (two RGB sides) must still get their lines (2 lines normally, 3 at most: its CSS
+    # max-height) and the line count must come back when they go.  A long message does not
+    # wrap: it is cut with "…" (issue 12 item 10)
+    from tuibrdf.app.state import Side, ViewerState
+
+    app = BrdfApp(ViewerState(sides=[Side.of("gltf")]), sync=True)
     async with app.run_test(size=(100, 30)) as pilot:
         await pilot.pause()
         st = app.query_one("#status")
@@ -266,8 +269,14 @@ async def test_status_line_grows_and_shrinks_with_its_text():
         app._changed("long " * 60)
         await pilot.pause()
         await pilot.pause()
-        assert st.size.height == 3 and "long long" in status(app)
-        app._changed("short")
+        assert st.size.height == 2 and "long long" in status(app) and "…" in status(app)
+        app.state.toggle_compare()
+        app._changed("", relayout=True)
+        await pilot.pause()
+        await pilot.pause()
+        assert st.size.height == 3, status(app)
+        app.state.toggle_compare()
+        app._changed("short", relayout=True)
         await pilot.pause()
         await pilot.pause()
         assert st.size.height == 2

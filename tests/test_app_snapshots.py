@@ -51,3 +51,51 @@ def test_help_screen(snap_compare):
 
 def test_too_small_message(snap_compare):
     assert snap_compare(app_for(), terminal_size=(50, 14))
+
+
+def compare_rgb_app(color=None):
+    """An RGB A (gltf) against a scalar B (ggx): the case where both sides used to look the
+    same (issue 12 item 2)."""
+    state = ViewerState(sides=[Side.of("gltf", {"base_color": (0.9, 0.5, 0.2)}),
+                               Side.of("ggx", {"alpha": 0.1})], theta_i=30.0)
+    return BrdfApp(state, color=color, sync=True)
+
+
+def test_compare_rgb_sides_120x36(snap_compare):
+    assert snap_compare(compare_rgb_app(), terminal_size=(120, 36))
+
+
+def test_compare_rgb_sides_no_color_120x36(snap_compare):
+    assert snap_compare(compare_rgb_app("none"), terminal_size=(120, 36))
+
+
+def test_compare_albedo_rgb_sides_no_color_100x30(snap_compare):
+    assert snap_compare(compare_rgb_app("none"), terminal_size=(100, 30), press=["v", "v"])
+
+
+def test_minimum_60x18(snap_compare):
+    assert snap_compare(app_for("ggx"), terminal_size=(60, 18))
+
+
+def test_compare_at_80x24(snap_compare):
+    assert snap_compare(compare_rgb_app(), terminal_size=(80, 24))
+
+
+def test_compare_below_its_minimum_60x18(snap_compare):
+    assert snap_compare(compare_rgb_app(), terminal_size=(60, 18))
+
+
+def test_typed_entry_80x24(snap_compare):
+    assert snap_compare(app_for("phong"), terminal_size=(80, 24),
+                        press=["down", "down", "equals_sign"])
+
+
+def test_material_picker_80x24(snap_compare):
+    app = BrdfApp(ViewerState(sides=[Side.of("abc")]), sync=True)
+
+    async def pick(pilot):
+        app.state.side.selected = [r.param.name for r in app.state.side.rows()].index(
+            "material")
+        await pilot.press("enter", *"gold")
+
+    assert snap_compare(app, terminal_size=(80, 24), run_before=pick)

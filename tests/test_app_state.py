@@ -7,7 +7,7 @@ the model modules and SPEC §2) and from the seed's comparison presets (BRDF Vie
 import pytest
 
 from tuibrdf.app import presets
-from tuibrdf.app.state import MAIN_VIEWS, Side, ViewerState, panel_rows
+from tuibrdf.app.state import COMPARE_PRESETS, MAIN_VIEWS, Side, ViewerState, panel_rows
 from tuibrdf.core.models import MODELS
 
 
@@ -34,8 +34,79 @@ def test_param_step_uses_declared_step_and_coarse_step():
     assert s.side.values["kd"] == 0.21  # 0.2 + 0.01, exactly: float noise rounded away
     s.select(2)
     assert s.row.param.name == "n"
-    assert s.step_param(+1, coarse=True) is None and s.side.values["n"] == 30.0
-    assert s.step_param(-1) is None and s.side.values["n"] == 29.0
+    # n is declared relative (issue 12: an exponent spans decades): coarse ×2, fine ÷1.1
+    assert s.step_param(+1, coarse=True) is None and s.side.values["n"] == 40.0
+    assert s.step_param(-1) is None and s.side.values["n"] == 36.4  # 40 / 1.1 to 3 digits
+
+
+def test_relative_steps_reach_every_decade_in_few_presses():
+    # issue 12 item 7: phong n 20 → 1000 took 98 presses of }; a factor 2 per press needs
+    # ceil(log2(1000 / 20)) = 6 presses (20·2⁵ = 640 < 1000 ≤ 20·2⁶)
+    s = phong_state()
+    s.select(2)
+    presses = 0
+    while s.side.values["n"] < 1000:
+        assert s.step_param(+1, coarse=True) is None
+        presses += 1
+    assert presses == 6
+    # ggx α = 0.01: a fine step is 10 % of the value (was 0.005 = 50 %)
+    g = ViewerState(sides=[Side.of("ggx", {"alpha": 0.01})])
+    g.side.selected = [r.param.name for r in g.side.rows()].index("alpha")
+    assert g.step_param(+1) is None and g.side.values["alpha"] == 0.011
+    assert g.step_param(-1) is None and g.side.values["alpha"] == 0.01
+    # from n = 0 a factor cannot move: the declared absolute step starts it
+    z = phong_state(n=0.0)
+    z.select(2)
+    assert z.step_param(+1) is None and z.side.values["n"] == 1.0
+
+
+def test_typed_values_are_validated_against_the_declaration():
+    s = phong_state()
+    s.select(2)  # n in [0, 10000]
+    assert s.type_value("1000") is None and s.side.values["n"] == 1000.0
+    msg = s.type_value("20000")
+    assert msg and "out of range" in msg and "10000" in msg and s.side.values["n"] == 1000.0
+    msg = s.type_value("lots")
+    assert msg and "not a number" in msg and s.side.values["n"] == 1000.0
+    assert s.type_value("nan") and s.side.values["n"] == 1000.0
+    s.select(-2)  # kd: the constraint kd + ks ≤ 1 (ks = 0.5) still holds for typed values
+    msg = s.type_value("0,7")  # a decimal comma is read as a point
+    assert msg and "kd + ks" in msg
+    assert s.type_value("0,3") is None and s.side.values["kd"] == 0.3
+    assert s.type_theta("45") is None and s.theta_i == 45.0
+    assert s.type_theta("91") and s.theta_i == 45.0
+
+
+def test_typed_choice_accepts_names_and_aliases():
+    from tuibrdf.core.models import MODELS
+
+    s = ViewerState(sides=[Side.of("abc")])
+    p = MODELS["abc"].param("material")
+    s.side.selected = [r.param.name for r in s.side.rows()].index("material")
+    name = p.choices[37]
+    assert s.type_value(name.upper()) is None and s.side.values["material"] == name
+    if p.aliases:
+        alias, canonical = p.aliases[0]
+        assert s.type_value(alias) is None and s.side.values["material"] == canonical
+    msg = s.type_value("no-such-material")
+    assert msg and "unknown choice" in msg
+
+
+def test_preset_cycle_returns_to_the_users_settings():
+    # issue 12 item 3: ggx α = 0.05 → p → ... must come back to α = 0.05
+    s = ViewerState(sides=[Side.of("ggx", {"alpha": 0.05})])
+    seen = []
+    for _ in range(len(COMPARE_PRESETS)):
+        assert s.next_preset() is None
+        seen.append(s.preset)
+    assert seen == [p.name for p in COMPARE_PRESETS]
+    msg = s.next_preset()
+    assert msg and "back" in msg
+    assert not s.compare and s.side.model == "ggx" and s.side.values["alpha"] == 0.05
+    # and the per-model memory kept it too: cycling away and back
+    s.next_preset()
+    s.cycle_model(1)
+    assert s.memory["ggx"]["alpha"] == 0.05
 
 
 def test_constraint_refused_with_message_and_value_kept():
@@ -177,3 +248,34 @@ def test_missing_and_badly_named_preset(config):
         presets.load_preset("absent")
     with pytest.raises(presets.PresetError, match="invalid"):
         presets.preset_path("../evil")
+
+
+def test_a_model_file_is_titled_by_its_name_reread_when_edited_and_cycled_back_to(tmp_path):
+    # issues 14/12: a file model's name is its absolute path; titles show the file's name, an
+    # edited file (mtime/size change) is another material (another cache key), m returns to it
+    import os
+    import shutil
+    from pathlib import Path
+
+    from tuibrdf.core.material import Material
+
+    src = Path(__file__).parent / "data" / "brdf" / "lambert.brdf"
+    path = tmp_path / "mine.brdf"
+    shutil.copy(src, path)
+    s = ViewerState(sides=[Side.of(str(path))])
+    assert s.side.material.label == "mine.brdf"
+    before = s.side.material
+    assert before.refreshed() is before  # unchanged on disk: the same material
+    path.write_text(path.read_text() + "\n")  # a size change, still a valid file
+    st = os.stat(path)
+    os.utime(path, ns=(st.st_atime_ns, st.st_mtime_ns + 10**9))
+    after = before.refreshed()
+    assert after is not before and after != before and hash(after) != hash(before)
+    assert after == Material(str(path), before.values)
+    s.cycle_model(1)
+    assert s.side.model != str(path)
+    for _ in range(len(MODELS) + 1):
+        if s.side.model == str(path):
+            break
+        s.cycle_model(1)
+    assert s.side.model == str(path)

@@ -74,3 +74,34 @@ def test_held_key_status_ends_on_the_final_albedo(tmp_path):
             subprocess.run(["tmux", "-L", sock, "send-keys", "-t", "t", "q"], check=True)
         finally:
             subprocess.run(["tmux", "-L", sock, "kill-server"], capture_output=True)
+
+
+def test_enlarging_past_the_minimum_shows_the_viewer_each_time(tmp_path):
+    # issue 12 item 1: start at 59×17 (one below the 60×18 minimum each way), enlarge, shrink,
+    # enlarge again: each time the viewer (not the too-small message) must be on screen
+    sock = f"tuibrdf-test-{uuid.uuid4().hex[:8]}"
+    env_cmd = (f"cd {ROOT} && XDG_CONFIG_HOME={tmp_path} PYTHONPATH={ROOT} "
+               f"{sys.executable} -m tuibrdf; sleep 5")
+    subprocess.run(["tmux", "-L", sock, "new-session", "-d", "-s", "t", "-x", "59", "-y", "17",
+                    "-e", "COLORTERM=truecolor", env_cmd], check=True,
+                   env={k: v for k, v in os.environ.items() if k != "TMUX"})
+
+    def resize(w, h):
+        subprocess.run(["tmux", "-L", sock, "resize-window", "-t", "t", "-x", str(w), "-y",
+                        str(h)], check=True)
+
+    def viewer(s):
+        return "Enlarge the window" not in s and "θi 30°" in s and "lambert" in s
+
+    try:
+        wait_for(sock, lambda s: "59×17" in s and "Enlarge the window" in s)
+        for w, h in ((100, 30), (120, 40)):
+            resize(w, h)
+            wait_for(sock, viewer)
+            resize(59, 17)
+            wait_for(sock, lambda s: "59×17" in s and "Enlarge the window" in s)
+        resize(100, 30)
+        wait_for(sock, viewer)
+        subprocess.run(["tmux", "-L", sock, "send-keys", "-t", "t", "q"], check=True)
+    finally:
+        subprocess.run(["tmux", "-L", sock, "kill-server"], capture_output=True)

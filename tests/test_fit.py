@@ -183,3 +183,46 @@ def test_fit_saves_a_comparison_preset_for_the_viewer(files, tmp_path, monkeypat
     rc = main(["fit", str(files["ggx"]), "--model", "ggx", "--save-preset", "x"])
     err = capsys.readouterr().err
     assert rc == 2 and "--mean" in err and len(err.strip().splitlines()) == 1
+
+
+def test_fit_report_flags_bounds_and_poor_albedo_and_aligns_the_table(tmp_path, capsys):
+    # issue 12 item 9.  The data: GGX with f0 = 0.9, kd = 0.05 (albedo ≈ 0.9, a narrow bright
+    # lobe).  Lambert (f = kd/π, albedo kd ≤ 1) fitted on log(1 + f cos cos) must push kd to
+    # its maximum 1 to approach the lobe's peak: a parameter at a bound.  A dark GGX
+    # (f0 = 0.02, kd = 0, α = 0.05: albedo ≈ 0.02–0.05) fitted by Lambert whose kd is held at
+    # 0.5 by -p has an albedo 0.5, > 10× the data's: a poor fit.
+    bright = write_merl(tmp_path / "bright.binary", table_from_directions(per_channel(
+        "ggx", [{"alpha": a, "f0": 0.9, "kd": 0.05} for a in (0.1, 0.12, 0.15)])))
+    dark = write_merl(tmp_path / "dark.binary", table_from_directions(per_channel(
+        "ggx", [{"alpha": 0.05, "f0": 0.02, "kd": 0.0}] * 3)))
+    rc = main(["fit", str(bright), "--model", "lambert", "--stride", "3,6,30"])
+    out, err = capsys.readouterr()
+    assert rc == 0
+    assert "fitting lambert: channel R (1/3)" in err and "channel B (3/3)" in err  # progress
+    assert "warning: kd at its maximum 1 (R, G, B)" in out
+    # the albedo table: every number of a column ends in the same character column
+    table = [ln for ln in out.splitlines() if ln.rstrip().endswith("×")]
+    assert len(table) == 3
+    ends = [[m.end() for m in __import__("re").finditer(r"\d\.\d{4}", ln)] for ln in table]
+    assert all(len(e) == 6 for e in ends) and ends[0] == ends[1] == ends[2]
+    rc = main(["fit", str(dark), "--model", "lambert", "--stride", "3,6,30", "-p", "kd=0.5",
+               "--json"])
+    out, err = capsys.readouterr()
+    # lambert with kd held fixed has nothing to fit: refused with one line
+    assert rc == 2 and "no free continuous parameter" in err
+    rc = main(["fit", str(dark), "--model", "oren-nayar", "--stride", "3,6,30", "-p",
+               "kd=0.5", "--json"])
+    out, err = capsys.readouterr()
+    assert rc == 0, err
+    doc = json.loads(out)
+    data0 = doc["albedo"][0]["data"][0]
+    assert data0 < 0.06  # the dark data, from the quadrature: far below kd = 0.5
+    assert doc["albedo_ratio"]["poor"] and doc["albedo_ratio"]["ratio"] > 5
+    rc = main(["fit", str(dark), "--model", "oren-nayar", "--stride", "3,6,30", "-p",
+               "kd=0.5"])
+    out, _ = capsys.readouterr()
+    assert "poor fit: albedo of the fit is" in out and "try another model" in out
+    # the exact fit of the module's GGX file: no flag
+    rc = main(["fit", str(bright), "--model", "ggx", "--stride", "3,6,30"])
+    out, _ = capsys.readouterr()
+    assert "fit ok" in out and "warning" not in out and "poor fit" not in out

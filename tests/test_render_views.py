@@ -136,3 +136,26 @@ def test_uniform_map_says_everywhere_and_no_negative_zero():
         out = to_text(render_view("map", m, m.resolve({"kd": 0, "m": 0.07}), theta, 80, 20,
                                   color="none"))
         assert "φ=-0°" not in out and "φ=0°" in out.split("\n")[0]
+
+
+def test_horizon_ring_never_collides_with_a_data_value():
+    # issue 12 item 5: in 256 colours viridis's lowest band was xterm 60, the ring's colour;
+    # without colour the ring was drawn with ':' and '-', data levels of the ramp.  Expected:
+    # the ring's xterm index is none of the indices any colour map quantises to (every level
+    # count the viewer allows), and in plain text its character is not in the density ramp.
+    from tuibrdf.render.colormap import MAX_LEVELS, MIN_LEVELS, colorize
+    from tuibrdf.render.halfblock import ASCII_RAMP, RING_CHAR, to_xterm
+    from tuibrdf.render.text import RING_RGB
+
+    ring = int(to_xterm(np.array(RING_RGB)))
+    ramp = np.linspace(0.0, 1.0, 2000)[None, :]
+    for cmap in CMAPS:
+        for levels in range(MIN_LEVELS, MAX_LEVELS + 1):
+            for log in (False, True):
+                pal = colorize(ramp, cmap, levels=levels, log=log).palette
+                assert ring not in set(to_xterm(pal).tolist()), (cmap, levels)
+    assert RING_CHAR not in ASCII_RAMP
+    m = MODELS["ggx"]
+    lines = to_text(render_view("map", m, m.resolve({}), 30.0, 40, 16, color="none")
+                    ).splitlines()
+    assert any(RING_CHAR in ln for ln in lines[1:-2])  # the ring in the disc rows

@@ -15,6 +15,7 @@ only when what it shows changed.
 
 from __future__ import annotations
 
+import threading
 from functools import partial
 
 from rich.text import Text
@@ -26,6 +27,7 @@ from textual.widgets import Footer, Static
 from textual.worker import Worker, get_current_worker
 
 from ..core import scene
+from ..core.params import _fmt
 from ..core.scene import FrameRequest, FrameResult
 from ..render import MIN_HEIGHT, MIN_WIDTH, panes
 from ..render.views import map_pixels
@@ -33,12 +35,13 @@ from . import keys
 from .layout import CSS, arrange
 from .loading import MeasuredData
 from .presets import PresetError, apply_loaded, list_presets, load_preset, preset_dir, save_preset
-from .screens import HelpScreen, SafeCommandPalette, SaveScreen
+from .screens import HelpScreen, SafeCommandPalette, SaveScreen, ValueScreen
 from .state import ViewerState
 from .text import PANES, legend_text, status_text, visible_panes
 from .widgets import ParamPanel, Picture, StatusLine
 
 RETRY_S = 0.02  # re-check a busy writer after this long
+FILE_POLL_S = 1.0  # how often a model file's mtime is checked (an edit redraws)
 #: colour levels of the maps: 32 keeps a full 160×48 map update near 50 KiB (docs/app.md)
 LEVELS = 32
 #: what a pane or a worker shows as a message instead of stopping the viewer: bad data
@@ -46,7 +49,22 @@ LEVELS = 32
 #: one, core/numerics.py; a picture is not worth losing the session over)
 DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
 #: the actions of the viewer itself (not of a modal screen)
-VIEWER_ACTIONS = frozenset({"state", "save", "load_next", "help"})
+VIEWER_ACTIONS = frozenset({"state", "save", "load_next", "help", "type_value", "type_theta"})
+
+
+def _list_presets() -> list[str]:
+    try:
+        return list_presets()
+    except (PresetError, OSError):
+        return []
+
+
+def _read_preset(name: str):
+    """``(θi, sides)`` of a saved preset, or the message saying why it cannot be read."""
+    try:
+        return load_preset(name)
+    except (PresetError, OSError) as e:
+        return str(e)
 
 
 class BrdfApp(MeasuredData, App):
@@ -73,6 +91,7 @@ class BrdfApp(MeasuredData, App):
         self._worker_for: FrameRequest | None = None
         self._changes = 0  # changes so far; only the last one queued updates the screen
         self._relayout = False  # a change since the last update may show other panes
+        self._preset_names: list[str] = []  # the saved presets, for the command palette
 
     # -- layout ------------------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -93,15 +112,29 @@ class BrdfApp(MeasuredData, App):
 
     def on_mount(self) -> None:
         self._changed(self.message, relayout=True)
+        self.set_interval(FILE_POLL_S, self._check_files)
+        self.background(_list_presets, self._listed)
 
     def on_resize(self, event) -> None:
         self._changed(self.message, relayout=True)
+
+    def _check_files(self) -> None:
+        """A model file edited on disk (mtime or size changed): re-read, redraw."""
+        for side in self.state.sides:
+            try:
+                new = side.material.refreshed()
+            except ValueError as e:
+                self._changed(f"{side.material.label} changed on disk and cannot be read: {e}")
+                continue
+            if new is not side.material:
+                side.material = new
+                self._changed(f"{new.label} changed on disk: redrawn")
 
     @property
     def look(self) -> panes.Look:
         s = self.state
         return panes.Look(self.color_system(), s.cmap, s.log, LEVELS, "auto", s.azimuth,
-                          s.elevation)
+                          s.elevation, s.channel)
 
     def color_system(self) -> str:
         if self._color:
@@ -261,8 +294,8 @@ class BrdfApp(MeasuredData, App):
         what = (req.materials, req.theta_i, req.cosine)
         key = {"map": (what, req.map_px, look), "diff": (what, req.map_px, look.color),
                "solid": (what, look), "albedo": (req.materials, req.theta_i, look.color,
-                                                 res.complete)}.get(view)
-        key = (pane, w, h, key or (what, look.color, look.log))
+                                                 res.complete, look.channel)}.get(view)
+        key = (pane, w, h, key or (what, look.color, look.log, look.channel))
         if pic.shown_for == key:
             return
         try:
@@ -282,41 +315,106 @@ class BrdfApp(MeasuredData, App):
     def action_help(self) -> None:
         self.push_screen(HelpScreen())
 
+    def action_type_value(self) -> None:
+        """Enter or =: type the selected parameter's value (a filtered list for choices)."""
+        s = self.state
+        row = s.row
+        p = row.param
+        current = _fmt(s.row_value(row))
+        prompt = f"{s.side.spec.title} {row.label} ({p.doc or p.name})\n" \
+                 f"now {current}; {p.range_text()}"
+        if p.kind == "choice":
+            prompt += "\ntype to filter, ↑/↓, Enter applies, Esc cancels"
+        else:
+            prompt += "\nEnter applies, Esc cancels"
+        self.push_screen(ValueScreen(prompt, current, s.type_value, p.choices),
+                         partial(self._typed, row.label))
+
+    def action_type_theta(self) -> None:
+        s = self.state
+        prompt = f"θi (angle of incidence, degrees)\nnow {s.theta_i:g}°; in [0, 90]°" \
+                 "\nEnter applies, Esc cancels"
+        self.push_screen(ValueScreen(prompt, f"{s.theta_i:g}", s.type_theta),
+                         partial(self._typed, "θi"))
+
+    def _typed(self, label: str, text: str | None) -> None:
+        self._changed(f"{label} = {text}" if text is not None else f"{label} unchanged",
+                      relayout=True)
+
+    def background(self, work, done) -> None:
+        """``done(work())`` on the event loop, ``work`` in a daemon thread: disk I/O (presets,
+        data files) never blocks a key, and a read stuck on a slow disk or a FIFO does not keep
+        the process alive after q (a pool thread would: Python joins those at exit).  In sync
+        mode (tests) both run here."""
+        if self.sync:
+            done(work())
+            return
+
+        def run() -> None:
+            result = work()
+            try:
+                self.call_from_thread(done, result)
+            except RuntimeError:  # the app has closed meanwhile
+                pass
+
+        threading.Thread(target=run, name="tuibrdf-io", daemon=True).start()
+
     def action_save(self) -> None:
+        state = self.state
+
+        def write(name: str) -> str:
+            try:
+                return f"saved {save_preset(state, name)}"
+            except (PresetError, OSError) as e:
+                return f"not saved: {e}"
+
         def done(name: str | None) -> None:
             if not name:
                 self._changed("save cancelled")
                 return
-            try:
-                path = save_preset(self.state, name)
-            except (PresetError, OSError) as e:
-                self._changed(f"not saved: {e}")
-                return
-            self._changed(f"saved {path}")
+            self._changed(f"saving preset {name} …")
+            self.background(partial(write, name), self._saved)
 
         self.push_screen(SaveScreen(), done)
 
+    def _saved(self, message: str) -> None:
+        self._changed(message)
+        self.background(_list_presets, self._listed)
+
+    def _listed(self, names: list[str]) -> None:
+        self._preset_names = names
+
     def action_load_next(self) -> None:
-        names = list_presets()
-        if not names:
-            self._changed(f"no saved presets in {preset_dir()} (s saves one)")
-            return
-        i = names.index(self._loaded) if self._loaded in names else -1
-        self.load_and_show(names[(i + 1) % len(names)])
+        loaded = self._loaded
+
+        def work() -> tuple[str, object]:
+            names = _list_presets()
+            if not names:
+                return "", f"no saved presets in {preset_dir()} (s saves one)"
+            i = names.index(loaded) if loaded in names else -1
+            name = names[(i + 1) % len(names)]
+            return name, _read_preset(name)
+
+        self.background(work, self._show_loaded)
 
     def load_and_show(self, name: str) -> None:
-        msg = self.load(name)
-        if msg is None:
-            self._loaded = name
-        self._changed(msg or f"loaded preset {name}", relayout=True)
+        self.background(lambda: (name, _read_preset(name)), self._show_loaded)
+
+    def _show_loaded(self, result: tuple[str, object]) -> None:
+        name, got = result
+        if isinstance(got, str):  # why it cannot be loaded
+            self._changed(got)
+            return
+        apply_loaded(self.state, *got)
+        self._loaded = name
+        self._changed(f"loaded preset {name}", relayout=True)
 
     def load(self, name: str) -> str | None:
-        """Load a saved preset into the viewer; a message if it cannot be."""
-        try:
-            theta, sides = load_preset(name)
-        except PresetError as e:
-            return str(e)
-        apply_loaded(self.state, theta, sides)
+        """Load a saved preset into the viewer now; a message if it cannot be."""
+        got = _read_preset(name)
+        if isinstance(got, str):
+            return got
+        apply_loaded(self.state, *got)
         return None
 
     def action_command_palette(self) -> None:
@@ -325,7 +423,7 @@ class BrdfApp(MeasuredData, App):
 
     def get_system_commands(self, screen):
         yield from super().get_system_commands(screen)
-        for name in list_presets():
+        for name in self._preset_names:  # listed off the event loop (on mount, on save)
             yield SystemCommand(f"Load preset {name}", f"{preset_dir() / name}.toml",
                                 partial(self.load_and_show, name))
         for k in keys.palette_keys():

@@ -10,6 +10,10 @@ from .text import PANES, visible_panes
 from .widgets import ParamPanel, Picture
 
 MIN_W, MIN_H = 60, 18
+#: compare mode draws three maps, two panels and two sections: below this it says so
+COMPARE_MIN_W, COMPARE_MIN_H = 80, 24
+#: below this height only the plane-of-incidence section is shown (each gets too few rows)
+BOTH_SECTIONS_H = 24
 BOTH_PANELS_H = 40  # compare mode shows both parameter panels from this height
 STEADY_PANEL_H = max(len(panel_rows(m)) for m in MODELS.values()) + 2  # rows + border
 
@@ -35,17 +39,24 @@ Screen.small #root { display: none; }
 def arrange(app) -> None:
     """Show ``app``'s panes for its state's mode; the too-small message below the minimum."""
     w, h = app.size
-    app.screen.set_class(w < MIN_W or h < MIN_H, "small")
-    app.query_one("#toosmall", Static).update(
-        f"The terminal is {w}×{h}: tuibrdf needs at least {MIN_W}×{MIN_H}.\n"
-        "Enlarge the window (q quits).")
     s = app.state
+    cramped = s.compare and (w < COMPARE_MIN_W or h < COMPARE_MIN_H)
+    app.screen.set_class(w < MIN_W or h < MIN_H or cramped, "small")
+    if w < MIN_W or h < MIN_H:
+        msg = (f"The terminal is {w}×{h}: tuibrdf needs at least {MIN_W}×{MIN_H}.\n"
+               "Enlarge the window (q quits).")
+    else:
+        msg = (f"The terminal is {w}×{h}: compare mode needs at least "
+               f"{COMPARE_MIN_W}×{COMPARE_MIN_H}.\nEnlarge the window, or press c for one side "
+               "(q quits).")
+    app.query_one("#toosmall", Static).update(msg)
     visible = set(visible_panes(s))
     main = app.query_one("#main")
     main.set_class(s.compare and s.view == "map", "compare-map")
     main.set_class(s.compare and s.view == "solid", "compare-solid")
     for pic in app.query(Picture):
-        pic.display = pic.pane in visible
+        pic.display = pic.pane in visible and (pic.pane != "perpendicular"
+                                               or h >= BOTH_SECTIONS_H)
     app.query_one("#legend").display = s.compare and s.view == "map"
     # both panels when there is room; otherwise only the side the keys act on
     both = s.compare and h >= BOTH_PANELS_H
@@ -59,5 +70,5 @@ def arrange(app) -> None:
     if s.compare:
         for pane in ("map-a", "map-b", "solid-a", "solid-b"):
             k = PANES[pane][1]
-            app.query_one(f"#{pane}").border_title = f"{'AB'[k]}: {s.sides[k].model}"
+            app.query_one(f"#{pane}").border_title = f"{'AB'[k]}: {s.sides[k].material.label}"
         app.query_one("#diff").border_title = "A − B"

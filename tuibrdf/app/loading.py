@@ -3,6 +3,7 @@ mixin of the viewer (the 35 MB read never blocks a key)."""
 
 from __future__ import annotations
 
+import threading
 from functools import partial
 
 from ..core import merl
@@ -28,20 +29,25 @@ class MeasuredData:
                 ready = False
                 if path not in self._loading:
                     self._loading[path] = 0.0
-                    self.run_worker(partial(self._load_file, path), thread=True,
-                                    group="load", exit_on_error=False)
+                    # a daemon thread: a read stuck on a FIFO or a dead network disk does
+                    # not keep the process alive after q (Textual's pool threads would)
+                    threading.Thread(target=partial(self._load_file, path), daemon=True,
+                                     name="tuibrdf-merl").start()
         return ready
 
     def _load_file(self, path: str) -> None:
-        def progress(fraction: float) -> None:
-            self.call_from_thread(self._load_progress, path, fraction)
+        def post(callback, *args) -> None:
+            try:
+                self.call_from_thread(callback, *args)
+            except RuntimeError:  # the app has closed meanwhile
+                pass
 
         try:
-            merl.load_cached(path, progress)
+            merl.load_cached(path, partial(post, self._load_progress, path))
         except (merl.MerlError, OSError) as e:
-            self.call_from_thread(self._load_failed, path, str(e))
+            post(self._load_failed, path, str(e))
             return
-        self.call_from_thread(self._load_done, path)
+        post(self._load_done, path)
 
     def _load_progress(self, path: str, fraction: float) -> None:
         if path in self._loading:

@@ -1,4 +1,5 @@
-"""The viewer's modal screens (help, save) and a command palette that survives early keys."""
+"""The viewer's modal screens (help, save, typed value) and a command palette that
+survives early keys."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ from textual.binding import Binding
 from textual.command import CommandPalette
 from textual.containers import Vertical, VerticalScroll
 from textual.screen import ModalScreen
-from textual.widgets import Input, Static
+from textual.widgets import Input, OptionList, Static
 
 from .keys import help_text
 
@@ -54,6 +55,90 @@ class SaveScreen(ModalScreen[str | None]):
 
     def action_cancel(self) -> None:
         self._close(None)
+
+
+class ValueScreen(ModalScreen[str | None]):
+    """Type a value: ``ValueScreen(prompt, current, apply, choices=())``.  ``apply(text)``
+    validates and applies it, returning a message when refused: the message shows here and the
+    input stays open; accepted, the screen closes with the text.  With ``choices`` (a long list
+    such as the 100 MERL materials) typing filters a list of about 10 rows; ↑/↓ move in it,
+    Enter applies the highlighted name, Esc cancels."""
+
+    BINDINGS = [Binding("escape", "cancel", "cancel"),
+                Binding("up", "move(-1)", show=False, priority=True),
+                Binding("down", "move(1)", show=False, priority=True)]
+    DEFAULT_CSS = """
+    ValueScreen { align: center middle; }
+    ValueScreen > Vertical { width: 60; max-width: 95%; height: auto; border: round $accent;
+                             background: $surface; padding: 0 1; }
+    ValueScreen OptionList { height: auto; max-height: 10; border: none; }
+    ValueScreen #error { color: $warning; }
+    """
+
+    def __init__(self, prompt: str, current: str, apply, choices: tuple[str, ...] = ()) -> None:
+        super().__init__()
+        self.prompt, self.current, self.apply, self.choices = prompt, current, apply, choices
+        self.shown: list[str] = list(choices)
+
+    def compose(self) -> ComposeResult:
+        with Vertical():
+            yield Static(self.prompt, id="prompt")
+            yield Input(value="" if self.choices else self.current, id="value",
+                        placeholder="type to filter" if self.choices else self.current)
+            if self.choices:
+                yield OptionList(*self.choices, id="choices")
+            yield Static("", id="error")
+
+    def on_mount(self) -> None:
+        if self.choices:
+            options = self.query_one(OptionList)
+            if self.current in self.choices:
+                options.highlighted = self.choices.index(self.current)
+
+    def on_input_changed(self, event: Input.Changed) -> None:
+        if not self.choices:
+            return
+        typed = event.value.strip().lower()
+        self.shown = [c for c in self.choices if typed in c.lower()]
+        options = self.query_one(OptionList)
+        options.clear_options()
+        options.add_options(self.shown)
+        if self.shown:
+            options.highlighted = 0
+        self.query_one("#error", Static).update(
+            "" if self.shown else f"no name contains {typed!r}")
+
+    def action_move(self, delta: int) -> None:
+        if self.choices and self.shown:
+            options = self.query_one(OptionList)
+            h = options.highlighted if options.highlighted is not None else -1
+            options.highlighted = max(0, min(len(self.shown) - 1, h + delta))
+
+    def _submit(self, text: str) -> None:
+        if not self.is_current:  # Enter Enter in one burst: the screen is already closing
+            return
+        error = self.apply(text)
+        if error:
+            self.query_one("#error", Static).update(error)
+        else:
+            self.dismiss(text)
+
+    def on_input_submitted(self, event: Input.Submitted) -> None:
+        event.stop()
+        text = event.value.strip()
+        if self.choices:
+            options = self.query_one(OptionList)
+            if options.highlighted is not None and self.shown:
+                text = self.shown[options.highlighted]
+        self._submit(text)
+
+    def on_option_list_option_selected(self, event: OptionList.OptionSelected) -> None:
+        event.stop()
+        self._submit(str(event.option.prompt))
+
+    def action_cancel(self) -> None:
+        if self.is_current:
+            self.dismiss(None)
 
 
 class SafeCommandPalette(CommandPalette):

@@ -31,6 +31,9 @@ from ..core.models import MODELS
 from ..core.params import Model, Param, Value
 from ..render import CMAPS
 
+CHANNEL_NAMES = {"rgb": "R, G and B", "lum": "luminance (Rec.709)", "R": "red only",
+                 "G": "green only", "B": "blue only"}
+
 #: the main views ``v`` cycles through (the cross-sections are always shown beside them)
 MAIN_VIEWS = ("map", "solid", "albedo")
 
@@ -83,6 +86,32 @@ def panel_rows(model: Model) -> list[Row]:
     return rows
 
 
+def _next_value(p: Param, old: float, direction: int, coarse: bool) -> float:
+    """One step from ``old``: ± the declared step, or for a :attr:`Param.relative` parameter
+    × / ÷ 1.1 (coarse: 2), rounded to 3 significant digits, so every decade takes the same
+    number of presses (α 0.01 → 0.011, n 20 → 1000 in six coarse presses)."""
+    if not p.relative:
+        return _round(old + direction * (p.coarse_step if coarse else p.step))
+    factor = 2.0 if coarse else 1.1
+    if direction > 0:
+        # from 0 (phong n = 0) a factor cannot move: the absolute step starts it
+        new = old * factor if old > 0 else p.step
+        new = float(f"{new:.3g}")
+        return new if new > old else _round(old + p.step)
+    new = float(f"{old / factor:.3g}")
+    return p.min if new < max(p.min, p.step / 2) and p.min == 0 else new
+
+
+def parse_number(text: str) -> float:
+    """A number typed by the user: ``0.05``, ``5e-2``, ``1,5`` (a decimal comma); raises
+    ``ValueError`` with a short reason."""
+    t = text.strip().replace(",", ".").rstrip("°")
+    try:
+        return float(t)
+    except ValueError:
+        raise ValueError(f"{text.strip()!r} is not a number") from None
+
+
 def _round(v: float) -> float:
     """Forget the float noise of repeated steps (0.2 + 0.01 = 0.21000000000000002)."""
     return float(round(v, 10))
@@ -95,6 +124,9 @@ class Side:
     def __init__(self, model: str | Material, values: dict[str, Any] | None = None,
                  selected: int = 0) -> None:
         self.material = model if isinstance(model, Material) else Material(model, values)
+        if selected == 0:  # start on a row keys can step (not a data file's path)
+            selected = next((i for i, r in enumerate(self.rows()) if r.param.kind != "path"),
+                            0)
         self.selected = selected
 
     @classmethod
@@ -140,6 +172,13 @@ class ViewerState:
     azimuth: float = -60.0
     elevation: float = 25.0
     preset: str = ""  # name of the compare preset last applied, if any
+    #: the sides (and active side) before the first preset: ``p`` past the last preset
+    #: returns to them, so a preset never throws tuned values away
+    before_preset: tuple[list[Side], int] | None = None
+    #: the curves of an RGB model (sections, albedo curve): all three, luminance or one
+    channel: str = "rgb"
+    #: models read from files (absolute paths) the session has shown: ``m`` cycles back
+    files: list[str] = field(default_factory=list)
     #: values last used for each model, so cycling away and back keeps them
     memory: dict[str, dict[str, Value]] = field(default_factory=dict)
 
@@ -203,8 +242,7 @@ class ViewerState:
             i = p.choices.index(self.side.values[p.name])
             return self._commit(p.name, p.choices[(i + direction) % len(p.choices)])
         old = float(self.row_value(row))
-        step = p.coarse_step if coarse else p.step
-        new = min(p.max, max(p.min, _round(old + direction * step)))
+        new = min(p.max, max(p.min, _next_value(p, old, direction, coarse)))
         if new == old:
             return f"{row.label} is already at its {'maximum' if direction > 0 else 'minimum'}" \
                    f" ({p.range_text()})"
@@ -227,17 +265,50 @@ class ViewerState:
     def set_param(self, name: str, value: Any) -> str | None:
         return self._commit(name, value)
 
+    def type_value(self, text: str) -> str | None:
+        """A value typed for the selected row (Enter or = opens the input): a number checked
+        against the declared range, a choice (name or alias), or a file path."""
+        row = self.row
+        p = row.param
+        if p.kind == "choice":
+            canonical = p.choice(text.strip())
+            if canonical is None:
+                return p.unknown_choice(text.strip(), self.side.model)
+            return self._commit(p.name, canonical)
+        if p.kind == "path":
+            return self._commit(p.name, text.strip())
+        try:
+            v = parse_number(text)
+        except ValueError as e:
+            return f"{row.label}: {e}; expected {p.range_text()}"
+        if not (v == v and p.min <= v <= p.max):  # v == v refuses NaN
+            return f"{row.label} = {v:g} is out of range: expected {p.range_text()}"
+        return self._commit(p.name, self._with_channel(row, v))
+
+    def type_theta(self, text: str) -> str | None:
+        """θi typed (key t), degrees."""
+        try:
+            return self.set_theta(parse_number(text))
+        except ValueError as e:
+            return f"θi: {e}; expected 0–90°"
+
     # -- models, views, toggles ----------------------------------------------------------------
     def cycle_model(self, delta: int) -> str | None:
         """Next / previous registered model on the active side; θi and the view stay."""
-        names = [n for n, m in MODELS.items() if usable(m, self.memory.get(n))]
+        if self.side.model not in MODELS and self.side.model not in self.files:
+            self.files.append(self.side.model)  # a model file: m comes back to it
+        names = [n for n, m in MODELS.items() if usable(m, self.memory.get(n))] + self.files
         if self.side.model in names:
             i = names.index(self.side.model)
         else:
             i = -1 if delta > 0 else 0
         name = names[(i + delta) % len(names)]
         self.memory[self.side.model] = self.side.values
-        self.sides[self.active] = Side(name, self.memory.get(name))
+        try:
+            self.sides[self.active] = Side(name, self.memory.get(name))
+        except ValueError as e:  # a model file edited or removed meanwhile
+            self.files.remove(name)
+            return f"cannot read {name}: {e}"
         self.preset = ""
         return None
 
@@ -253,6 +324,14 @@ class ViewerState:
         i = CMAPS.index(self.cmap) if self.cmap in CMAPS else -1
         self.cmap = CMAPS[(i + delta) % len(CMAPS)]
         return None
+
+    def cycle_channel(self) -> str | None:
+        """The curves of RGB models: R, G, B → luminance → R → G → B → all three."""
+        order = ("rgb", "lum", "R", "G", "B")
+        self.channel = order[(order.index(self.channel) + 1) % len(order)]
+        if not any(x.spec.rgb for x in self.sides):
+            return f"curves of RGB models: {CHANNEL_NAMES[self.channel]} (no RGB model shown)"
+        return f"curves of RGB models: {CHANNEL_NAMES[self.channel]}"
 
     def toggle_cosine(self) -> str | None:
         self.cosine = not self.cosine
@@ -283,17 +362,27 @@ class ViewerState:
             sides = [Side.of(m, params) for m, params in (preset.a, preset.b)]
         except ValueError as e:
             return f"preset {name}: {e}"
+        if not self.preset:  # the user's own sides: kept for the way back
+            for side in self.sides:
+                self.memory[side.model] = side.values
+            self.before_preset = ([x.copy() for x in self.sides], self.active)
         self.sides, self.active, self.preset = sides, 0, name
         return None
 
     def next_preset(self) -> str | None:
+        """The next seed comparison; after the last one, the sides as they were before the
+        first (tuned values kept)."""
         names = [p.name for p in COMPARE_PRESETS]
         i = names.index(self.preset) if self.preset in names else -1
+        if i == len(names) - 1 and self.before_preset is not None:
+            self.sides, self.active = self.before_preset
+            self.before_preset, self.preset = None, ""
+            return "back to your own settings (before the presets)"
         return self.apply_preset(names[(i + 1) % len(names)])
 
     def rotate(self, d_azimuth: float, d_elevation: float) -> str | None:
         if self.view != "solid":
-            return "ctrl+arrows rotate the 3D solid (press v for that view)"
+            return "a/d/w/x (or ctrl+arrows) rotate the 3D solid (press v for that view)"
         self.azimuth = (self.azimuth + d_azimuth + 180.0) % 360.0 - 180.0
         el = min(ELEVATION_MAX, max(ELEVATION_MIN, self.elevation + d_elevation))
         if d_elevation and el == self.elevation:

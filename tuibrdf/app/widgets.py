@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 from rich.console import RenderableType
 from rich.segment import Segment
 from rich.style import Style
@@ -126,7 +128,10 @@ class ParamPanel(QuietStatic):
         active = side_index == state.active
         self.set_class(active and state.compare, "active")
         label = "AB"[side_index] + ": " if state.compare else ""
-        title, subtitle = f"{label}{side.spec.title}", "m/M model" if active else ""
+        name = side.spec.title
+        if os.path.isabs(name):  # a model file without a title of its own: its file name
+            name = os.path.basename(name)
+        title, subtitle = f"{label}{name}", "m/M model" if active else ""
         if (self.border_title, self.border_subtitle) != (title, subtitle):
             self.border_title, self.border_subtitle = title, subtitle
         text = Text(no_wrap=True, overflow="ellipsis")
@@ -136,11 +141,14 @@ class ParamPanel(QuietStatic):
             v = state.row_value(row, side)
             p = row.param
             line = Text(f"{'▶' if sel else ' '} {row.label:<7}", style="bold" if sel else "")
-            line.append(f"{_fmt(v):>8}", style="bold reverse" if sel else "bold")
+            shown = os.path.basename(str(v)) if p.kind == "path" else _fmt(v)
+            line.append(f"{shown:>8}", style="bold reverse" if sel else "bold")
             unit = p.unit if p.unit not in ("", None) else ""
             line.append(f" {unit:<2}")
             if p.kind in ("float", "rgb"):
                 line.append(f" {p.min:g}–{p.max:g}", style="dim")
+            elif p.kind == "choice" and len(p.choices) > 4:  # a long list: = opens a picker
+                line.append(f" {len(p.choices)} names: = picks", style="dim")
             elif p.kind == "choice":
                 line.append(" " + "/".join(p.choices), style="dim")
             text.append_text(line)
@@ -155,3 +163,14 @@ class StatusLine(QuietStatic):
     """Two lines: θi and the frame's numbers; the view, scale, colour map and a message."""
 
     DEFAULT_CSS = "StatusLine { height: auto; max-height: 3; padding: 0 1; }"
+
+    def show_text(self, text: Text) -> None:
+        """The numbers may wrap; the last line (view, scale, message) is cut with "…" at the
+        width, so a long message never pushes the status to a third row."""
+        width = self.size.width - 2  # the padding
+        lines = text.split("\n")
+        if width > 10 and len(lines) > 1:
+            last = lines[-1]
+            last.truncate(width, overflow="ellipsis")
+            text = Text("\n").join([*lines[:-1], last])
+        super().show_text(text)

@@ -2,7 +2,9 @@
 
 Prints the fitted parameters (one set per channel for a scalar model, one for an RGB model),
 the residual (RMS of ``log(1 + f·cos θi·cos θo)`` differences, see :mod:`tuibrdf.core.fit`),
-and the albedo of data and fit at θi = 0, 30, 60°.  A file named after a MERL material
+and the albedo of data and fit at θi = 0, 30, 60° with their ratio; then a verdict: fitted
+parameters that ended at a bound of their range, and a poor fit (a fit / data albedo ratio
+outside 1/1.25–1.25×).  Progress goes to stderr while it runs.  A file named after a MERL material
 (``gold-metallic-paint.binary``) also gets the residuals of the published ABC and SGD fits of
 that material (models ``abc``, ``sgd``) on the same objective, for comparison.  A missing or
 malformed file, an unknown model or one without continuous parameters: one line on stderr,
@@ -57,7 +59,10 @@ def stride_type(text: str) -> tuple[int, int, int]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..core.fit import albedo_table, fit_file, published_scores
+    import sys
+    import time
+
+    from ..core.fit import albedo_ratio, albedo_table, at_bounds, fit_file, published_scores
     from .common import find_model
 
     model = find_model(args.model)
@@ -69,9 +74,21 @@ def run(args: argparse.Namespace) -> int:
         if not model.rgb and not args.mean:
             raise UsageError(f"--save-preset: a preset holds one parameter set and {model.name} "
                              "is fitted per channel: add --mean (or fit an RGB model, e.g. gltf)")
+    start = time.perf_counter()
+
+    def progress(channel: str, i: int, n: int) -> None:
+        # stderr: stdout stays the result (and valid JSON with --json)
+        what = f"channel {channel} ({i}/{n})" if n > 1 else f"{channel} channels"
+        print(f"fitting {model.name}: {what} … {time.perf_counter() - start:.1f} s",
+              file=sys.stderr, flush=True)
+
     data, result = fit_file(args.file, args.model, stride=args.stride, mean=args.mean,
-                            fixed=fixed)
+                            fixed=fixed, progress=progress)
+    print(f"computing albedos … {time.perf_counter() - start:.1f} s", file=sys.stderr,
+          flush=True)
     albedo = albedo_table(data, result)
+    bounds = at_bounds(result, fixed)
+    ratio = albedo_ratio(albedo)
     published = published_scores(data, args.stride)
     saved = save_comparison(args.save_preset, data.path, result) if args.save_preset else None
     if args.json:
@@ -87,6 +104,8 @@ def run(args: argparse.Namespace) -> int:
             "fits": [{"channel": c, "params": json_params(p)}
                      for c, p in zip(result.channels, result.params, strict=True)],
             "albedo": albedo,
+            "at_bound": bounds,
+            "albedo_ratio": ratio,
             "invalid_bins": list(data.n_invalid),
         }
         if published:
@@ -106,13 +125,45 @@ def run(args: argparse.Namespace) -> int:
         print(f"published fits of {published['material']}, same objective: "
               f"abc residual {fmt(published['abc'])} (Löw et al. 2012), "
               f"sgd residual {fmt(published['sgd'])} (Bagher et al. 2012)")
-    print(f"{'theta_i':>7}  {'albedo data (R,G,B)':>26}  {'albedo fit (R,G,B)':>26}")
-    for row in albedo:
-        print(f"{fmt(row['theta_i']):>7}  {fmt(tuple(row['data'])):>26}  "
-              f"{fmt(tuple(row['fit'])):>26}")
+    print(albedo_lines(albedo))
+    for line in judgement(bounds, ratio):
+        print(line)
     if saved:
         print(f"saved {saved}: tuibrdf view --preset {args.save_preset}")
     return 0
+
+
+def albedo_lines(rows: list[dict]) -> str:
+    """The albedo table, one column per channel, decimal points aligned."""
+    cols = ("R", "G", "B")
+    head = (f"{'theta_i':>7}  {'albedo data':^26}  {'albedo fit':^26}  fit/data\n"
+            f"{'':>7}  " + "  ".join(" ".join(f"{c:>8}" for c in cols) for _ in range(2)))
+    lines = [head]
+    for row in rows:
+        data = " ".join(f"{v:8.4f}" for v in row["data"])
+        fitted = " ".join(f"{v:8.4f}" for v in row["fit"])
+        ratios = [f / d for d, f in zip(row["data"], row["fit"], strict=True) if d > 0]
+        worst = max(ratios, key=lambda r: abs(r - 1)) if ratios else float("nan")
+        lines.append(f"{row['theta_i']:>6g}°  {data}  {fitted}  {worst:8.2f}×")
+    return "\n".join(lines)
+
+
+def judgement(bounds: list[dict], ratio: dict) -> list[str]:
+    """The verdict lines: parameters stuck at a bound, a poor albedo match, or "fit ok"."""
+    from ..core.fit import POOR_ALBEDO_RATIO
+
+    out = []
+    for b in bounds:
+        out.append(f"warning: {b['param']} at its {b['bound']}imum {fmt(b['value'])} "
+                   f"({', '.join(b['channels'])}): the model wants a value past its range")
+    if ratio["poor"]:
+        out.append(f"poor fit: albedo of the fit is {ratio['ratio']:.2f}× the data's "
+                   f"(θi {fmt(ratio['theta_i'])}°, channel {ratio['channel']}; flagged "
+                   f"outside 1/{POOR_ALBEDO_RATIO:g}–{POOR_ALBEDO_RATIO:g}×): try another model")
+    if not out:
+        out.append(f"fit ok: no parameter at a bound, albedos within {POOR_ALBEDO_RATIO:g}× of "
+                   "the data's")
+    return out
 
 
 def save_comparison(name: str, path: str, result):

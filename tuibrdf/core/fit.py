@@ -265,11 +265,13 @@ class Fit:
 
 
 def fit(data: MerlData, model: str | Model, *, fixed: Mapping[str, Any] | None = None,
-        stride: tuple[int, int, int] = STRIDE, mean: bool = False) -> Fit:
+        stride: tuple[int, int, int] = STRIDE, mean: bool = False,
+        progress: Callable[[str, int, int], None] | None = None) -> Fit:
     """Fit ``model``'s free parameters to ``data`` (module docstring).  ``fixed`` maps names to
     user values that are kept, not fitted (e.g. ``{"kd": 0}``, ``{"fresnel": "schlick"}``);
     unnamed ``choice`` parameters keep their defaults.  ``mean`` fits a scalar model once, to
-    the mean of R, G and B, instead of once per channel."""
+    the mean of R, G and B, instead of once per channel.  ``progress(channel, i, n)`` is called
+    before each of the ``n`` channel fits (``i`` from 1)."""
     m = get_model(model)
     if m is MERL or any(p.kind == "path" for p in m.params):
         raise ValueError(f"fit: {m.name} is not an analytic model")
@@ -287,7 +289,9 @@ def fit(data: MerlData, model: str | Model, *, fixed: Mapping[str, Any] | None =
     params = []
     errors = []
     warm: list[np.ndarray] = []  # earlier channels' solutions: extra starting points
-    for want in targets:
+    for i, want in enumerate(targets):
+        if progress is not None:
+            progress(channels[i], i + 1, len(targets))
 
         def objective(z, want=want):
             with kernel_errstate():
@@ -320,6 +324,55 @@ def _minimise(objective: Callable[[np.ndarray], float], k: int, warm=()):
         if best is None or err < best[1]:
             best = (z, err)
     return best[0], best[1], evaluations
+
+
+# ------------------------------------------------------------------------------ judgement
+
+#: a fitted value within this fraction of its range from an end is "at the bound": the
+#: optimiser pushed it there (the model wants a value past the end), so the fit is limited
+BOUND_FRACTION = 1e-3
+#: fit / data albedo outside [1 / R, R] at any θi and channel flags a poor fit: 25 % more or
+#: less reflected energy is visible at a glance in the viewer (a design choice, docs/app.md)
+POOR_ALBEDO_RATIO = 1.25
+
+
+def at_bounds(result: Fit, fixed: Mapping[str, Any] | None = None) -> list[dict[str, Any]]:
+    """``[{"param": name, "bound": "min"|"max", "value": v, "channels": [...]}, ...]``: the
+    fitted (not fixed) continuous parameters that ended at an end of their range."""
+    found: dict[tuple[str, str], dict[str, Any]] = {}
+    for channel, values in zip(result.channels, result.params, strict=True):
+        for p in result.model.params:
+            if p.kind not in ("float", "rgb") or p.name in (fixed or {}):
+                continue
+            v = values[p.name]
+            comps = list(v) if p.kind == "rgb" else [v]
+            tol = BOUND_FRACTION * (p.max - p.min)
+            for c, x in enumerate(comps):
+                for which, end in (("min", p.min), ("max", p.max)):
+                    if abs(float(x) - end) <= tol:
+                        label = channel if p.kind != "rgb" else f"{channel}.{'rgb'[c]}"
+                        entry = found.setdefault((p.name, which), {
+                            "param": p.name, "bound": which, "value": float(end),
+                            "channels": []})
+                        entry["channels"].append(label)
+    return list(found.values())
+
+
+def albedo_ratio(rows: list[dict[str, Any]]) -> dict[str, Any]:
+    """The worst fit / data albedo ratio of :func:`albedo_table`'s rows (farthest from 1 on a
+    log scale): ``{"ratio": r, "theta_i": θ, "channel": c, "poor": bool}``; a data albedo of 0
+    (a black channel) is skipped."""
+    worst = {"ratio": 1.0, "theta_i": None, "channel": None}
+    for row in rows:
+        for c, (d, f) in enumerate(zip(row["data"], row["fit"], strict=True)):
+            if d <= 0 or f <= 0:  # no ratio of a black channel (guards the division and log)
+                continue
+            r = f / d
+            if abs(math.log(r)) > abs(math.log(worst["ratio"])):
+                worst = {"ratio": r, "theta_i": row["theta_i"], "channel": CHANNELS[c]}
+    r = worst["ratio"]
+    worst["poor"] = not (1 / POOR_ALBEDO_RATIO <= r <= POOR_ALBEDO_RATIO)
+    return worst
 
 
 # ------------------------------------------------------------------------------ albedo
@@ -389,6 +442,7 @@ def fit_file(path: str, model: str | Model, **kw) -> tuple[MerlData, Fit]:
     return data, fit(data, model, **kw)
 
 
-__all__ = ["ALBEDO_THETAS", "Fit", "Samples", "Space", "albedo_table", "fit",
+__all__ = ["ALBEDO_THETAS", "BOUND_FRACTION", "POOR_ALBEDO_RATIO", "albedo_ratio", "at_bounds",
+           "Fit", "Samples", "Space", "albedo_table", "fit",
            "fit_file", "material_of", "nelder_mead", "published_scores", "sample_set",
            "score"]

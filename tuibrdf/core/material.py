@@ -9,17 +9,30 @@ of ``(name, values)`` pairs.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping
 from typing import Any
 
-from .models import get_model
+from .models import MODELS, get_model
 from .params import Model, Value, _fmt
+
+
+def file_stamp(name: str) -> tuple[int, int] | None:
+    """``(mtime_ns, size)`` of the file a model name (an absolute path) was read from; None for
+    a registered model or a file that cannot be stat'ed now."""
+    if name in MODELS or not os.path.isabs(name):
+        return None
+    try:
+        st = os.stat(name)
+    except OSError:
+        return None
+    return (st.st_mtime_ns, st.st_size)
 
 
 class Material:
     """``Material(model, params=None)``: immutable, validated, hashable."""
 
-    __slots__ = ("name", "items", "_hash")
+    __slots__ = ("name", "items", "stamp", "_hash")
     name: str
     items: tuple[tuple[str, Value], ...]
 
@@ -28,7 +41,10 @@ class Material:
         values = m.resolve(params)
         object.__setattr__(self, "name", m.name)
         object.__setattr__(self, "items", tuple((p.name, values[p.name]) for p in m.params))
-        object.__setattr__(self, "_hash", hash((self.name, self.items)))
+        #: a model read from a file: the file's (mtime, size) when read, so an edited file
+        #: makes another material (another cache key) once re-read; None for the others
+        object.__setattr__(self, "stamp", file_stamp(m.name))
+        object.__setattr__(self, "_hash", hash((self.name, self.items, self.stamp)))
 
     def __setattr__(self, key: str, value: Any) -> None:
         raise AttributeError("a Material is immutable: use with_values()")
@@ -36,7 +52,7 @@ class Material:
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Material):
             return NotImplemented
-        return self.name == other.name and self.items == other.items
+        return (self.name, self.items, self.stamp) == (other.name, other.items, other.stamp)
 
     def __hash__(self) -> int:
         return self._hash
@@ -53,11 +69,28 @@ class Material:
         """The resolved values (user units), a fresh dict in declaration order."""
         return dict(self.items)
 
+    @property
+    def label(self) -> str:
+        """The name a title shows: a model read from a file by its file name (``ggx.brdf``),
+        not its absolute path."""
+        if self.stamp is not None or os.path.isabs(self.name):
+            return os.path.basename(self.name)
+        data = dict(self.items).get("file")  # measured data (merl): the data file's name
+        return os.path.basename(str(data)) if data else self.name
+
+    def refreshed(self) -> Material:
+        """This material again if its model file is unchanged on disk, else re-read (a new
+        material; ``ValueError`` when the edited file is no longer valid)."""
+        if self.stamp is None or file_stamp(self.name) == self.stamp:
+            return self
+        return Material(self.name, self.values)
+
     def with_values(self, **changes: Any) -> Material:
         """A new material with some values changed (validated; ``ValueError`` otherwise)."""
         return Material(self.name, {**self.values, **changes})
 
     def describe(self) -> str:
         """``phong kd=0.2 ks=0.5 n=20`` — for titles and messages."""
-        vals = " ".join(f"{k}={_fmt(v)}" for k, v in self.items)
-        return f"{self.name} {vals}".strip()
+        vals = " ".join(f"{k}={_fmt(os.path.basename(v) if k == 'file' else v)}"
+                        for k, v in self.items)
+        return f"{self.label} {vals}".strip()

@@ -49,6 +49,9 @@ class Param:
     aliases: tuple[tuple[str, str], ...] = ()
     #: for a long list of choices: the text errors and listings show instead of all of them
     choices_doc: str = ""
+    #: step by a factor instead of a constant (roughness, exponents: a value spanning
+    #: decades); the fine step multiplies by 1.1, the coarse one by 2
+    relative: bool = False
 
     @property
     def coarse_step(self) -> float:

@@ -14,8 +14,8 @@
    (the step has then shrunk 60× below the last move).  A search climbing a lower local
    maximum (often the one from S) stops counting once 10× its last gain cannot lift it to
    the best value of its channel: it no longer keeps the others going for all the rounds
-   (median 6.6 → 3.4 ms over 28 cases, values within 6e-11 relative of the full run).  Every round is one vectorised kernel
-   call for all the searches.
+   (median 6.6 → 3.4 ms over 28 cases, values within 6e-11 relative of the full run).  Every
+   round is one vectorised kernel call for all the searches.
 
 An RGB model gets four peaks, each with its own direction: the Rec.709 luminance ``Y`` and
 each channel ``R``, ``G``, ``B``; a scalar model one.  ``Peak.label`` says which.

@@ -2,8 +2,11 @@
 
 The curve, ``a(θi) = ∫ f(wi, wo) cos θr dω`` at every 3°, comes with the frame
 (:func:`tuibrdf.core.scene.albedo_curve`, cached per material: moving θi only moves the
-marker); the pane with its title is :func:`tuibrdf.render.panes.albedo_pane`.  The line
-``a = 1`` is drawn; RGB models get one curve per channel.
+marker); the pane with its title is :func:`tuibrdf.render.panes.albedo_pane`.  The axis is
+scaled to the curves (a specular albedo of 0.05 fills the plot; the line ``a = 1`` is drawn
+when it is in range) and labelled; θi is marked by a vertical line and a point on each curve,
+the x range starting just left of 0° so that θi = 0 stays visible.  RGB models get the curves
+the channel choice asks for; in compare mode each side has its own marker.
 """
 
 from __future__ import annotations
@@ -24,19 +27,60 @@ def albedo_plot(
     color: str = "truecolor",
 ) -> str:
     """plotext line plot of the curves with the line a = 1 and a marker at ``theta_i_deg``."""
-    top = max(1.1, max(float(np.max(a)) for _, a in curves) * 1.05)
+    peak = max(float(np.max(a)) for _, a, *_ in curves)
+    top = nice_top(peak)
+    step = nice_step(top)
     with PLOT_LOCK:
         plt.clf()
         plt.theme("clear")
         plt.plotsize(width, height)
-        plt.xlim(0.0, 90.0)
+        plt.xlim(-3.0, 90.0)  # left of 0°: the θi line at 0° is not hidden by the axis
         plt.ylim(0.0, top)
         plt.xticks([0, 30, 60, 90])
-        plt.yticks(np.arange(0.0, top, 0.5 if top < 3 else np.ceil(top / 4)).tolist())
-        plt.hline(1.0, GUIDE_COLOR)
+        plt.yticks([float(f"{v:.6g}") for v in np.arange(0.0, top + step / 2, step)])
+        plt.xlabel("θi (°)")
+        plt.ylabel("a(θi)")
+        if top >= 1.0:
+            plt.hline(1.0, GUIDE_COLOR)
         if theta_i_deg is not None:
             plt.vline(float(theta_i_deg), INCIDENT_COLOR)
-        for j, (label, a) in enumerate(curves):
-            plt.plot(thetas.tolist(), np.asarray(a, dtype=float).tolist(), marker="braille",
-                     color=curve_color(label, j), label=label if len(curves) > 1 else None)
+        for j, (label, a, *style) in enumerate(curves):
+            marker = style[0] if style else "braille"
+            col = style[1] if len(style) > 1 else curve_color(label, j)
+            a = np.asarray(a, dtype=float)
+            plt.plot(thetas.tolist(), a.tolist(), marker=marker, color=col,
+                     label=label if len(curves) > 1 else None)
+            if theta_i_deg is not None:  # the point a(θi) on the curve
+                plt.scatter([float(theta_i_deg)], [float(np.interp(theta_i_deg, thetas, a))],
+                            marker="o", color=col)
         return finish_plot(color)
+
+
+#: the smallest axis end: an albedo below it (1e-322 from a subnormal parameter) is drawn on
+#: a 0–1e-4 axis (plotext's tick arithmetic fails on subnormal ranges); the title has the value
+MIN_TOP = 1e-4
+
+
+def nice_top(peak: float) -> float:
+    """The y axis end: 1.1 × the curves' maximum rounded up to 1, 2, 2.5, 5 × 10^k (at
+    least 1.1 when the maximum is near or above 1, so the line a = 1 shows)."""
+    if not peak > 0:  # all zero (or NaN guarded): a unit axis
+        return 1.0
+    peak = max(peak, MIN_TOP)
+    if peak >= 0.9:
+        peak = max(peak, 1.0)
+    want = peak * 1.1
+    e = 10.0 ** np.floor(np.log10(want))
+    for m in (1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0):
+        if m * e >= want:
+            return float(m * e)
+    return float(10 * e)
+
+
+def nice_step(top: float) -> float:
+    """A tick step giving 3 to 6 ticks up to ``top``."""
+    e = 10.0 ** np.floor(np.log10(top))
+    for m in (0.1, 0.2, 0.25, 0.5, 1.0, 2.0):
+        if top / (m * e) <= 6:
+            return m * e
+    return 2 * e

@@ -52,6 +52,8 @@ UPPER_HALF = "▀"
 LOWER_HALF = "▄"
 #: density ramp of the plain-text fallback, dark → bright
 ASCII_RAMP = " .:-=+*#%@"
+#: the plain-text guide (horizon ring): not in :data:`ASCII_RAMP`, so never read as a value
+RING_CHAR = "~"
 #: index of a pixel that shows the terminal's own background
 TRANSPARENT = -1
 
@@ -178,6 +180,7 @@ class HalfBlockImage:
         palette: np.ndarray,
         marks: Sequence[Mark] = (),
         color_system: ColorSystem | None = None,
+        ring: int | None = None,
     ) -> None:
         index = np.asarray(index)
         palette = np.asarray(palette)
@@ -195,6 +198,9 @@ class HalfBlockImage:
         self.palette = palette.astype(np.uint8)
         self.marks = tuple(marks)
         self.color_system = color_system
+        #: a palette index that is a guide, not data (the map's horizon ring): plain text
+        #: draws it with :data:`RING_CHAR`, never a character of the density ramp
+        self.ring = ring
         self.width = int(index.shape[1])
         self.height = (int(index.shape[0]) + 1) // 2
         self._rows: dict[str, list[list[Segment]]] = {}
@@ -282,10 +288,16 @@ class HalfBlockImage:
 
     def _plain_codes(self, top, bottom):
         y = np.append(luma(self.palette), 0.0)  # transparent reads as dark
+        if self.ring is not None:  # half ring, half data: the data half alone
+            rt, rb = top == self.ring, bottom == self.ring
+            top, bottom = np.where(rt, bottom, top), np.where(rb, top, bottom)
         level = np.rint((y[top] + y[bottom]) / 2 * (len(ASCII_RAMP) - 1)).astype(np.int64)
+        if self.ring is not None:  # ring and ring, or ring and outside: the guide
+            level[(top == self.ring) | (top < 0) & (bottom == self.ring)] = len(ASCII_RAMP)
+            level[(rt | rb) & (top < 0) & (bottom < 0)] = len(ASCII_RAMP)
 
         def make(code: int) -> tuple[str, Style]:
-            return ASCII_RAMP[code], NULL_STYLE
+            return (ASCII_RAMP + RING_CHAR)[code], NULL_STYLE
 
         return level, make
 

@@ -31,7 +31,7 @@ from ..core.scene import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
 from .albedo_plot import albedo_plot
 from .colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize
 from .halfblock import HalfBlockImage, Mark
-from .polar import caption_parts, channel_curves, plot_body, polar_plot
+from .polar import caption_parts, plot_body, polar_plot, side_curves
 from .solid import solid_image
 from .text import INCIDENT_MARK, MIRROR_MARK, RING_RGB, mark_legend, title, where
 
@@ -51,6 +51,8 @@ class Look:
     rgb_mode: str = "auto"  # auto | color | luminance
     azimuth: float = -60.0  # the 3D solid's camera
     elevation: float = 25.0
+    #: the curves of an RGB model (sections, albedo): rgb (three) | lum | R | G | B
+    channel: str = "rgb"
 
     @property
     def rgb(self) -> str:
@@ -66,7 +68,7 @@ def shown_peak(side: SideFrame, view: str, look: Look) -> Peak:
 
 
 def _label(res: FrameResult, k: int) -> str:
-    name = res.sides[k].material.name
+    name = res.sides[k].material.label
     return name if len(res.sides) == 1 else f"{SIDE_LABELS[k]}: {name}"
 
 
@@ -139,7 +141,7 @@ def map_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     r, c = info.incident_px
     if (r // 2, c) != (marks[0].row, marks[0].col):
         marks.append(Mark(r // 2, c, **INCIDENT_MARK))
-    image = HalfBlockImage(index, pal, marks, color_system=look.color)
+    image = HalfBlockImage(index, pal, marks, color_system=look.color, ring=ring_index)
     if info.vmin >= peak.value * (1.0 - 1e-12):  # Lambert: no "the" peak
         what = "f·cosθr" if cosine else "f"
         head, at = f"{what} = {fmt_value(peak.value)} {_unit(cosine)}", "everywhere"
@@ -167,9 +169,32 @@ def diff_pane(res: FrameResult, w: int, h: int, look: Look) -> Group:
     stops = np.array(DIVERGING, dtype=float)
     x = np.linspace(0, 1, levels)
     pal = np.stack([np.interp(x, [0, 0.5, 1], stops[:, c]) for c in range(3)], -1)
-    img = HalfBlockImage(idx, np.rint(pal).astype(np.uint8), (), color_system=look.color)
     head = title([("A − B", 1), (f"max |Δ| {fmt_value(m)}", 0)], w)
+    if look.color == "none":  # no colour to tell the sign: characters that say it
+        return Group(head, signed_text(np.where(finite, t - 0.5, np.nan)),
+                     title([("+# A>B  -= B>A  . same", 0)], w))
+    img = HalfBlockImage(idx, np.rint(pal).astype(np.uint8), (), color_system=look.color)
     return Group(head, img, title([("red: A>B  blue: B>A", 0)], w))
+
+
+def signed_text(d: np.ndarray) -> Text:
+    """The difference map in plain text, one character per cell (two pixel rows): ``.``
+    within 5 % of the largest |Δ| of each other, ``+``/``#`` A larger (under/over half of
+    it), ``-``/``=`` B larger; blank outside the disc."""
+    if d.shape[0] % 2:
+        d = np.vstack([d, np.full((1, d.shape[1]), np.nan)])
+    pair = d.reshape(d.shape[0] // 2, 2, d.shape[1])
+    ok = np.isfinite(pair)
+    inside = ok.any(axis=1)
+    # the mean of the finite halves; max(count, 1): no 0/0 outside the disc
+    v = np.where(ok, pair, 0.0).sum(axis=1) / np.maximum(ok.sum(axis=1), 1)
+    chars = np.full(v.shape, " ")
+    chars[inside] = "."
+    chars[inside & (v > 0.025)] = "+"
+    chars[inside & (v > 0.25)] = "#"
+    chars[inside & (v < -0.025)] = "-"
+    chars[inside & (v < -0.25)] = "="
+    return Text("\n".join("".join(row) for row in chars), no_wrap=True)
 
 
 # ----------------------------------------------------------------------- cross-sections
@@ -177,23 +202,19 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
     """The sides' values along ``plane`` (R, G, B curves for an RGB model alone), both planes
     and both sides on one radius scale; the caption gives the section max."""
     compare = len(res.sides) > 1
-    curves = []
-    for k, s in enumerate(res.sides):
-        name = s.material.name
-        for label, v in channel_curves(name, s.sections[plane]):
-            label = f"{SIDE_LABELS[k]}:{name}" if compare and label == name else label
-            curves.append((label, SECTION_THETAS, v))
+    curves = [(label, SECTION_THETAS, v, *style) for label, v, *style in side_curves(
+        [(s.material.label, s.sections[plane]) for s in res.sides], look.channel)]
     vmax = max(s.section_max for s in res.sides)
     t = res.request.theta_i
     text, caption = polar_plot(curves, w, h - 1, log=look.log, color=look.color,
                                theta_i_deg=t if plane == "incidence" else None, vmax=vmax)
     if compare:
-        a, b = (s.material.name for s in res.sides)
+        a, b = (s.material.label for s in res.sides)
         parts = [(plane, 0), (f"A {a} vs B {b}", 2)]
     else:
         sides = "φ 180°|0°" if plane == "incidence" else "φ 270°|90°"
         what = "f·cosθr" if res.request.cosine else "f"
-        parts = [(res.sides[0].material.name, 2), (f"θi={t:g}°", 3), (plane, 0),
+        parts = [(res.sides[0].material.label, 2), (f"θi={t:g}°", 3), (plane, 0),
                  (f"({sides})", 4), (what, 1)]
     return Group(title([*parts, *caption_parts(caption)], w), plot_body(text, look.color))
 
@@ -224,19 +245,14 @@ def albedo_pane(res: FrameResult, w: int, h: int, look: Look) -> RenderableType:
     if any(s.curve is None for s in res.sides):
         return Text("computing a(θi) over 0–90° …", justify="center")
     t = res.request.theta_i
-    if len(res.sides) == 1:
-        s = res.sides[0]
-        curves = channel_curves(s.material.name, s.curve)
-    else:
-        curves = [(_label(res, k), luminance(s.curve) if s.curve.ndim == 2 else s.curve)
-                  for k, s in enumerate(res.sides)]
+    curves = side_curves([(s.material.label, s.curve) for s in res.sides], look.channel)
     top = max(float(np.max(s.curve)) for s in res.sides)
     over = any(s.curve_exceeds_one() for s in res.sides)
     flag = f"a>1 (max {fmt_value(top)}): not energy-conserving" if over else ""
     text = albedo_plot(CURVE_THETAS, curves, w, h - 1, theta_i_deg=t, color=look.color)
     if len(res.sides) == 1:
         s0 = res.sides[0]
-        parts = [(s0.material.name, 2),
+        parts = [(s0.material.label, 2),
                  (f"a(θi={t:g}°) = {albedo_text(s0.albedo, s0.albedo_error)}", 0), (flag, 1)]
     else:
         parts = [("directional albedo a(θi) = ∫ f cos θr dω", 0), ("(line: a = 1)", 2),

@@ -39,7 +39,11 @@ GUIDE_COLOR = 244  # xterm grey
 INCIDENT_COLOR = "yellow"
 CELL_ASPECT = 2.0  # a terminal cell is about twice as tall as it is wide
 
-Curve = tuple[str, np.ndarray, np.ndarray]  # (label, θr degrees, values)
+#: (label, θr degrees, values[, marker[, colour]]): compare mode gives each side its own
+#: marker (a line style that survives every colour mode) and the channels their colours
+Curve = tuple
+#: the marker of each side in compare mode: A braille dots, B a '+' per sample
+SIDE_MARKERS = ("braille", "+")
 
 
 def curve_color(label: str, j: int) -> str:
@@ -85,7 +89,7 @@ def polar_plot(
     unless ``color == "none"``), exactly ``height`` lines of ``width`` cells; ``caption`` gives
     the curves' maximum and what the guide circles are.  ``vmax`` sets the scale (the outer
     circle) when several plots must be read on one scale; by default the curves' maximum."""
-    own = max((float(np.max(v)) for _, _, v in curves), default=0.0)
+    own = max((float(np.max(c[2])) for c in curves), default=0.0)
     vmax = max(own, vmax or 0.0)
     vmax = vmax if vmax > 0 else 1.0  # an all-zero curve still gets a unit circle
     if log:
@@ -121,11 +125,13 @@ def polar_plot(
             s, c = sincos_deg(float(theta_i_deg))
             plt.plot([0.0, -float(s) * rmax], [0.0, float(c) * rmax], marker="braille",
                      color=INCIDENT_COLOR)
-        for j, (label, thetas, vals) in enumerate(curves):
+        for j, (label, thetas, vals, *style) in enumerate(curves):
             r = radius(vals, vmax, log, decades)
             s, c = sincos_deg(np.asarray(thetas, dtype=float))
-            plt.plot((r * s).tolist(), (r * c).tolist(), marker="braille",
-                     color=curve_color(label, j), label=label if len(curves) > 1 else None)
+            marker = style[0] if style else "braille"
+            col = style[1] if len(style) > 1 else curve_color(label, j)
+            plt.plot((r * s).tolist(), (r * c).tolist(), marker=marker, color=col,
+                     label=label if len(curves) > 1 else None)
         text = finish_plot(color)
     return text, caption
 
@@ -154,8 +160,33 @@ def plot_body(text: str, color: str) -> Text:
     return body
 
 
-def channel_curves(label: str, values: np.ndarray) -> list[tuple[str, np.ndarray]]:
-    """``[(label, v)]`` for ``(n,)`` values, ``[("R", r), ("G", g), ("B", b)]`` for ``(n, 3)``."""
-    if values.ndim == 2:
-        return [(ch, values[:, k]) for k, ch in enumerate("RGB")]
-    return [(label, values)]
+def channel_curves(label: str, values: np.ndarray, channel: str = "rgb"
+                   ) -> list[tuple[str, np.ndarray]]:
+    """``[(label, v)]`` for ``(n,)`` values; for ``(n, 3)`` the ``channel`` choice: ``rgb``
+    ``[("R", r), ("G", g), ("B", b)]``, ``lum`` the Rec.709 luminance, or one of R, G, B."""
+    if values.ndim != 2:
+        return [(label, values)]
+    if channel == "lum":
+        from ..core.conventions import luminance
+
+        return [("lum", luminance(values))]
+    if channel in ("R", "G", "B"):
+        return [(channel, values[:, "RGB".index(channel)])]
+    return [(ch, values[:, k]) for k, ch in enumerate("RGB")]
+
+
+def side_curves(sides: Sequence[tuple[str, np.ndarray]], channel: str = "rgb") -> list[tuple]:
+    """The curves of one or two sides ``(label, values)``: alone, :func:`channel_curves`;
+    in compare mode each label prefixed ``A:``/``B:`` and each side drawn with its own marker
+    (:data:`SIDE_MARKERS`), channels in their colours, scalar sides in A's and B's colours,
+    so the sides differ in every colour mode.  Items: ``(label, values, marker, colour)``."""
+    if len(sides) == 1:
+        return [(lab, v) for lab, v in channel_curves(sides[0][0], sides[0][1], channel)]
+    out = []
+    for k, (name, values) in enumerate(sides):
+        side = "AB"[k]
+        for lab, v in channel_curves(name, values, channel):
+            col = {"R": "red", "G": "green", "B": "blue"}.get(lab, CURVE_COLORS[k])
+            text = f"{side}:{name}" if lab == name else f"{side}:{lab}"
+            out.append((text, v, SIDE_MARKERS[k], col))
+    return out

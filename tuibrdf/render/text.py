@@ -37,9 +37,11 @@ def title(parts: Sequence[tuple[str, int]], width: int, style: str = "") -> Text
 
 
 # -------------------------------------------------------------------- guides and marks
-#: colour of the horizon ring drawn just outside the disc and of the solid's guides (not in
-#: any colour map's range of greys, so "outside" never reads as a value)
-RING_RGB = (70, 90, 130)
+#: colour of the horizon ring drawn just outside the disc and of the solid's guides: a muted
+#: blue that quantises to xterm colour 61 (95, 95, 175), which no colour map (grey, viridis,
+#: inferno at any level count) quantises to in 256 colours, so "outside" never reads as a
+#: value (tests/test_render_views.py); plain text draws it as ``~`` (halfblock.RING_CHAR)
+RING_RGB = (72, 72, 160)
 LIGHT_RGB = (40, 220, 255)
 MIRROR_MARK = dict(glyph="×", ascii="X", rgb=(255, 40, 40))
 INCIDENT_MARK = dict(glyph="o", ascii="o", rgb=LIGHT_RGB)

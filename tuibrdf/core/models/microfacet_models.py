@@ -68,8 +68,9 @@ from .common_params import ROUGHNESS as _ROUGHNESS
 
 KD0 = replace(KD, default=0.0)
 F0 = Param("f0", "F0", 0.04, 0.0, 1.0, 0.01, doc="Fresnel reflectance at normal incidence")
-M = Param("m", "m", 0.2, 0.001, 1.0, 0.005, coarse=0.05, doc="Beckmann RMS slope (roughness)")
-ALPHA = Param("alpha", "α", 0.2, ALPHA_MIN, 1.0, 0.005, coarse=0.05,
+M = Param("m", "m", 0.2, 0.001, 1.0, 0.005, coarse=0.05, relative=True,
+          doc="Beckmann RMS slope (roughness)")
+ALPHA = Param("alpha", "α", 0.2, ALPHA_MIN, 1.0, 0.005, coarse=0.05, relative=True,
               doc="GGX width (roughness²)")
 FRESNEL = Param("fresnel", "F", "exact", kind="choice", choices=("exact", "schlick"),
                 doc="Fresnel: exact unpolarised dielectric or Schlick")

@@ -35,7 +35,7 @@ from .diffuse import above
 
 KD = replace(common_params.KD, default=0.2)
 KS = Param("ks", "Ks", 0.5, 0.0, 1.0, 0.01, doc="specular reflectance")
-N = Param("n", "n", 20.0, 0.0, 10000.0, 1.0, coarse=10.0,
+N = Param("n", "n", 20.0, 0.0, 10000.0, 1.0, coarse=10.0, relative=True,
           doc="lobe exponent: larger is higher and narrower")
 
 
