@@ -112,7 +112,7 @@ async def test_each_visible_pane_is_evaluated_once_per_frame(monkeypatch):
             return _m.kernel(wi, wo, **kw)
 
         monkeypatch.setitem(MODELS, name, dataclasses.replace(m, kernel=kernel))
-    n_sections = 2 * len(scene.SECTION_THETAS)
+    n_sections = 3 * len(scene.SECTION_THETAS)  # both planes + the section through the peak
     app = BrdfApp(ViewerState(sides=[Side.of("phong")]), sync=True)
     async with app.run_test(size=(120, 36)) as pilot:
         for mode in ("single", "compare"):

@@ -146,7 +146,7 @@ def test_render_all_stacks_the_four_views(capsys):
     titles = [ln for ln in out.splitlines() if ln.startswith("cook-torrance")]
     assert len(titles) == 4
     assert "peak 6.14" in titles[0] and "incidence" in titles[1]
-    assert "perpendicular" in titles[2] and "a(θi=60°)" in titles[3]
+    assert "through peak" in titles[2] and "a(θi=60°)" in titles[3]
     assert len(out.splitlines()) == 4 * 24 + 3  # four 80×24 views, blank lines between
 
 

@@ -8,7 +8,13 @@ albedo curve is shown.  Per material the result holds:
 
 ==============  ==================================================================================
 ``peaks``       :func:`tuibrdf.core.peak.find_peaks`: the one peak (``(Y, R, G, B)`` for RGB)
-``sections``    ``f`` along both planes (θr from −90° to 90°, :data:`SECTION_THETAS`): one call
+``sections``    ``f`` along both planes (θr from −90° to 90°, :data:`SECTION_THETAS`) and, under
+                ``"peak"``, along the great circle through ``peaks[0]`` (the overall peak: the
+                luminance's for RGB) at the request's section azimuth (signed angle from the
+                peak, the same 181 samples; 0 below the horizon): one kernel call for all three
+``extra``       the arrays of the request's ``extra`` view, or None (:func:`extra_values`):
+                ``sphere``/``plane`` → ``(radiance, mask)``, ``slice`` → ``(f, valid, θh, θd)``,
+                ``theta-h``/``theta-d`` → ``(x, f, valid)``
 ``map``         the Lambert map's pixels and :class:`~tuibrdf.core.hemimap.MapInfo` (or None)
 ``solid``       ``f`` at the solid's sample directions (:func:`solid_samples`; or None)
 ``albedo``      ``a(θi) = ∫ f cos θr dω`` (float, or 3 floats for RGB), None until computed
@@ -33,13 +39,17 @@ from typing import Any
 
 import numpy as np
 
-from .frame import incident, sincos_deg
+from .frame import from_degrees, incident, sincos_deg
 from .hemimap import MapInfo, map_values
 from .material import Material
 from .peak import Peak, find_peaks, radiance
 from .quadrature import albedo_curve_resolved, albedo_resolved
 
 PLANES = ("incidence", "perpendicular")
+#: the main views drawn from :func:`extra_values` (beside the map, the solid and the albedo)
+EXTRA_VIEWS = ("sphere", "plane", "slice", "theta-h", "theta-d")
+#: samples of the θh and θd line plots over [0°, 90°]
+LINE_SAMPLES = 361
 #: signed θr of the cross-sections: the right half is φr = 0° (incidence) / 90°
 SECTION_THETAS = np.linspace(-90.0, 90.0, 181)
 SECTION_THETAS.setflags(write=False)
@@ -96,6 +106,16 @@ class FrameRequest:
     map_method: str = "exact"
     solid: bool = False
     curve: bool = False
+    #: ψ of the section through the peak (90°: across the peak's vertical plane)
+    section_azimuth: float = 90.0
+    #: one of :data:`EXTRA_VIEWS` when shown, with its pixel grid (sphere, plane, slice) or
+    #: ``None`` (line plots); and the fixed angles of the half/difference views
+    extra: str | None = None
+    extra_px: tuple[int, int] | None = None
+    theta_d: float = 30.0
+    theta_h: float = 0.0
+    phi_d: float = 90.0
+    sqrt_h: bool = True
 
     def __post_init__(self) -> None:
         if not 1 <= len(self.materials) <= 2:
@@ -104,6 +124,25 @@ class FrameRequest:
         if not 0.0 <= t <= 90.0:  # also refuses NaN
             raise ValueError(f"theta_i = {self.theta_i!r} is invalid: expected in [0, 90]°")
         object.__setattr__(self, "theta_i", t)
+        if self.extra is not None and self.extra not in EXTRA_VIEWS:
+            raise ValueError(f"unknown view {self.extra!r}: expected one of "
+                             f"{', '.join(EXTRA_VIEWS)}")
+        if self.extra in ("sphere", "plane", "slice") and self.extra_px is None:
+            raise ValueError(f"the {self.extra} view needs its pixel grid (extra_px)")
+
+    @property
+    def extra_key(self) -> tuple:
+        """What the extra view's numbers depend on besides the material."""
+        e = self.extra
+        if e in ("sphere", "plane"):
+            return (e, self.theta_i, self.extra_px)
+        if e == "slice":
+            return (e, self.extra_px, self.phi_d, self.sqrt_h)
+        if e == "theta-h":
+            return (e, self.theta_d, self.phi_d)
+        if e == "theta-d":
+            return (e, self.theta_h, self.phi_d)
+        return (e,)
 
 
 @dataclass(frozen=True)
@@ -117,6 +156,7 @@ class SideFrame:
     solid: np.ndarray | None = None
     albedo: float | tuple[float, ...] | None = None
     curve: np.ndarray | None = None
+    extra: tuple | None = None
 
     @property
     def peak(self) -> Peak:
@@ -133,8 +173,8 @@ class SideFrame:
 
     @property
     def section_max(self) -> float:
-        """The largest value along both cross-sections (every channel)."""
-        return max(float(np.max(v)) for v in self.sections.values())
+        """The largest value along both cross-sections through the normal (every channel)."""
+        return max(float(np.max(self.sections[p])) for p in PLANES)
 
 
 @dataclass(frozen=True)
@@ -152,7 +192,8 @@ class FrameResult:
 # ------------------------------------------------------------------------------ the parts
 _PEAKS, _SECTIONS, _MAPS, _SOLIDS = LRU(64), LRU(64), LRU(8), LRU(16)
 _ALBEDO, _CURVES, _FRAMES = LRU(256), LRU(32), LRU(32)
-CACHES = (_PEAKS, _SECTIONS, _MAPS, _SOLIDS, _ALBEDO, _CURVES, _FRAMES)
+_EXTRA = LRU(16)
+CACHES = (_PEAKS, _SECTIONS, _MAPS, _SOLIDS, _ALBEDO, _CURVES, _FRAMES, _EXTRA)
 
 
 def clear_caches() -> None:
@@ -170,14 +211,47 @@ def section_directions(plane: str, thetas_deg: np.ndarray) -> np.ndarray:
     return np.stack([s, zero, c] if plane == "incidence" else [zero, s, c], axis=-1)
 
 
-def _sections(m: Material, theta_i: float, cosine: bool) -> dict[str, np.ndarray]:
-    wo = np.concatenate([section_directions(p, SECTION_THETAS) for p in PLANES])
-    g = radiance(m.model, m.values, incident(theta_i), wo, cosine)  # both planes, one call
+def peak_center(peak: Peak) -> np.ndarray:
+    """The unit direction of ``peak`` (the centre of the section through it)."""
+    return from_degrees(peak.theta_deg, peak.phi_deg)
+
+
+def _sections(m: Material, theta_i: float, cosine: bool, center: np.ndarray,
+              azimuth: float) -> dict[str, np.ndarray]:
+    """Both planes through the normal and the great circle through ``center`` at section
+    azimuth ``azimuth`` (:func:`tuibrdf.core.sections.great_circle`), in one kernel call."""
+    from .sections import great_circle
+
+    w, above = great_circle(center, SECTION_THETAS, azimuth)
+    w = np.where(above[:, None], w, np.array([0.0, 0.0, 1.0]))  # below: any valid direction
+    wo = np.concatenate([section_directions(p, SECTION_THETAS) for p in PLANES] + [w])
+    g = radiance(m.model, m.values, incident(theta_i), wo, cosine)  # three sections, one call
     n = len(SECTION_THETAS)
-    out = {p: g[k * n:(k + 1) * n] for k, p in enumerate(PLANES)}
+    out = {p: g[k * n:(k + 1) * n] for k, p in enumerate((*PLANES, "peak"))}
+    out["peak"] = np.where(above[:, None] if g.ndim == 2 else above, out["peak"], 0.0)
     for v in out.values():
         v.setflags(write=False)
     return out
+
+
+def extra_values(m: Material, req: FrameRequest) -> tuple:
+    """The arrays of ``req.extra`` for material ``m`` (see the module's table)."""
+    from . import halfdiff, lit
+
+    e, model, values = req.extra, m.model, m.values
+    if e in ("sphere", "plane"):
+        px_w, px_h = req.extra_px
+        if e == "sphere":
+            return lit.lit_sphere(model, values, req.theta_i, px_w, px_h)
+        return lit.lit_plane(model, values, req.theta_i, px_w, px_h)
+    if e == "slice":
+        return halfdiff.slice_image(model, values, req.phi_d, n_h=req.extra_px[0],
+                                    n_d=req.extra_px[1], sqrt_h=req.sqrt_h)
+    if e == "theta-h":
+        return halfdiff.theta_h_curve(model, values, req.theta_d, req.phi_d, n=LINE_SAMPLES)
+    if e == "theta-d":
+        return halfdiff.theta_d_curve(model, values, req.theta_h, req.phi_d, n=LINE_SAMPLES)
+    raise ValueError(f"unknown view {e!r}")
 
 
 @lru_cache(maxsize=4)
@@ -230,7 +304,9 @@ def _side(req: FrameRequest, m: Material, slow: bool,
           check: Callable[[], bool] | None) -> SideFrame | None:
     t, cos = req.theta_i, req.cosine
     peaks = _PEAKS.get((m, t, cos), lambda: find_peaks(m.model, m.values, t, cosine=cos))
-    sections = _SECTIONS.get((m, t, cos), lambda: _sections(m, t, cos))
+    az = req.section_azimuth
+    sections = _SECTIONS.get((m, t, cos, peaks[0][1:3], az),
+                             lambda: _sections(m, t, cos, peak_center(peaks[0]), az))
     mp = None
     if req.map_px is not None:
         px = req.map_px
@@ -238,6 +314,9 @@ def _side(req: FrameRequest, m: Material, slow: bool,
         mp = _MAPS.get((m, t, cos, px, how), lambda: map_values(
             m.model, m.values, t, px[0], px[1], cosine=cos, method=how))
     solid = _SOLIDS.get((m, t, cos), lambda: solid_values(m, t, cos)) if req.solid else None
+    extra = None
+    if req.extra is not None:
+        extra = _EXTRA.get((m, req.extra_key), lambda: extra_values(m, req))
     if slow:
         albedo = _ALBEDO.get((m, t), lambda: _albedo(m, t))
         curve = None
@@ -251,7 +330,7 @@ def _side(req: FrameRequest, m: Material, slow: bool,
     else:
         albedo = _ALBEDO.peek((m, t))
         curve = _CURVES.peek(m) if req.curve else None
-    return SideFrame(m, peaks, sections, mp, solid, albedo, curve)
+    return SideFrame(m, peaks, sections, mp, solid, albedo, curve, extra)
 
 
 def compute_frame(req: FrameRequest, *, slow: bool = True,

@@ -10,7 +10,8 @@ whose peak that is.
 
 =================  =================================================================
 :func:`pane`       dispatch by view name (``map``, ``incidence``, ``perpendicular``,
-                   ``solid``, ``albedo``; plus ``diff`` in compare mode)
+                   ``solid``, ``albedo``, ``extra``: the request's lit or
+                   half/difference view; plus ``diff`` in compare mode)
 :func:`stats_text` the status line's numbers: albedo, energy flag, peak and direction
 =================  =================================================================
 """
@@ -31,7 +32,8 @@ from ..core.scene import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
 from .albedo_plot import albedo_plot
 from .colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize
 from .halfblock import HalfBlockImage, Mark
-from .polar import caption_parts, channel_curves, plot_body, polar_plot
+from .polar import caption_parts, channel_curves, plot_body
+from .polar_braille import fwhm_text, polar_canvas
 from .solid import solid_image
 from .text import INCIDENT_MARK, MIRROR_MARK, RING_RGB, mark_legend, title, where
 
@@ -51,6 +53,9 @@ class Look:
     rgb_mode: str = "auto"  # auto | color | luminance
     azimuth: float = -60.0  # the 3D solid's camera
     elevation: float = 25.0
+    exposure: float = 1.0  # the lit views' tone mapping (core/lit.py)
+    gamma: float = 2.2
+    charset: str = "braille"  # the sections and line plots (render/braille.py)
 
     @property
     def rgb(self) -> str:
@@ -162,28 +167,70 @@ def diff_pane(res: FrameResult, w: int, h: int, look: Look) -> Group:
 
 # ----------------------------------------------------------------------- cross-sections
 def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Group:
-    """The sides' values along ``plane`` (R, G, B curves for an RGB model alone), both planes
-    and both sides on one radius scale; the caption gives the section max."""
+    """The sides' values along ``plane`` (R, G, B curves for an RGB model alone) on a braille
+    canvas, both sides on one radius scale; the caption gives the section max.
+    ``perpendicular`` is the great circle through the frame's peak (``peaks[0]``) at the
+    request's section azimuth, the peak straight up (``sections["peak"]``)."""
     compare = len(res.sides) > 1
+    key = "peak" if plane == "perpendicular" else plane
     curves = []
     for k, s in enumerate(res.sides):
         name = s.material.name
-        for label, v in channel_curves(name, s.sections[plane]):
+        for label, v in channel_curves(name, s.sections[key]):
             label = f"{SIDE_LABELS[k]}:{name}" if compare and label == name else label
             curves.append((label, SECTION_THETAS, v))
-    vmax = max(s.section_max for s in res.sides)
+    vmax = max(max(s.section_max, float(np.max(s.sections["peak"]))) for s in res.sides)
     t = res.request.theta_i
-    text, caption = polar_plot(curves, w, h - 1, log=look.log, color=look.color,
-                               theta_i_deg=t if plane == "incidence" else None, vmax=vmax)
+    canvas, caption = polar_canvas(curves, w, h - 1, log=look.log, color=look.color,
+                                   theta_i_deg=t if plane == "incidence" else None, vmax=vmax,
+                                   charset=look.charset)
+    az = res.request.section_azimuth
+    if plane == "perpendicular":
+        pk = res.sides[0].peak
+        name = "perp." if az == 90.0 else f"ψ={az:g}°"
+        what = (f"{name} through peak θ={round(pk.theta_deg, 1):g}° "
+                f"φ={round(pk.phi_deg) % 360:g}°")
+    else:
+        what = plane
     if compare:
         a, b = (s.material.name for s in res.sides)
-        parts = [(plane, 0), (f"A {a} vs B {b}", 2)]
+        parts = [(what, 0), (f"A {a} vs B {b}", 2)]
     else:
-        sides = "φ 180°|0°" if plane == "incidence" else "φ 270°|90°"
-        what = "f·cosθr" if res.request.cosine else "f"
-        parts = [(res.sides[0].material.name, 2), (f"θi={t:g}°", 3), (plane, 0),
-                 (f"({sides})", 4), (what, 1)]
-    return Group(title([*parts, *caption_parts(caption)], w), plot_body(text, look.color))
+        fn = "f·cosθr" if res.request.cosine else "f"
+        if plane == "perpendicular":
+            v = res.sides[0].sections["peak"]
+            width_s = fwhm_text(SECTION_THETAS, luminance(v) if v.ndim == 2 else v)
+            parts = [(res.sides[0].material.name, 1), (f"θi={t:g}°", 4), (what, 0),
+                     (width_s, 2), (fn, 5)]
+        else:
+            parts = [(res.sides[0].material.name, 2), (f"θi={t:g}°", 3), (plane, 0),
+                     ("(φ 180°|0°)", 4), (fn, 1)]
+    return Group(title([*parts, *caption_parts(caption)], w), canvas)
+
+
+# ---------------------------------------------------------------- lit, half/difference
+def extra_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> RenderableType:
+    """The request's extra view (sphere, plane, slice, θh or θd curve) of side ``k``; in
+    compare mode both sides on one scale (the same exposure, the larger maximum)."""
+    from . import halfdiff_view, lit_view
+
+    req, side = res.request, res.sides[k]
+    name = _label(res, k)
+    if req.extra in ("sphere", "plane"):
+        rad, mask = side.extra
+        return lit_view.lit_picture(req.extra, name, req.theta_i, rad, mask, w,
+                                    exposure=look.exposure, gamma=look.gamma, color=look.color)
+    if req.extra == "slice":
+        f, valid, th, td = side.extra
+        vmax = max(halfdiff_view.slice_scale(s.extra, req.phi_d) for s in res.sides)
+        return halfdiff_view.slice_picture(name, f, valid, th, td, w, h, phi_d_deg=req.phi_d,
+                                           sqrt_h=req.sqrt_h, vmax=vmax, log=look.log,
+                                           cmap=look.cmap, levels=look.levels,
+                                           rgb_mode=look.rgb_mode, color=look.color)
+    vmax = max(halfdiff_view.line_scale(req.extra, s.extra, req) for s in res.sides)
+    return halfdiff_view.line_picture(req.extra, name, side.extra, req.theta_d, req.theta_h,
+                                      req.phi_d, vmax, w, h, log=look.log, color=look.color,
+                                      charset=look.charset)
 
 
 # --------------------------------------------------------------------------------- solid
@@ -244,6 +291,8 @@ def pane(view: str, res: FrameResult, k: int, w: int, h: int, look: Look) -> Ren
         return solid_pane(res, k, w, h, look)
     if view == "albedo":
         return albedo_pane(res, w, h, look)
+    if view == "extra":
+        return extra_pane(res, k, w, h, look)
     raise ValueError(f"unknown pane {view!r}")
 
 

@@ -90,12 +90,13 @@ def polar_canvas(
     vmax = vmax if vmax > 0 else 1.0  # an all-zero curve still gets a unit circle
     if log:
         rmax, guides = 1.0, [1.0 - k / decades for k in range(int(decades))]
-        caption = f"max {fmt_value(own)} · log, circles every decade below {fmt_value(vmax)}"
+        caption = (f"section max {fmt_value(own)} · log, circles every decade below "
+                   f"{fmt_value(vmax)}")
     else:
         step = nice_step(vmax)
         guides = list(step * np.arange(1, int(np.floor(vmax / step + 1e-9)) + 1))
         rmax = max(vmax, guides[-1] if guides else vmax)
-        caption = f"max {fmt_value(own)} · circles every {fmt_value(step)}"
+        caption = f"section max {fmt_value(own)} · circles every {fmt_value(step)}"
     # equal aspect, as .polar: one data unit spans the same length in x and y on screen
     span = rmax * 1.08
     k = max(2 * span / width, span / (CELL_ASPECT * height))
