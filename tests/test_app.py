@@ -8,6 +8,7 @@ import pytest
 
 from tuibrdf.app.app import BrdfApp
 from tuibrdf.app.state import Side, ViewerState
+from tuibrdf.app.text import visible_panes
 from tuibrdf.core.models import MODELS
 
 
@@ -158,9 +159,21 @@ async def test_malformed_preset_is_reported(config_home):
 async def test_every_view_and_toggle_renders_without_error():
     app = make()
     async with app.run_test(size=(100, 30)) as pilot:
-        for key in ("v", "v", "v", "l", "k", "o", "ctrl+left", "c", "v", "v", "v"):
+        from tuibrdf.app.state import MAIN_VIEWS
+
+        n = len(MAIN_VIEWS)
+        keys = ("v", "v", "v", "l", "k", "o", "ctrl+left", *["v"] * (n - 3), "c",
+                *["v"] * n)
+        seen = set()
+        for key in keys:
             await pilot.press(key)
             await pilot.pause()
+            seen.add((app.state.view, app.state.compare))
+            for pane in visible_panes(app.state):  # every pane drew a picture, no message
+                text = "".join(s.text for s in app.query_one(f"#{pane}")._strips)
+                assert "cannot" not in text and "too small" not in text, (pane, text[:80])
+        assert {v for v, _ in seen} == set(MAIN_VIEWS)
+        assert {v for v, c in seen if c} == set(MAIN_VIEWS)
         assert app.state.view == "map" and app.state.log and app.state.cosine
         assert app.frames > 0
 

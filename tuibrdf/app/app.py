@@ -27,8 +27,8 @@ from textual.worker import Worker, get_current_worker
 
 from ..core import scene
 from ..core.scene import FrameRequest, FrameResult
-from ..render import MIN_HEIGHT, MIN_WIDTH, panes
-from ..render.views import map_pixels
+from ..render import EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, panes
+from ..render.views import extra_pixels, map_pixels
 from . import keys
 from .layout import CSS, arrange
 from .loading import MeasuredData
@@ -79,7 +79,8 @@ class BrdfApp(MeasuredData, App):
         with Vertical(id="root"):
             with Horizontal(id="body"):
                 with Container(id="main"):
-                    for pane in ("map-a", "map-b", "diff", "solid-a", "solid-b", "albedo"):
+                    for pane in ("map-a", "map-b", "diff", "solid-a", "solid-b", "albedo",
+                                 "extra-a", "extra-b"):
                         yield Picture(pane, id=pane)
                     yield Static(id="legend")
                 with Vertical(id="side"):
@@ -101,7 +102,7 @@ class BrdfApp(MeasuredData, App):
     def look(self) -> panes.Look:
         s = self.state
         return panes.Look(self.color_system(), s.cmap, s.log, LEVELS, "auto", s.azimuth,
-                          s.elevation)
+                          s.elevation, s.exposure, s.gamma)
 
     def color_system(self) -> str:
         if self._color:
@@ -156,8 +157,21 @@ class BrdfApp(MeasuredData, App):
                      ("map", "diff")]
             if all(w >= MIN_WIDTH and h >= MIN_HEIGHT for w, h in sizes):
                 map_px = map_pixels(min(w for w, _ in sizes), min(h for _, h in sizes))
+        extra = s.view if s.view in EXTRA_VIEWS else None
+        extra_px = None
+        if extra is not None:
+            sizes = [self._pane_size(p) for p in visible_panes(self.state) if
+                     PANES[p][0] == "extra"]
+            w, h = min(w for w, _ in sizes), min(h for _, h in sizes)
+            if w >= MIN_WIDTH and h >= MIN_HEIGHT:
+                extra_px = extra_pixels(extra, w, h)
+            elif extra in ("sphere", "plane", "slice"):
+                extra = None  # too small: the pane says so
         return FrameRequest(tuple(x.material for x in s.sides), s.theta_i, cosine=s.cosine,
-                            map_px=map_px, solid=s.view == "solid", curve=s.view == "albedo")
+                            map_px=map_px, solid=s.view == "solid", curve=s.view == "albedo",
+                            section_azimuth=s.section_azimuth, extra=extra, extra_px=extra_px,
+                            theta_d=s.theta_d, theta_h=s.theta_h, phi_d=s.phi_d,
+                            sqrt_h=s.sqrt_h, probe=s.probe if s.view == "map" else None)
 
     def refresh_frame(self) -> None:
         """Show the current state's frame: at once when computed before, else when the worker
@@ -253,16 +267,19 @@ class BrdfApp(MeasuredData, App):
         w, h = pic.size.width, pic.size.height
         view, k = PANES[pane]
         look, req = self.look, res.request
-        if w < MIN_WIDTH or h < MIN_HEIGHT or (view in ("map", "diff") and not req.map_px):
+        if w < MIN_WIDTH or h < MIN_HEIGHT or (view in ("map", "diff") and not req.map_px) or (
+                view == "extra" and req.extra is None):
             pic.show(Text(f"{w}×{h}: too small for this pane"), None)
             return
         if view in ("map", "diff"):  # every map of a compare grid on the same pixel grid
             w, h = req.map_px[0], req.map_px[1] // 2 + 3
         what = (req.materials, req.theta_i, req.cosine)
-        key = {"map": (what, req.map_px, look), "diff": (what, req.map_px, look.color),
+        key = {"map": (what, req.map_px, req.probe, look),
+               "diff": (what, req.map_px, look.color),
                "solid": (what, look), "albedo": (req.materials, req.theta_i, look.color,
-                                                 res.complete)}.get(view)
-        key = (pane, w, h, key or (what, look.color, look.log))
+                                                 res.complete),
+               "extra": (req.materials, req.extra_key, look)}.get(view)
+        key = (pane, w, h, key or (what, req.section_azimuth, look.color, look.log))
         if pic.shown_for == key:
             return
         try:

@@ -12,6 +12,8 @@ albedo curve is shown.  Per material the result holds:
                 ``"peak"``, along the great circle through ``peaks[0]`` (the overall peak: the
                 luminance's for RGB) at the request's section azimuth (signed angle from the
                 peak, the same 181 samples; 0 below the horizon): one kernel call for all three
+``probe``       ``(f, f·cos θr)`` at the request's probe direction (floats, or 3-tuples for RGB),
+                or None when no probe is shown
 ``extra``       the arrays of the request's ``extra`` view, or None (:func:`extra_values`):
                 ``sphere``/``plane`` → ``(radiance, mask)``, ``slice`` → ``(f, valid, θh, θd)``,
                 ``theta-h``/``theta-d`` → ``(x, f, valid)``
@@ -116,6 +118,8 @@ class FrameRequest:
     theta_h: float = 0.0
     phi_d: float = 90.0
     sqrt_h: bool = True
+    #: the probe's Lambert coordinates on the map (:mod:`tuibrdf.core.hemimap`), or None
+    probe: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         if not 1 <= len(self.materials) <= 2:
@@ -129,6 +133,21 @@ class FrameRequest:
                              f"{', '.join(EXTRA_VIEWS)}")
         if self.extra in ("sphere", "plane", "slice") and self.extra_px is None:
             raise ValueError(f"the {self.extra} view needs its pixel grid (extra_px)")
+
+    @property
+    def probe_direction(self) -> np.ndarray:
+        """The unit direction of the probe (:func:`tuibrdf.core.hemimap.uv_to_dir`)."""
+        from .hemimap import uv_to_dir
+
+        return uv_to_dir(np.asarray(self.probe, dtype=float))
+
+    @property
+    def probe_angles(self) -> tuple[float, float]:
+        """``(θr, φr)`` of the probe in degrees (φr in (−180°, 180°])."""
+        from .frame import phi_of, theta_of
+
+        w = self.probe_direction
+        return float(np.degrees(theta_of(w))), float(np.degrees(phi_of(w)))
 
     @property
     def extra_key(self) -> tuple:
@@ -157,6 +176,7 @@ class SideFrame:
     albedo: float | tuple[float, ...] | None = None
     curve: np.ndarray | None = None
     extra: tuple | None = None
+    probe: tuple | None = None
 
     @property
     def peak(self) -> Peak:
@@ -192,8 +212,8 @@ class FrameResult:
 # ------------------------------------------------------------------------------ the parts
 _PEAKS, _SECTIONS, _MAPS, _SOLIDS = LRU(64), LRU(64), LRU(8), LRU(16)
 _ALBEDO, _CURVES, _FRAMES = LRU(256), LRU(32), LRU(32)
-_EXTRA = LRU(16)
-CACHES = (_PEAKS, _SECTIONS, _MAPS, _SOLIDS, _ALBEDO, _CURVES, _FRAMES, _EXTRA)
+_EXTRA, _PROBES = LRU(16), LRU(64)
+CACHES = (_PEAKS, _SECTIONS, _MAPS, _SOLIDS, _ALBEDO, _CURVES, _FRAMES, _EXTRA, _PROBES)
 
 
 def clear_caches() -> None:
@@ -232,6 +252,17 @@ def _sections(m: Material, theta_i: float, cosine: bool, center: np.ndarray,
     for v in out.values():
         v.setflags(write=False)
     return out
+
+
+def probe_values(m: Material, theta_i: float, w: np.ndarray) -> tuple:
+    """``(f, f·cos θr)`` at the unit direction ``w`` (floats, or 3-tuples for RGB)."""
+    f = np.asarray(radiance(m.model, m.values, incident(theta_i), w[None, :], False))[0]
+    c = max(float(w[2]), 0.0)
+
+    def out(x):
+        return float(x) if np.ndim(x) == 0 else tuple(float(y) for y in x)
+
+    return out(f), out(f * c)
 
 
 def extra_values(m: Material, req: FrameRequest) -> tuple:
@@ -317,6 +348,9 @@ def _side(req: FrameRequest, m: Material, slow: bool,
     extra = None
     if req.extra is not None:
         extra = _EXTRA.get((m, req.extra_key), lambda: extra_values(m, req))
+    probe = None
+    if req.probe is not None:
+        probe = _PROBES.get((m, t, req.probe), lambda: probe_values(m, t, req.probe_direction))
     if slow:
         albedo = _ALBEDO.get((m, t), lambda: _albedo(m, t))
         curve = None
@@ -330,7 +364,7 @@ def _side(req: FrameRequest, m: Material, slow: bool,
     else:
         albedo = _ALBEDO.peek((m, t))
         curve = _CURVES.peek(m) if req.curve else None
-    return SideFrame(m, peaks, sections, mp, solid, albedo, curve, extra)
+    return SideFrame(m, peaks, sections, mp, solid, albedo, curve, extra, probe)
 
 
 def compute_frame(req: FrameRequest, *, slow: bool = True,

@@ -37,6 +37,9 @@ from .polar_braille import fwhm_text, polar_canvas
 from .solid import solid_image
 from .text import INCIDENT_MARK, MIRROR_MARK, RING_RGB, mark_legend, title, where
 
+#: the probe's mark on the map (issue 13 §4)
+PROBE_MARK = dict(glyph="+", ascii="+", rgb=(0, 230, 230))
+
 SIDE_LABELS = ("A", "B")
 #: diverging palette of the difference map: blue (B larger) – grey – red (A larger)
 DIVERGING = ((59, 76, 192), (221, 221, 221), (180, 4, 38))
@@ -132,6 +135,10 @@ def map_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     r, c = info.incident_px
     if (r // 2, c) != (marks[0].row, marks[0].col):
         marks.append(Mark(r // 2, c, **INCIDENT_MARK))
+    if res.request.probe is not None:  # the probe, over the other marks
+        r, c = geometry(px_w, px_h).to_pixel(np.asarray(res.request.probe, dtype=float))
+        marks = [mk for mk in marks if (mk.row, mk.col) != (r // 2, c)]
+        marks.append(Mark(r // 2, c, **PROBE_MARK))
     image = HalfBlockImage(index, pal, marks, color_system=look.color)
     if info.vmin >= peak.value * (1.0 - 1e-12):  # Lambert: no "the" peak
         what = "f·cosθr" if cosine else "f"
