@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from functools import partial
 
+import numpy as np
 from rich.text import Text
 from textual import work
 from textual.app import App, ComposeResult, SystemCommand
@@ -26,8 +27,11 @@ from textual.widgets import Footer, Static
 from textual.worker import Worker, get_current_worker
 
 from ..core import scene
-from ..core.scene import FrameRequest, FrameResult
+from ..core.hemimap import dir_to_uv, geometry
+from ..core.scene import FrameRequest, FrameResult, section_directions
+from ..core.sections import great_circle
 from ..render import EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, panes
+from ..render.polar_braille import angle_at
 from ..render.views import extra_pixels, map_pixels
 from . import keys
 from .layout import CSS, arrange
@@ -171,7 +175,7 @@ class BrdfApp(MeasuredData, App):
                             map_px=map_px, solid=s.view == "solid", curve=s.view == "albedo",
                             section_azimuth=s.section_azimuth, extra=extra, extra_px=extra_px,
                             theta_d=s.theta_d, theta_h=s.theta_h, phi_d=s.phi_d,
-                            sqrt_h=s.sqrt_h, probe=s.probe if s.view == "map" else None)
+                            sqrt_h=s.sqrt_h, probe=s.probe)
 
     def refresh_frame(self) -> None:
         """Show the current state's frame: at once when computed before, else when the worker
@@ -290,6 +294,33 @@ class BrdfApp(MeasuredData, App):
     def _status(self) -> None:
         self.query_one("#status", StatusLine).show_text(
             status_text(self.state, self.frame, self.look, self._loading, self.message))
+
+    def picture_clicked(self, pane: str, x: int, y: int) -> None:
+        """A click at cell ``(x, y)`` of ``pane``: on a map or a section the probe goes to
+        the direction drawn there (the status line then reads it)."""
+        res = self.frame
+        if res is None or pane not in PANES:
+            return
+        view, _ = PANES[pane]
+        uv = None
+        if view == "map" and res.request.map_px is not None and y >= 1:
+            g = geometry(*res.request.map_px)
+            uv = g.to_uv(np.array(x + 0.5), np.array(2.0 * (y - 1) + 1.0))  # cell centre
+        elif view in ("incidence", "perpendicular") and y >= 1:
+            pic = self.query_one(f"#{pane}", Picture)
+            t = angle_at(x, y - 1, pic.size.width, pic.size.height - 1)
+            if t is not None:
+                if view == "incidence":
+                    w = section_directions("incidence", np.array([t]))[0]
+                else:
+                    w, above = great_circle(scene.peak_center(res.sides[0].peak),
+                                            np.array([t]), res.request.section_azimuth)
+                    w = w[0] if above[0] else None
+                if w is not None:
+                    uv = dir_to_uv(w)
+        if uv is None:
+            return
+        self._changed(self.state.set_probe(float(uv[0]), float(uv[1])))
 
     # -- actions -----------------------------------------------------------------------------
     def action_state(self, method: str, args: tuple = ()) -> None:

@@ -71,6 +71,28 @@ def sections_max(model: Model, values: dict[str, Any], theta_i_deg: float,
                for _, _, v in section_curves(model, values, theta_i_deg, plane, cosine=cosine))
 
 
+def plot_window(width: int, height: int, rmax: float) -> tuple[float, float, float]:
+    """``(xr, y0, y1)``: the data window of a ``width × height`` polar plot of radius
+    ``rmax`` (x in [−xr, xr], y in [y0, y1]); equal aspect, as :mod:`.polar`: one data unit
+    spans the same length in x and y on screen."""
+    span = rmax * 1.08
+    k = max(2 * span / width, span / (CELL_ASPECT * height))
+    y0 = -0.03 * rmax
+    return k * width / 2, y0, y0 + k * CELL_ASPECT * height
+
+
+def angle_at(col: int, row: int, width: int, height: int) -> float | None:
+    """The signed polar angle θ (degrees from straight up, positive to the right) of the cell
+    ``(col, row)`` of a ``width × height`` polar plot, or None below the horizon line.  The
+    window scales with the radius, so the angle does not depend on it."""
+    xr, y0, y1 = plot_window(width, height, 1.0)
+    x = -xr + (col + 0.5) / width * 2 * xr
+    y = y1 - (row + 0.5) / height * (y1 - y0)
+    if y < 0:
+        return None
+    return float(np.degrees(np.arctan2(x, y)))
+
+
 def polar_canvas(
     curves: Sequence[Curve],
     width: int,
@@ -97,12 +119,8 @@ def polar_canvas(
         guides = list(step * np.arange(1, int(np.floor(vmax / step + 1e-9)) + 1))
         rmax = max(vmax, guides[-1] if guides else vmax)
         caption = f"section max {fmt_value(own)} · circles every {fmt_value(step)}"
-    # equal aspect, as .polar: one data unit spans the same length in x and y on screen
-    span = rmax * 1.08
-    k = max(2 * span / width, span / (CELL_ASPECT * height))
-    xr, y0 = k * width / 2, -0.03 * rmax
-    canvas = BrailleCanvas(width, height, (-xr, xr), (y0, y0 + k * CELL_ASPECT * height),
-                           color=color, charset=charset)
+    xr, y0, y1 = plot_window(width, height, rmax)
+    canvas = BrailleCanvas(width, height, (-xr, xr), (y0, y1), color=color, charset=charset)
     guide = canvas.layer(GUIDE, "sparse", ".")
     # every guide in one polyline call (NaN between pieces): one pass of numpy, not one each
     xs, ys = [np.array([-rmax, rmax])], [np.zeros(2)]
