@@ -333,7 +333,7 @@ async def test_albedo_curve_is_computed_off_the_loop_then_drawn(monkeypatch):
         assert "computing" in shown()
         release.set()
         m = Material("cook-torrance", {"m": 0.05, "kd": 0.1})
-        assert await wait_for(pilot, lambda: scene._CURVES.peek(m) is not None, 500)
+        assert await wait_for(pilot, lambda: scene._CURVES.peek((m, 180.0)) is not None, 500)
         drawn = lambda: "a(θi=30°) = " in shown() and "computing" not in shown()  # noqa: E731
         assert await wait_for(pilot, drawn, 500)
         await pilot.press("right")  # keys still work

@@ -175,7 +175,7 @@ class BrdfApp(MeasuredData, App):
                             map_px=map_px, solid=s.view == "solid", curve=s.view == "albedo",
                             section_azimuth=s.section_azimuth, extra=extra, extra_px=extra_px,
                             theta_d=s.theta_d, theta_h=s.theta_h, phi_d=s.phi_d,
-                            sqrt_h=s.sqrt_h, probe=s.probe)
+                            sqrt_h=s.sqrt_h, probe=s.probe, phi_i=s.phi_i)
 
     def refresh_frame(self) -> None:
         """Show the current state's frame: at once when computed before, else when the worker
@@ -311,7 +311,7 @@ class BrdfApp(MeasuredData, App):
             t = angle_at(x, y - 1, pic.size.width, pic.size.height - 1)
             if t is not None:
                 if view == "incidence":
-                    w = section_directions("incidence", np.array([t]))[0]
+                    w = section_directions("incidence", np.array([t]), res.request.phi_i)[0]
                 else:
                     w, above = great_circle(scene.peak_center(res.sides[0].peak),
                                             np.array([t]), res.request.section_azimuth)

@@ -18,6 +18,7 @@ method                what it does
 ``switch_side``       which side the parameter keys act on (compare mode)
 ``apply_preset``      one of :data:`COMPARE_PRESETS` (the seed's comparisons)
 ``rotate``            azimuth / elevation of the 3D solid (solid view only)
+``step_phi_i``        the light's azimuth φi (wraps; 180° by default)
 ``step_section``      the section azimuth ψ of the section through the peak
 ``scale_exposure``    the lit views' exposure × or ÷ 2
 ``step_gamma``        the lit views' display gamma
@@ -156,6 +157,7 @@ class ViewerState:
     elevation: float = 25.0
     preset: str = ""  # name of the compare preset last applied, if any
     section_azimuth: float = 90.0  # ψ of the section through the peak
+    phi_i: float = 180.0  # the light's azimuth (180°: on the left of the map)
     exposure: float = 1.0  # lit sphere / plane
     gamma: float = 2.2
     theta_d: float = 30.0  # half/difference views: the fixed angles
@@ -323,6 +325,11 @@ class ViewerState:
         if d_elevation and el == self.elevation:
             return f"elevation is already {el:g}° (range {ELEVATION_MIN:g}–{ELEVATION_MAX:g}°)"
         self.elevation = el
+        return None
+
+    def step_phi_i(self, delta: float) -> str | None:
+        """φi by ± degrees, wrapped into [0°, 360°)."""
+        self.phi_i = _round((self.phi_i + delta) % 360.0)
         return None
 
     # -- the views of the peak section, the lit and the half/difference views -----------------

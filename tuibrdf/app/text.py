@@ -40,12 +40,15 @@ def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
     state's (else "…"), then the view, scale, colour map and the last message."""
     line = Text()
     line.append(f"θi {s.theta_i:g}°", style="bold")
+    if s.phi_i != 180.0:
+        line.append(f" φi {s.phi_i:g}°", style="bold")
     materials = tuple(x.material for x in s.sides)
     files = [f for side in s.sides for f in side_files(side) if f in loading]
     if files:
         line.append(f"  loading {files[0]} {loading[files[0]]:.0%}", style="bold yellow")
     elif frame is not None and (frame.request.materials, frame.request.theta_i,
-                                frame.request.cosine) == (materials, s.theta_i, s.cosine):
+                                frame.request.cosine, frame.request.phi_i) == (
+                                    materials, s.theta_i, s.cosine, s.phi_i):
         line.append_text(panes.stats_text(frame, s.view, look))
         line.append_text(probe_text(frame))
     else:

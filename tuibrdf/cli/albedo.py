@@ -14,7 +14,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from .common import add_model_args, add_theta_i, fmt, fmt_params, json_params, resolve
+from .common import add_model_args, add_phi_i, add_theta_i, fmt, fmt_params, json_params, resolve
 
 DEFAULT_THETAS = (0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0)
 
@@ -22,16 +22,17 @@ DEFAULT_THETAS = (0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0)
 def add_args(parser: argparse.ArgumentParser) -> None:
     add_model_args(parser)
     add_theta_i(parser, many=True, default=list(DEFAULT_THETAS))
+    add_phi_i(parser)
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
-def albedos(model, params, thetas):
+def albedos(model, params, thetas, phi_i: float = 180.0):
     """a(θi) for each θi: shape ``(n,)``, or ``(n, 3)`` for an RGB model."""
     import numpy as np
 
     from ..core.quadrature import albedo_resolved
 
-    return np.array([np.asarray(albedo_resolved(model, params, t), dtype=float)
+    return np.array([np.asarray(albedo_resolved(model, params, t, phi_i), dtype=float)
                      for t in thetas])
 
 
@@ -42,7 +43,7 @@ def run(args: argparse.Namespace) -> int:
 
     model, params = resolve(args)
     thetas = [float(t) for t in args.theta_i]
-    a = albedos(model, params, thetas)
+    a = albedos(model, params, thetas, args.phi_i)
     over = [bool(np.max(row) > 1.0 + ENERGY_TOL) for row in a]
     if args.json:
         doc = {

@@ -28,7 +28,7 @@ import sys
 from typing import Any
 
 from ..render import CMAPS, EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, VIEWS
-from .common import add_model_args, add_theta_i, bounded, choices_type, int_in, resolve
+from .common import add_model_args, add_phi_i, add_theta_i, bounded, choices_type, int_in, resolve
 
 #: the lit and half/difference views (in :data:`tuibrdf.render.VIEWS`, declared there with no
 #: import so ``--help`` stays light)
@@ -42,6 +42,7 @@ MAX_SIZE = 1000
 def add_args(parser: argparse.ArgumentParser) -> None:
     add_model_args(parser)
     add_theta_i(parser, default=30.0)
+    add_phi_i(parser)
     views = (*VIEWS, "all")
     parser.add_argument("--view", type=choices_type("view", views), default="map",
                         metavar="|".join(views),
@@ -131,7 +132,7 @@ def picture(model, values, args: argparse.Namespace, color: str) -> str:
             azimuth_deg=args.azimuth, elevation_deg=args.elevation,
             section_azimuth_deg=args.section_azimuth, exposure=args.exposure, gamma=args.gamma,
             theta_d_deg=args.theta_d, theta_h_deg=args.theta_h, phi_d_deg=args.phi_d,
-            sqrt_h=not args.linear_theta_h,
+            sqrt_h=not args.linear_theta_h, phi_i_deg=args.phi_i,
             charset=charset_for(getattr(sys.stdout, "encoding", None))))
     text = buf.getvalue()
     if color == "none":  # for logs and docs: no trailing spaces

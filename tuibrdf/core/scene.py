@@ -120,6 +120,8 @@ class FrameRequest:
     sqrt_h: bool = True
     #: the probe's Lambert coordinates on the map (:mod:`tuibrdf.core.hemimap`), or None
     probe: tuple[float, float] | None = None
+    #: the light's azimuth (degrees, in [0, 360)); 180° puts it on the −x side
+    phi_i: float = 180.0
 
     def __post_init__(self) -> None:
         if not 1 <= len(self.materials) <= 2:
@@ -128,6 +130,10 @@ class FrameRequest:
         if not 0.0 <= t <= 90.0:  # also refuses NaN
             raise ValueError(f"theta_i = {self.theta_i!r} is invalid: expected in [0, 90]°")
         object.__setattr__(self, "theta_i", t)
+        p = float(self.phi_i)
+        if not np.isfinite(p):
+            raise ValueError(f"phi_i = {self.phi_i!r} is invalid: expected a finite angle in °")
+        object.__setattr__(self, "phi_i", p % 360.0)
         if self.extra is not None and self.extra not in EXTRA_VIEWS:
             raise ValueError(f"unknown view {self.extra!r}: expected one of "
                              f"{', '.join(EXTRA_VIEWS)}")
@@ -154,7 +160,7 @@ class FrameRequest:
         """What the extra view's numbers depend on besides the material."""
         e = self.extra
         if e in ("sphere", "plane"):
-            return (e, self.theta_i, self.extra_px)
+            return (e, self.theta_i, self.phi_i, self.extra_px)
         if e == "slice":
             return (e, self.extra_px, self.phi_d, self.sqrt_h)
         if e == "theta-h":
@@ -221,14 +227,26 @@ def clear_caches() -> None:
         c.clear()
 
 
-def section_directions(plane: str, thetas_deg: np.ndarray) -> np.ndarray:
+def section_directions(plane: str, thetas_deg: np.ndarray, phi_i_deg: float = 180.0
+                       ) -> np.ndarray:
     """Unit directions for signed ``θr`` in ``plane`` (exact at ±90°): incidence
-    ``(sin θr, 0, cos θr)``, perpendicular ``(0, sin θr, cos θr)``."""
+    ``(sin θr, 0, cos θr)``, perpendicular ``(0, sin θr, cos θr)`` for the light at
+    φi = 180°; turned by φi − 180° about the normal otherwise (positive θr: the mirror side)."""
     if plane not in PLANES:
         raise ValueError(f"unknown plane {plane!r}: expected one of {', '.join(PLANES)}")
     s, c = sincos_deg(np.asarray(thetas_deg, dtype=float))
     zero = np.zeros_like(s)
-    return np.stack([s, zero, c] if plane == "incidence" else [zero, s, c], axis=-1)
+    w = np.stack([s, zero, c] if plane == "incidence" else [zero, s, c], axis=-1)
+    return turn(w, float(phi_i_deg) - 180.0)
+
+
+def turn(w: np.ndarray, deg: float) -> np.ndarray:
+    """Directions ``w (..., 3)`` turned by ``deg`` about the normal (exact for 0°)."""
+    if deg % 360.0 == 0.0:
+        return w
+    sp, cp = (float(x) for x in sincos_deg(deg))
+    return np.stack([cp * w[..., 0] - sp * w[..., 1], sp * w[..., 0] + cp * w[..., 1],
+                     w[..., 2]], axis=-1)
 
 
 def peak_center(peak: Peak) -> np.ndarray:
@@ -237,15 +255,15 @@ def peak_center(peak: Peak) -> np.ndarray:
 
 
 def _sections(m: Material, theta_i: float, cosine: bool, center: np.ndarray,
-              azimuth: float) -> dict[str, np.ndarray]:
+              azimuth: float, phi_i: float = 180.0) -> dict[str, np.ndarray]:
     """Both planes through the normal and the great circle through ``center`` at section
     azimuth ``azimuth`` (:func:`tuibrdf.core.sections.great_circle`), in one kernel call."""
     from .sections import great_circle
 
     w, above = great_circle(center, SECTION_THETAS, azimuth)
     w = np.where(above[:, None], w, np.array([0.0, 0.0, 1.0]))  # below: any valid direction
-    wo = np.concatenate([section_directions(p, SECTION_THETAS) for p in PLANES] + [w])
-    g = radiance(m.model, m.values, incident(theta_i), wo, cosine)  # three sections, one call
+    wo = np.concatenate([section_directions(p, SECTION_THETAS, phi_i) for p in PLANES] + [w])
+    g = radiance(m.model, m.values, incident(theta_i, phi_i), wo, cosine)  # 3 sections, 1 call
     n = len(SECTION_THETAS)
     out = {p: g[k * n:(k + 1) * n] for k, p in enumerate((*PLANES, "peak"))}
     out["peak"] = np.where(above[:, None] if g.ndim == 2 else above, out["peak"], 0.0)
@@ -254,9 +272,10 @@ def _sections(m: Material, theta_i: float, cosine: bool, center: np.ndarray,
     return out
 
 
-def probe_values(m: Material, theta_i: float, w: np.ndarray) -> tuple:
+def probe_values(m: Material, theta_i: float, w: np.ndarray, phi_i: float = 180.0) -> tuple:
     """``(f, f·cos θr)`` at the unit direction ``w`` (floats, or 3-tuples for RGB)."""
-    f = np.asarray(radiance(m.model, m.values, incident(theta_i), w[None, :], False))[0]
+    f = np.asarray(radiance(m.model, m.values, incident(theta_i, phi_i), w[None, :],
+                            False))[0]
     c = max(float(w[2]), 0.0)
 
     def out(x):
@@ -273,8 +292,8 @@ def extra_values(m: Material, req: FrameRequest) -> tuple:
     if e in ("sphere", "plane"):
         px_w, px_h = req.extra_px
         if e == "sphere":
-            return lit.lit_sphere(model, values, req.theta_i, px_w, px_h)
-        return lit.lit_plane(model, values, req.theta_i, px_w, px_h)
+            return lit.lit_sphere(model, values, req.theta_i, px_w, px_h, phi_i_deg=req.phi_i)
+        return lit.lit_plane(model, values, req.theta_i, px_w, px_h, phi_i_deg=req.phi_i)
     if e == "slice":
         return halfdiff.slice_image(model, values, req.phi_d, n_h=req.extra_px[0],
                                     n_d=req.extra_px[1], sqrt_h=req.sqrt_h)
@@ -304,28 +323,30 @@ def solid_samples(level: int = SOLID_LEVEL, subdiv: int = SOLID_SUBDIV):
     return pts, face, tri
 
 
-def solid_values(m: Material, theta_i: float, cosine: bool = False) -> np.ndarray:
+def solid_values(m: Material, theta_i: float, cosine: bool = False,
+                 phi_i: float = 180.0) -> np.ndarray:
     """``f`` at the samples then at the face corners, in one kernel call: ``(S + 3F, ...)``."""
     pts, _, tri = solid_samples()
     wo = np.concatenate([pts, tri.reshape(-1, 3)])
-    g = radiance(m.model, m.values, incident(theta_i), wo, cosine)
+    g = radiance(m.model, m.values, incident(theta_i, phi_i), wo, cosine)
     g.setflags(write=False)
     return g
 
 
-def _albedo(m: Material, theta_i: float) -> float | tuple[float, ...]:
-    a = np.asarray(albedo_resolved(m.model, m.values, theta_i), dtype=float)
+def _albedo(m: Material, theta_i: float, phi_i: float = 180.0) -> float | tuple[float, ...]:
+    a = np.asarray(albedo_resolved(m.model, m.values, theta_i, phi_i), dtype=float)
     return float(a) if a.ndim == 0 else tuple(float(x) for x in a)
 
 
-def _curve(m: Material, check: Callable[[], bool] | None = None) -> np.ndarray | None:
+def _curve(m: Material, check: Callable[[], bool] | None = None,
+           phi_i: float = 180.0) -> np.ndarray | None:
     """The albedo at every :data:`CURVE_THETAS`; None when ``check`` says stop (up to 0.6 s:
     a worker whose request is gone stops between two angles)."""
     out = []
     for t in CURVE_THETAS:
         if check is not None and not check():
             return None
-        out.append(albedo_curve_resolved(m.model, m.values, [t])[0])
+        out.append(albedo_curve_resolved(m.model, m.values, [t], phi_i)[0])
     a = np.asarray(out, dtype=float)
     a.setflags(write=False)
     return a
@@ -333,37 +354,40 @@ def _curve(m: Material, check: Callable[[], bool] | None = None) -> np.ndarray |
 
 def _side(req: FrameRequest, m: Material, slow: bool,
           check: Callable[[], bool] | None) -> SideFrame | None:
-    t, cos = req.theta_i, req.cosine
-    peaks = _PEAKS.get((m, t, cos), lambda: find_peaks(m.model, m.values, t, cosine=cos))
+    t, cos, pi = req.theta_i, req.cosine, req.phi_i
+    peaks = _PEAKS.get((m, t, pi, cos), lambda: find_peaks(m.model, m.values, t, cosine=cos,
+                                                           phi_i_deg=pi))
     az = req.section_azimuth
-    sections = _SECTIONS.get((m, t, cos, peaks[0][1:3], az),
-                             lambda: _sections(m, t, cos, peak_center(peaks[0]), az))
+    sections = _SECTIONS.get((m, t, pi, cos, peaks[0][1:3], az),
+                             lambda: _sections(m, t, cos, peak_center(peaks[0]), az, pi))
     mp = None
     if req.map_px is not None:
         px = req.map_px
         how = req.map_method
-        mp = _MAPS.get((m, t, cos, px, how), lambda: map_values(
-            m.model, m.values, t, px[0], px[1], cosine=cos, method=how))
-    solid = _SOLIDS.get((m, t, cos), lambda: solid_values(m, t, cos)) if req.solid else None
+        mp = _MAPS.get((m, t, pi, cos, px, how), lambda: map_values(
+            m.model, m.values, t, px[0], px[1], cosine=cos, method=how, phi_i_deg=pi))
+    solid = (_SOLIDS.get((m, t, pi, cos), lambda: solid_values(m, t, cos, pi))
+             if req.solid else None)
     extra = None
     if req.extra is not None:
         extra = _EXTRA.get((m, req.extra_key), lambda: extra_values(m, req))
     probe = None
     if req.probe is not None:
-        probe = _PROBES.get((m, t, req.probe), lambda: probe_values(m, t, req.probe_direction))
+        probe = _PROBES.get((m, t, pi, req.probe),
+                            lambda: probe_values(m, t, req.probe_direction, pi))
     if slow:
-        albedo = _ALBEDO.get((m, t), lambda: _albedo(m, t))
+        albedo = _ALBEDO.get((m, t, pi), lambda: _albedo(m, t, pi))
         curve = None
         if req.curve:
-            curve = _CURVES.peek(m)
+            curve = _CURVES.peek((m, pi))
             if curve is None:
-                curve = _curve(m, check)
+                curve = _curve(m, check, pi)
                 if curve is None:
                     return None  # abandoned
-                _CURVES.put(m, curve)
+                _CURVES.put((m, pi), curve)
     else:
-        albedo = _ALBEDO.peek((m, t))
-        curve = _CURVES.peek(m) if req.curve else None
+        albedo = _ALBEDO.peek((m, t, pi))
+        curve = _CURVES.peek((m, pi)) if req.curve else None
     return SideFrame(m, peaks, sections, mp, solid, albedo, curve, extra, probe)
 
 
@@ -391,8 +415,8 @@ def cached_frame(req: FrameRequest) -> FrameResult | None:
     return _FRAMES.peek(req)
 
 
-def albedo_curve(m: Material) -> np.ndarray:
+def albedo_curve(m: Material, phi_i: float = 180.0) -> np.ndarray:
     """``a`` at :data:`CURVE_THETAS` (cached): ``(n,)`` or ``(n, 3)``."""
-    return _CURVES.get(m, lambda: _curve(m))
+    return _CURVES.get((m, phi_i), lambda: _curve(m, None, phi_i))
 
 

@@ -111,6 +111,7 @@ def render_view(
     phi_d_deg: float = 90.0,
     sqrt_h: bool = True,
     charset: str = "braille",
+    phi_i_deg: float = 180.0,
 ) -> RenderableType:
     """The picture of ``view`` in ``width × height`` terminal cells (title line included).
 
@@ -126,7 +127,7 @@ def render_view(
     req = request_for(view, (Material(model, values),), theta_i, width, height, cosine=cosine,
                       method=method, section_azimuth=float(section_azimuth_deg),
                       theta_d=float(theta_d_deg), theta_h=float(theta_h_deg),
-                      phi_d=float(phi_d_deg), sqrt_h=bool(sqrt_h))
+                      phi_d=float(phi_d_deg), sqrt_h=bool(sqrt_h), phi_i=float(phi_i_deg))
     res = compute_frame(req, slow=view == "albedo")
     look = Look(color, cmap, log, levels, rgb_mode, azimuth_deg, elevation_deg, exposure, gamma,
                 charset)
