@@ -105,3 +105,24 @@ async def test_clicking_a_section_reads_it():
         f = float(tuibrdf.evaluate("phong", {"kd": 0.3, "ks": 0.5, "n": 10}, light(30.0), d))
         assert numbers_after(status(app), " f")[0] == pytest.approx(f, rel=2e-3)
         assert h > 3
+
+
+async def test_phi_i_keys_turn_the_map_and_keep_an_isotropic_albedo():
+    # > turns the light by 15°: the map is redrawn (its light mark moves), the status says φi,
+    # and an isotropic model's albedo is unchanged (issue 13 §5)
+    app = make("phong", 40.0, kd=0.2, ks=0.6, n=30)
+    async with app.run_test(size=(140, 40)) as pilot:
+        await pilot.pause()
+        before = ["".join(s.text for s in line) for line in app.query_one("#map-a")._strips]
+        a0 = app.frame.sides[0].albedo
+        for _ in range(6):  # 180° + 90° = 270°: the light at the bottom of the map
+            await pilot.press("greater_than_sign")
+        await pilot.pause()
+        assert app.state.phi_i == 270.0 and app.frame.request.phi_i == 270.0
+        after = ["".join(s.text for s in line) for line in app.query_one("#map-a")._strips]
+        assert before != after
+        row_o = next(k for k, r in enumerate(after) if "o" in r[:70] and k > 0)
+        row_x = next(k for k, r in enumerate(after) if "×" in r[:70] and k > 0)
+        assert row_o > row_x  # the light below the mirror direction (φ = 270° is down)
+        assert "φi 270°" in status(app)
+        assert app.frame.sides[0].albedo == pytest.approx(a0, rel=1e-4)

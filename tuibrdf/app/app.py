@@ -277,11 +277,11 @@ class BrdfApp(MeasuredData, App):
             return
         if view in ("map", "diff"):  # every map of a compare grid on the same pixel grid
             w, h = req.map_px[0], req.map_px[1] // 2 + 3
-        what = (req.materials, req.theta_i, req.cosine)
+        what = (req.materials, req.theta_i, req.cosine, req.phi_i)
         key = {"map": (what, req.map_px, req.probe, look),
                "diff": (what, req.map_px, look.color),
-               "solid": (what, look), "albedo": (req.materials, req.theta_i, look.color,
-                                                 res.complete),
+               "solid": (what, look), "albedo": (req.materials, req.theta_i, req.phi_i,
+                                                 look.color, res.complete),
                "extra": (req.materials, req.extra_key, look)}.get(view)
         key = (pane, w, h, key or (what, req.section_azimuth, look.color, look.log))
         if pic.shown_for == key:

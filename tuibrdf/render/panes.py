@@ -211,7 +211,8 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
                      (width_s, 2), (fn, 5)]
         else:
             parts = [(res.sides[0].material.name, 2), (f"θi={t:g}°", 3), (plane, 0),
-                     ("(φ 180°|0°)", 4), (fn, 1)]
+                     (f"(φ {res.request.phi_i:g}°|{(res.request.phi_i + 180) % 360:g}°)", 4),
+                     (fn, 1)]
     return Group(title([*parts, *caption_parts(caption)], w), canvas)
 
 
@@ -246,6 +247,7 @@ def solid_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     side = res.sides[k]
     peak = shown_peak(side, "solid", look)
     index, pal = solid_image(side.solid, res.request.theta_i, w, 2 * (h - 1), rmax=peak.value,
+                             phi_i_deg=res.request.phi_i,
                              cmap=look.cmap, log=look.log, azimuth_deg=look.azimuth,
                              elevation_deg=look.elevation)
     what = "f·cosθr·wo" if res.request.cosine else "f·wo"
