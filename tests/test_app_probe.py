@@ -126,3 +126,23 @@ async def test_phi_i_keys_turn_the_map_and_keep_an_isotropic_albedo():
         assert row_o > row_x  # the light below the mirror direction (φ = 270° is down)
         assert "φi 270°" in status(app)
         assert app.frame.sides[0].albedo == pytest.approx(a0, rel=1e-4)
+
+
+async def test_section_azimuth_key_turns_the_section_through_the_peak():
+    # ψ = 90° + 15°: the title says so; at ψ = 0 (six A presses from 90°) the section through
+    # the peak lies in the plane of incidence, so its maximum is the incidence section's
+    app = make("cook-torrance", 60.0, kd=0.0, f0=0.04, m=0.07)
+    async with app.run_test(size=(160, 48)) as pilot:
+        await pilot.pause()
+
+        def title():
+            return "".join(s.text for s in app.query_one("#perpendicular")._strips[0])
+
+        assert "perp. through peak θ=62° φ=0°" in title() and "section max 6.14" in title()
+        await pilot.press("a")
+        await pilot.pause()
+        assert "ψ=105° through peak" in title()
+        await pilot.press(*["A"] * 7)
+        await pilot.pause()
+        assert app.state.section_azimuth == 0.0
+        assert "ψ=0° through peak" in title() and "FWHM 13.8°" in title()  # issue 13's 13.8°

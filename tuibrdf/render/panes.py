@@ -207,8 +207,10 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
         if plane == "perpendicular":
             v = res.sides[0].sections["peak"]
             width_s = fwhm_text(SECTION_THETAS, luminance(v) if v.ndim == 2 else v)
-            parts = [(res.sides[0].material.name, 1), (f"θi={t:g}°", 4), (what, 0),
-                     (width_s, 2), (fn, 5)]
+            # the width across the lobe is the point of this view (issue 13 §1): it goes
+            # before the model's name (which the panel shows) when the title is cropped
+            parts = [(res.sides[0].material.name, 2), (f"θi={t:g}°", 4), (what, 0),
+                     (width_s, 1), (fn, 5)]
         else:
             parts = [(res.sides[0].material.name, 2), (f"θi={t:g}°", 3), (plane, 0),
                      (f"(φ {res.request.phi_i:g}°|{(res.request.phi_i + 180) % 360:g}°)", 4),
