@@ -3,13 +3,17 @@
 Runs ``python -m tuibrdf view ...`` in a pty of the given size, writes key sequences to it and
 timestamps the bytes the app writes back:
 
-* **key → frame**: from writing the key to the last byte of the first output burst larger than
+* **main view**: from writing the key to the last byte of the first output burst larger than
   ``FRAME_MIN`` bytes (the picture update; bursts are chunks < ``GAP_S`` apart, the app's writer
   thread writes a frame in one go).  Parameter change (``+``/``-`` on phong's Kd), θi change
-  (→/←) and model change (``m``).  p50 / p95 over ``--reps`` keys each.
-* **all panes**: key → the last byte before the output stays idle (map, then the two plots one
-  frame later, then the status line's albedo and peak from a worker thread).
-* **bytes per update**: the size of the θi-change picture burst (the map, panel, status).
+  (→ only, from θi = 0°: every key asks for an albedo never computed before) and model change
+  (``m``).  p50 / p95 over ``--reps`` keys each.
+* **all panes**: key → the last byte before the output stays idle for ``SETTLE_S`` (map, the
+  two sections, the status line's albedo and peak from a worker thread), for every key kind.
+* **bytes per update**: all bytes written for one 1° θi key, against the minimum for the cells
+  that change: the app's own screen before and after the key is replayed through ``pyte`` (a
+  terminal emulator) when installed, each changed cell costing its character plus the shortest
+  SGR that sets its colours; without pyte the minimum is not reported.
 * **catch-up**: a key held 2 s (30 repeats/s) while the reader drains the pty at ~1 MB/s;
   the time from the last key until the output stops (idle ``IDLE_S``).
 * **startup**: spawn → the first frame containing the map's colour bar unit (``sr⁻¹``); and
@@ -42,6 +46,7 @@ ROOT = Path(__file__).resolve().parents[1]
 GAP_S = 0.004
 FRAME_MIN = 3000
 IDLE_S = 0.25
+SETTLE_S = 0.15
 KEYS = {"right": b"\x1b[C", "left": b"\x1b[D", "plus": b"+", "minus": b"-", "m": b"m",
         "q": b"q", "v": b"v", "d": b"d", "D": b"D", "x": b"x", "X": b"X", "y": b"y", "Y": b"Y"}
 #: issue 13's views: how many ``v`` from the map reach each, and the view's own key pair
@@ -68,6 +73,14 @@ class Term:
         self.pid, self.fd = pid, fd
         fcntl.ioctl(fd, termios.TIOCSWINSZ, struct.pack("HHHH", h, w, 0, 0))
         self.buf = bytearray()
+        self.screen = None  # a pyte screen fed with everything read (bytes per update)
+        try:
+            import pyte
+        except ImportError:
+            pyte = None
+        if pyte is not None:
+            self.screen = pyte.Screen(w, h)
+            self.stream = pyte.ByteStream(self.screen)
 
     def read(self, timeout: float, limit: int = 65536) -> tuple[float, bytes] | None:
         r, _, _ = select.select([self.fd], [], [], timeout)
@@ -77,7 +90,21 @@ class Term:
             data = os.read(self.fd, limit)
         except OSError:
             return None
-        return time.perf_counter(), data
+        t = time.perf_counter()
+        self.sent_since_key = getattr(self, "sent_since_key", 0) + len(data)
+        if self.screen is not None:
+            self.stream.feed(data)
+        return t, data
+
+    def cells(self) -> dict:
+        """The emulated screen: (row, col) → (char, fg, bg, bold, reverse)."""
+        out = {}
+        for y in range(self.screen.lines):
+            row = self.screen.buffer[y]
+            for x in range(self.screen.columns):
+                c = row[x]
+                out[y, x] = (c.data, c.fg, c.bg, c.bold, c.reverse)
+        return out
 
     def until(self, marker: bytes, timeout: float = 20.0) -> float:
         end = time.perf_counter() + timeout
@@ -102,6 +129,7 @@ class Term:
     def key_to_frame(self, key: bytes, timeout: float = 10.0) -> tuple[float, int]:
         """(seconds from the key to the end of the first big burst, bytes of that burst)."""
         t_key = time.perf_counter()
+        self.sent_since_key = 0
         os.write(self.fd, key)
         end = t_key + timeout
         size, last = 0, None
@@ -131,29 +159,73 @@ class Term:
         os.close(self.fd)
 
 
+def _sgr(cell: tuple) -> int:
+    """Bytes of the shortest SGR setting a cell's colours and attributes."""
+    parts = ["0"]
+    for col, base in ((cell[1], 38), (cell[2], 48)):
+        if col != "default":
+            if len(col) == 6 and all(ch in "0123456789abcdef" for ch in col):
+                r, g, b = (int(col[i:i + 2], 16) for i in (0, 2, 4))
+                parts.append(f"{base};2;{r};{g};{b}")
+            else:
+                parts.append(str(base - 8 + 1))  # a named colour: ≈ 2 digits
+    parts += ["1"] * bool(cell[3]) + ["7"] * bool(cell[4])
+    return len("\x1b[") + len(";".join(parts)) + 1  # ESC [ params m
+
+
+def min_bytes(before: dict, after: dict) -> tuple[int, int]:
+    """(changed cells, the least bytes that redraw them): per run of changed cells in a row a
+    cursor move, per cell its character and, when its style differs from the previous cell's,
+    an SGR."""
+    changed = sorted(k for k in after if after[k] != before.get(k))
+    total, prev_key, prev_style = 0, None, None
+    for y, x in changed:
+        cell = after[y, x]
+        if prev_key != (y, x - 1):
+            total += len(f"\x1b[{y + 1};{x + 1}H")
+            prev_style = None
+        style = cell[1:]
+        if style != prev_style:
+            total += _sgr(cell)
+        total += len(cell[0].encode())
+        prev_key, prev_style = (y, x), style
+    return len(changed), total
+
+
 def pct(xs: list[float], q: float) -> float:
     xs = sorted(xs)
     return xs[min(len(xs) - 1, round(q * (len(xs) - 1)))]
 
 
 def latency(w: int, h: int, color: str, reps: int) -> dict:
-    term = Term(w, h, color, ["phong", "--theta-i", "30"])
+    term = Term(w, h, color, ["phong", "--theta-i", "0"])
     out: dict = {}
     try:
         out["startup"] = term.until("sr⁻¹".encode()) - term.t0
         term.drain()
-        for name, seq in (("param", ("plus", "minus")), ("theta", ("right", "left")),
-                          ("model", ("m",))):
+        # "-" from Kd = 0.2 in steps of 0.01 and → from θi = 0°: a material or an incidence
+        # never seen before at every key (no albedo from the cache)
+        for name, seq in (("param", ("minus",)), ("theta", ("right",)), ("model", ("m",))):
             times, sizes = [], []
             settled = []
+            ratios = []
             for i in range(reps):
+                before = term.cells() if term.screen is not None else None
                 t_key = time.perf_counter()
                 dt, n = term.key_to_frame(KEYS[seq[i % len(seq)]])
                 times.append(dt)
-                sizes.append(n)
-                settled.append(term.drain(0.15) - t_key)
+                settled.append(term.drain(SETTLE_S) - t_key)
+                n_all = n
+                if before is not None:
+                    n_all = term.sent_since_key
+                    _, least = min_bytes(before, term.cells())
+                    if least:
+                        ratios.append((n_all, least))
+                sizes.append(n_all)
             out[name] = (statistics.median(times), pct(times, 0.95), statistics.median(sizes),
-                         statistics.median(settled), pct(settled, 0.95))
+                         statistics.median(settled), pct(settled, 0.95),
+                         (statistics.median(a for a, _ in ratios),
+                          statistics.median(b for _, b in ratios)) if ratios else None)
     finally:
         term.close()
     return out
@@ -246,6 +318,7 @@ def main() -> int:
     ap.add_argument("--sizes", default="80x24,160x48,240x70")
     ap.add_argument("--reps", type=int, default=20)
     ap.add_argument("--colors", default="truecolor,256")
+    ap.add_argument("--no-catch-up", action="store_true", help="skip the held-key test")
     ap.add_argument("--views", action="store_true",
                     help="key → frame on each of issue 13's views instead")
     args = ap.parse_args()
@@ -254,19 +327,23 @@ def main() -> int:
     if args.views:
         views_table(sizes, colors, args.reps)
         return 0
-    print("| size | colours | startup s | param p50/p95 ms | θi p50/p95 ms | model p50/p95 ms "
-          "| θi all panes p50/p95 ms | bytes/update (θi) | catch-up s |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| size | colours | startup s | main view p50/p95 ms: param | θi | model "
+          "| all panes p50/p95 ms: param | θi | model | bytes per 1° θi / changed cells' "
+          "minimum | catch-up s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for w, h in sizes:
         for color in colors:
             r = latency(w, h, color, args.reps)
-            cu = catch_up(w, h, color)
+            cu = float("nan") if args.no_catch_up else catch_up(w, h, color)
             ms = [f"{r[k][0] * 1e3:.0f} / {r[k][1] * 1e3:.0f}" for k in ("param", "theta",
                                                                           "model")]
-            kib = r["theta"][2] / 1024
-            done = f"{r['theta'][3] * 1e3:.0f} / {r['theta'][4] * 1e3:.0f}"
-            print(f"| {w}×{h} | {color} | {r['startup']:.2f} | {' | '.join(ms)} | {done} | "
-                  f"{kib:.0f} KiB | {cu:.2f} |", flush=True)
+            done = [f"{r[k][3] * 1e3:.0f} / {r[k][4] * 1e3:.0f}" for k in ("param", "theta",
+                                                                           "model")]
+            least = r["theta"][5]
+            sent = (f"{least[0] / 1e3:.1f} / {least[1] / 1e3:.1f} kB = {least[0] / least[1]:.2f}×"
+                    if least else f"{r['theta'][2] / 1e3:.1f} kB / ?")
+            print(f"| {w}×{h} | {color} | {r['startup']:.2f} | {' | '.join(ms)} | "
+                  f"{' | '.join(done)} | {sent} | {cu:.2f} |", flush=True)
     print(f"\n`tuibrdf --help`: {help_time() * 1e3:.0f} ms (median of 5)")
     return 0
 

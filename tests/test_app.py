@@ -313,13 +313,13 @@ async def test_albedo_curve_is_computed_off_the_loop_then_drawn(monkeypatch):
 
     scene.clear_caches()
     release = threading.Event()
-    real = scene.albedo_curve_resolved
+    real = scene.albedo_curve_estimate_resolved
 
     def held(*args, **kw):
         release.wait(10.0)
         return real(*args, **kw)
 
-    monkeypatch.setattr(scene, "albedo_curve_resolved", held)
+    monkeypatch.setattr(scene, "albedo_curve_estimate_resolved", held)
 
     app = BrdfApp(ViewerState(sides=[Side.of("cook-torrance", {"m": 0.05, "kd": 0.1})]))
     async with app.run_test(size=(100, 30)) as pilot:

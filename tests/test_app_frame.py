@@ -272,3 +272,40 @@ async def test_the_lit_plane_is_evaluated_once_per_frame_and_exposure_evaluates_
         await pilot.pause()
         assert app.state.exposure == 1.0 and app.state.gamma == pytest.approx(2.4)
         assert all(c == [] for c in calls.values())
+
+
+def test_changed_span_is_what_differs_between_two_strips():
+    # by hand: "ab|cd|ef" against "ab|XY|ef" (| = segment boundaries) differ in cells 2–3
+    # only; equal strips differ nowhere; a different first segment starts the span at 0
+    from rich.segment import Segment
+    from textual.strip import Strip
+
+    from tuibrdf.app.widgets import changed_span
+
+    def strip(*texts):
+        return Strip([Segment(t) for t in texts], sum(len(t) for t in texts))
+
+    assert changed_span(strip("ab", "cd", "ef"), strip("ab", "XY", "ef")) == (2, 4)
+    x0, x1 = changed_span(strip("ab", "cd", "ef"), strip("ab", "cd", "ef"))
+    assert x1 <= x0
+    assert changed_span(strip("ab", "cd", "ef"), strip("aB", "cd", "ef")) == (0, 2)
+    assert changed_span(strip("abcdef"), strip("abcdeF")) == (0, 6)
+
+
+async def test_status_line_grows_and_shrinks_with_its_text():
+    # the status line re-lays out the screen only when its height may change; a message that
+    # wraps must still get its lines (2 lines normally, 3 at most: its CSS max-height) and the
+    # line count must come back when the message goes
+    app = BrdfApp(sync=True)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.pause()
+        st = app.query_one("#status")
+        assert st.size.height == 2
+        app._changed("long " * 60)
+        await pilot.pause()
+        await pilot.pause()
+        assert st.size.height == 3 and "long long" in status(app)
+        app._changed("short")
+        await pilot.pause()
+        await pilot.pause()
+        assert st.size.height == 2

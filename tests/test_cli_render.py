@@ -29,19 +29,23 @@ def run(capsys, *argv):
 
 # -- albedo ---------------------------------------------------------------------------------
 def test_albedo_lambert_is_kd_at_every_angle(capsys):
-    # ∫ kd/π cos θ dω = kd: the table prints 4 decimals, JSON every digit (quadrature ≲ 1e-4)
+    # ∫ kd/π cos θ dω = kd: the table prints the digits the error estimate leaves and the
+    # estimate ("± 4e-13"), JSON every digit and the error
     rc, out, _ = run(capsys, "albedo", "lambert", "-p", "kd=0.5")
     assert rc == 0
     rows = [ln.split() for ln in out.splitlines() if not ln.startswith("#")][1:]
     assert [r[0] for r in rows] == ["0", "15", "30", "45", "60", "75", "89"]
-    assert all(r[1] == "0.5000" and len(r) == 2 for r in rows)
+    for r in rows:
+        assert len(r) == 4 and r[2] == "±" and float(r[3]) < 1e-9
+        assert r[1].startswith("0.5000000") and float(r[1]) == pytest.approx(0.5, abs=1e-9)
     rc, out, _ = run(capsys, "albedo", "lambert", "-p", "kd=0.5", "--theta-i", "0", "70",
                      "--json")
     doc = json.loads(out)
     assert rc == 0 and doc["model"] == "lambert" and doc["params"] == {"kd": 0.5}
     assert [v["theta_i"] for v in doc["values"]] == [0.0, 70.0]
     for v in doc["values"]:
-        assert v["albedo"] == pytest.approx(0.5, abs=1e-4) and v["energy_conserving"]
+        assert v["albedo"] == pytest.approx(0.5, abs=1e-9) and v["energy_conserving"]
+        assert 0 <= v["error"] < 1e-9
 
 
 def test_albedo_phong_lobe_closed_form(capsys):
@@ -60,7 +64,7 @@ def test_albedo_rgb_model_prints_three_channels(capsys):
     rc, out, _ = run(capsys, "albedo", "gltf", "-p", "base_color=0.9,0.1,0.1", "-p",
                      "metallic=1", "--theta-i", "30")
     assert rc == 0 and "a_R" in out and "a_G" in out and "a_B" in out
-    r, g, b = (float(x) for x in out.splitlines()[-1].split()[1:])
+    r, g, b = (float(x) for x in out.splitlines()[-1].split()[1:4])
     assert r > g == b > 0
 
 
@@ -75,6 +79,30 @@ def test_albedo_above_one_is_flagged(capsys):
     assert rc == 0 and out.splitlines()[-1].endswith("> 1: not energy-conserving")
     rc, out, _ = run(capsys, "albedo", "ggx", "-p", "kd=0.5", "--theta-i", "0", "45")
     assert rc == 0 and "not energy" not in out
+
+
+def test_albedo_sharp_mirror_lobe_is_not_flagged_and_shows_its_error(capsys):
+    # ggx α = 0.001, f0 = 1, kd = 0: the albedo is at most 1 at every incidence (F = 1, Smith
+    # G ≤ 1; issue 18's reference: 0.999999 at 0°, 0.99993 at 85°), never flagged
+    rc, out, _ = run(capsys, "albedo", "ggx", "-p", "kd=0", "-p", "f0=1", "-p", "alpha=0.001",
+                     "--theta-i", "0", "85", "87", "89", "89.9", "90", "--json")
+    assert rc == 0
+    for v in json.loads(out)["values"]:
+        assert v["energy_conserving"] and v["albedo"] - v["error"] <= 1.0
+        assert 0 < v["error"] < 1e-3
+    assert json.loads(out)["values"][1]["albedo"] == pytest.approx(0.99993, abs=1e-4)
+
+
+def test_render_albedo_plot_flags_only_a_model_that_gains_energy(capsys):
+    # the albedo view's flag is the same test (albedo − error > 1) over the whole curve: ggx
+    # α = 0.001, f0 = 1, kd = 0 stays ≤ 1 at every θi (sharp lobe, grazing included); ggx
+    # kd = 1 with a specular lobe on top exceeds 1 (its Lambert term alone reflects exactly 1)
+    common = ("--view", "albedo", "--color", "none", "--width", "70", "--height", "14")
+    rc, out, _ = run(capsys, "render", "ggx", "-p", "kd=0", "-p", "f0=1", "-p", "alpha=0.001",
+                     *common)
+    assert rc == 0 and "not energy-conserving" not in out
+    rc, out, _ = run(capsys, "render", "ggx", "-p", "kd=1", "-p", "f0=0.5", *common)
+    assert rc == 0 and "not energy-conserving" in out.splitlines()[0]
 
 
 # -- render ---------------------------------------------------------------------------------

@@ -12,14 +12,13 @@ from tuibrdf.core.frame import from_degrees
 from tuibrdf.core.mesh import hemisphere, refine_adaptive
 from tuibrdf.core.models import MODELS, get_model
 from tuibrdf.core.params import Model
+from tuibrdf.core.peak import find_peaks
 from tuibrdf.core.quadrature import (
     DEFAULT_LEVEL,
     albedo,
     albedo_curve,
     albedo_curve_resolved,
     albedo_resolved,
-    peak,
-    peak_resolved,
     reciprocity_error,
 )
 
@@ -157,7 +156,7 @@ def test_theta_validation():
         with pytest.raises(ValueError, match="theta_i"):
             albedo("lambert", None, bad)
         with pytest.raises(ValueError, match="theta_i"):
-            peak("lambert", None, bad)
+            peak("lambert", None, bad)  # the one peak finder, core/peak.py
     with pytest.raises(ValueError, match="kd"):
         albedo("lambert", {"kd": 2.0}, 0.0)
     with pytest.raises(ValueError, match="method"):
@@ -178,6 +177,12 @@ def test_reciprocity_error():
     assert reciprocity_error("phong", {"n": 50}) < 1e-12
     lopsided = Model("lopsided", "test", (), lambda wi, wo: wi[..., 2] + 0.0 * wo[..., 2])
     assert reciprocity_error(lopsided) == pytest.approx(1.0, abs=1e-12)
+
+
+def peak(name, params, theta_i, cosine=False):
+    """The peak (the luminance's for RGB) of core/peak.py, the one peak finder."""
+    m = get_model(name)
+    return find_peaks(m, m.resolve(params), theta_i, cosine=cosine)[0]
 
 
 @pytest.mark.parametrize("theta_i", [0.0, 40.0, 75.0])
@@ -211,15 +216,16 @@ def test_cook_torrance_peak_grows_and_passes_the_mirror_at_grazing():
     # mirror direction, toward the horizon (Fresnel and 1/cos θo grow there)
     m = get_model("cook-torrance")
     v = m.resolve({"m": 0.2})
-    low, high = peak_resolved(m, v, 30.0), peak_resolved(m, v, 80.0)
+    low, high = find_peaks(m, v, 30.0)[0], find_peaks(m, v, 80.0)[0]
     assert high.value > 3 * low.value
     assert high.theta_deg > 80.0 + 1.0
     assert high.phi_deg == pytest.approx(0.0, abs=1e-6)
 
 
 def test_peak_of_rgb_and_flat_models():
-    pk = peak("gltf", {"roughness": 0.3}, 45.0)
-    assert np.shape(pk.value) == (3,)
+    m = get_model("gltf")
+    pks = find_peaks(m, m.resolve({"roughness": 0.3}), 45.0)
+    assert [p.label for p in pks] == ["Y", "R", "G", "B"]
     # Lambert is flat: any direction is a peak, the value is kd/π
     assert peak("lambert", {"kd": 0.6}, 10.0).value == pytest.approx(0.6 / math.pi, rel=1e-12)
 

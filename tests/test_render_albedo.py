@@ -43,14 +43,14 @@ def test_view_title_and_no_flag_for_lambert():
 
 
 def test_flag_when_above_one():
-    # a hand-made curve crossing 1 + ENERGY_TOL must be flagged with its maximum; one that
-    # stays within the tolerance must not
+    # a hand-made curve above 1 by more than its error estimate must be flagged with its
+    # maximum; one within its error of 1 must not (quadrature.exceeds_one)
     from dataclasses import replace
 
     res = scene.compute_frame(scene.FrameRequest((Material("lambert"),), 10, curve=True))
-    for top, flagged in ((1.2, True), (1.0005, False)):
+    for top, err, flagged in ((1.2, 0.0, True), (1.0005, 1e-3, False), (1.0005, 1e-5, True)):
         fake = np.linspace(0.9, top, len(scene.CURVE_THETAS))
-        side = replace(res.sides[0], curve=fake)
+        side = replace(res.sides[0], curve=fake, curve_error=np.full_like(fake, err))
         out = text_of(panes.albedo_pane(replace(res, sides=(side,)), 70, 10,
                                         panes.Look(color="none")))
         first = out.split("\n")[0]

@@ -7,6 +7,7 @@ from rich.segment import Segment
 from rich.style import Style
 from rich.text import Text
 from textual.filter import ANSIToTruecolor
+from textual.geometry import Region
 from textual.strip import Strip
 from textual.widget import Widget
 from textual.widgets import Static
@@ -15,6 +16,21 @@ from ..core.params import _fmt
 from .state import Side, ViewerState
 
 BLANK = Style()  # never None: Textual's NO_COLOR filter crashes on a None style
+
+
+def changed_span(a: Strip, b: Strip) -> tuple[int, int]:
+    """Cells ``[x0, x1)`` of two equally wide strips outside their common first and last
+    segments (what must be redrawn to turn ``a`` into ``b``)."""
+    sa, sb = list(a), list(b)
+    x0 = i = 0
+    while i < min(len(sa), len(sb)) and sa[i] == sb[i]:
+        x0 += sa[i].cell_length
+        i += 1
+    x1, j = b.cell_length, 0
+    while j < min(len(sa), len(sb)) - i and sa[-1 - j] == sb[-1 - j]:
+        x1 -= sb[-1 - j].cell_length
+        j += 1
+    return x0, max(x0, x1)
 
 
 class Picture(Widget):
@@ -39,9 +55,19 @@ class Picture(Widget):
         if self.app.no_color:  # Textual's Monochrome filter crashes on a None style
             lines = [[s if s.style is not None else Segment(s.text, BLANK) for s in line]
                      for line in lines]
+        old = self._strips
         self._strips = [Strip(line, w).crop_extend(0, w, BLANK) for line in lines[:h]]
         self.shown_for = key
-        self.refresh()
+        if len(old) != len(self._strips) or any(s.cell_length != w for s in old):
+            self.refresh()
+            return
+        # only the cells that changed go to the terminal: per changed line, the span between
+        # the first and the last segment that differ
+        pairs = enumerate(zip(old, self._strips, strict=True))
+        regions = [Region(x0, y, x1 - x0, 1) for y, (a, b) in pairs
+                   if a != b for x0, x1 in [changed_span(a, b)] if x1 > x0]
+        if regions:
+            self.refresh(*regions)
 
     def on_resize(self, event) -> None:
         self.shown_for = None
@@ -68,15 +94,29 @@ class Picture(Widget):
 
 
 class QuietStatic(Static):
-    """A ``Static`` updated only when its text changes (an update re-lays the widget out)."""
+    """A ``Static`` updated only when its text changes, and re-laid out (which costs a layout
+    and compositing of the whole screen) only when its height may change: a new number of
+    lines, or a line wrapping differently at the widget's width."""
 
     _shown: tuple | None = None
+    _rows: tuple | None = None
+
+    def _row_count(self, text: Text) -> tuple:
+        width = max(1, self.content_region.width)
+        if text.no_wrap or self.styles.text_wrap == "nowrap":
+            return text.plain.count("\n") + 1, width
+        return len(text.wrap(self.app.console, width)), width  # Rich's own word wrap
 
     def show_text(self, text: Text) -> None:
         key = (text.plain, tuple(text.spans), str(text.style))  # Text == ignores the style
         if key != self._shown:
             self._shown = key
-            self.update(text)
+            rows = self._row_count(text)
+            self.update(text, layout=rows != self._rows)
+            self._rows = rows
+
+    def on_resize(self, event) -> None:
+        self._rows = None  # the next text is laid out at the new width
 
 
 class ParamPanel(QuietStatic):

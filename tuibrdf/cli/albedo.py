@@ -1,12 +1,13 @@
 """``tuibrdf albedo``: the directional albedo a(θi) = ∫ f cos θr dω, as a table or JSON.
 
 One row per ``--theta-i`` value (default: every 15° and 89°).  RGB models print one column per
-channel.  The table shows 4 decimals, what the quadrature guarantees; JSON has every digit.  A
-value above 1 reflects more energy than arrives: the row is flagged ``not energy-conserving``
-(the JSON has ``"energy_conserving": false``).  The integral is
-:func:`tuibrdf.core.quadrature.albedo_resolved` with its defaults (the icosahedral mesh at
-level 6, checked against level 5 and refined adaptively where a sharp lobe needs it; about
-1e-4 or better on the default parameters, see docs/accuracy.md).
+channel.  Each row carries the quadrature's estimate of its absolute error (``± 3e-10``; the
+largest of the channels) and shows the digits the error leaves (JSON: every digit and
+``"error"``).  A value above 1 by more than its error reflects more energy than arrives: the row
+is flagged ``not energy-conserving`` (the JSON has ``"energy_conserving": false``); the test is
+:func:`tuibrdf.core.quadrature.exceeds_one`.  The integral is
+:func:`tuibrdf.core.quadrature.albedo_estimate_resolved` (adaptive Gauss–Kronrod about the
+lobe, docs/accuracy.md).
 """
 
 from __future__ import annotations
@@ -27,24 +28,26 @@ def add_args(parser: argparse.ArgumentParser) -> None:
 
 
 def albedos(model, params, thetas, phi_i: float = 180.0):
-    """a(θi) for each θi: shape ``(n,)``, or ``(n, 3)`` for an RGB model."""
+    """``(a, error)`` for each θi: shapes ``(n,)``, or ``(n, 3)`` for an RGB model."""
     import numpy as np
 
-    from ..core.quadrature import albedo_resolved
+    from ..core.quadrature import albedo_estimate_resolved
 
-    return np.array([np.asarray(albedo_resolved(model, params, t, phi_i), dtype=float)
-                     for t in thetas])
+    est = [albedo_estimate_resolved(model, params, t, phi_i) for t in thetas]
+    return (np.array([np.asarray(e.value, dtype=float) for e in est]),
+            np.array([np.asarray(e.error, dtype=float) for e in est]))
 
 
 def run(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from ..core.conventions import ENERGY_TOL  # a > 1 + ENERGY_TOL is flagged
+    from ..core.conventions import decimals_for
+    from ..core.quadrature import exceeds_one
 
     model, params = resolve(args)
     thetas = [float(t) for t in args.theta_i]
-    a = albedos(model, params, thetas, args.phi_i)
-    over = [bool(np.max(row) > 1.0 + ENERGY_TOL) for row in a]
+    a, err = albedos(model, params, thetas, args.phi_i)
+    over = [exceeds_one((row, e)) for row, e in zip(a, err, strict=True)]
     if args.json:
         doc = {
             "model": model.name,
@@ -52,17 +55,22 @@ def run(args: argparse.Namespace) -> int:
             "quantity": "directional albedo: integral of f*cos(theta_r) over the hemisphere",
             "rgb": model.rgb,
             "values": [{"theta_i": t, "albedo": row.tolist() if model.rgb else float(row),
+                        "error": e.tolist() if model.rgb else float(e),
                         "energy_conserving": not o}
-                       for t, row, o in zip(thetas, a, over, strict=True)],
+                       for t, row, e, o in zip(thetas, a, err, over, strict=True)],
         }
         print(json.dumps(doc, indent=2, allow_nan=False))
         return 0
     print(f"# {model.name}  {fmt_params(params)}")
-    print("# directional albedo a = ∫ f cos θr dω (quadrature error ≲ 1e-4, docs/accuracy.md)")
+    print("# directional albedo a = ∫ f cos θr dω ± the quadrature's error estimate "
+          "(docs/accuracy.md)")
     cols = ["a_R", "a_G", "a_B"] if model.rgb else ["a"]
-    print(" ".join([f"{'theta_i':>8}"] + [f"{c:>10}" for c in cols]))
-    for t, row, o in zip(thetas, a, over, strict=True):
+    width = max(10, 3 + max(decimals_for(e) for e in err))
+    print(" ".join([f"{'theta_i':>8}"] + [f"{c:>{width}}" for c in cols] + ["   error"]))
+    for t, row, e, o in zip(thetas, a, err, over, strict=True):
         vals = row.tolist() if model.rgb else [float(row)]
+        d = decimals_for(e)
         flag = "  > 1: not energy-conserving" if o else ""
-        print(" ".join([f"{fmt(t):>8}"] + [f"{x:>10.4f}" for x in vals]) + flag)
+        print(" ".join([f"{fmt(t):>8}"] + [f"{x:>{width}.{d}f}" for x in vals]
+                       + [f"± {float(np.max(e)):.0e}"]) + flag)
     return 0

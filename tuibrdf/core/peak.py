@@ -11,8 +11,11 @@
    :data:`PEAK_ROUNDS` rounds (from one mesh edge down to ≈ 1e-9°);
    points that fall below the horizon are put back onto it; the search stops early when no
    round improved any value by more than 1e-12 (relative) for :data:`PEAK_PATIENCE` rounds
-   (the step has then shrunk 60× below the last move).  Every round is one vectorised kernel
-   call for all the searches.
+   (the step has then shrunk 60× below the last move).  A search climbing a lower local
+   maximum (often the one from S) stops counting once 10× its last gain cannot lift it to
+   the best value of its channel: it no longer keeps the others going for all the rounds
+   (median 6.6 → 3.4 ms over 28 cases, values within 6e-11 relative of the full run).
+   Every round is one vectorised kernel call for all the searches.
 
 An RGB model gets four peaks, each with its own direction: the Rec.709 luminance ``Y`` and
 each channel ``R``, ``G``, ``B``; a scalar model one.  ``Peak.label`` says which.
@@ -103,6 +106,8 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
                phi_i_deg: float = 180.0) -> tuple[Peak, ...]:
     """``(Peak,)`` for a scalar model, ``(Y, R, G, B)`` peaks for an RGB one (see module);
     the light at ``θi``, ``φi`` (:func:`~tuibrdf.core.frame.incident`)."""
+    if not 0.0 <= float(theta_i_deg) <= 90.0:  # also refuses NaN
+        raise ValueError(f"theta_i = {theta_i_deg!r} is invalid: expected in [0, 90]°")
     wi = incident(theta_i_deg, phi_i_deg)
     s_dir = mirror(wi)
     # the horizon on the mirror side: HORIZON_MIRROR turned with the light's azimuth
@@ -128,9 +133,15 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
         v = st.reshape(len(pts), len(_PATTERN), k)[rows, :, col]  # (searches, 25)
         j = np.argmax(v, axis=1)
         better = v[rows, j] > val
-        gain = np.max(np.where(better, v[rows, j] - val, 0.0) / np.maximum(np.abs(val), 1e-300))
+        up = np.where(better, v[rows, j] - val, 0.0)
         pts[better] = trial[rows, j][better]
         val[better] = v[rows, j][better]
+        # a search below its column's best counts only while it could still reach it (its
+        # gains shrink geometrically, ≈ 8× per round near a smooth maximum: 10× its last gain
+        # bounds what is left); the guard keeps 0/0 out for a zero function
+        top = np.tile(np.maximum(val[:k], val[k:]), 2)
+        contender = val + 10.0 * up >= top
+        gain = np.max(np.where(contender, up, 0.0) / np.maximum(np.abs(val), 1e-300))
         step *= PEAK_SHRINK
         idle = idle + 1 if gain <= 1e-12 else 0
         if idle >= PEAK_PATIENCE:

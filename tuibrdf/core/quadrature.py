@@ -1,5 +1,5 @@
 """Quadrature on the hemisphere: albedo (with an error estimate), albedo curve, reciprocity
-error, peak.
+error.  (The peak of a lobe is :func:`tuibrdf.core.peak.find_peaks`, the one peak finder.)
 
 Directional albedo ``a(wi) = ∫ f(wi, wo) cos θo dωo`` is, by default (``method="auto"``), the
 nested adaptive Gauss–Kronrod rule of :mod:`tuibrdf.core.polar` in polar coordinates about the
@@ -31,13 +31,13 @@ import numpy as np
 
 from . import polar
 from .evaluate import evaluate_resolved
-from .frame import incident, mirror, phi_of, sincos_deg, theta_of
+from .frame import incident, mirror, sincos_deg
 from .mesh import hemisphere, refine_adaptive
 from .microfacet import alpha_from_roughness
 from .models import MODELS, get_model
 from .params import Model
 
-#: Uniform level of the peak search and of ``method="uniform"``: 20,641 vertices.
+#: Uniform level of ``method="uniform"``: 20,641 vertices.
 DEFAULT_LEVEL = 6
 #: Adaptive-mesh tolerance of ``method="adaptive"`` (relative integral error per triangle).
 DEFAULT_TOL = 1e-5
@@ -63,14 +63,6 @@ GRAZING_COS = float(np.cos(np.radians(85.0)))
 GRAZING_EXTRA_LEVELS = 3
 #: Level of the all-pairs reciprocity check (341 directions, 116,281 pairs).
 RECIPROCITY_LEVEL = 3
-
-
-class Peak(NamedTuple):
-    """The largest value over the hemisphere and where it is (degrees, φ in (−180°, 180°])."""
-
-    value: float | np.ndarray
-    theta_deg: float
-    phi_deg: float
 
 
 class AlbedoEstimate(NamedTuple):
@@ -341,68 +333,3 @@ def reciprocity_error(model: str | Model, params: Mapping[str, Any] | None = Non
                       level: int = RECIPROCITY_LEVEL) -> float:
     m, v = _resolve(model, params)
     return reciprocity_error_resolved(m, v, level=level)
-
-
-# ---------------------------------------------------------------------------------------------
-# peak
-
-#: Local search after the best mesh vertex: PEAK_STEPS rounds of a 5×5 tangent-plane pattern
-#: shrinking by PEAK_SHRINK (0.6³⁰ ≈ 2e-7 of the starting step, below 1e-5°).
-PEAK_STEPS = 30
-PEAK_SHRINK = 0.6
-_PATTERN = np.stack(np.meshgrid(np.linspace(-1, 1, 5), np.linspace(-1, 1, 5)), -1).reshape(-1, 2)
-
-
-def _tangents(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Two unit vectors orthogonal to ``d`` and to each other (any pair)."""
-    ref = np.array([1.0, 0.0, 0.0]) if abs(d[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    t1 = np.cross(d, ref)
-    t1 /= np.linalg.norm(t1)  # ≠ 0: ref is never parallel to d
-    return t1, np.cross(d, t1)
-
-
-def _upper(d: np.ndarray) -> np.ndarray:
-    """Unit directions, pushed onto the horizon if they fell below it."""
-    d = np.array(d, dtype=float)
-    d[..., 2] = np.maximum(d[..., 2], 0.0)
-    return d / np.linalg.norm(d, axis=-1, keepdims=True)  # ≠ 0: steps are ≪ 1 rad
-
-
-def peak_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float,
-                  phi_i_deg: float = 180.0, *, level: int = DEFAULT_LEVEL,
-                  cosine: bool = False) -> Peak:
-    """Largest ``f`` (or ``f cos θo`` with ``cosine=True``) over the hemisphere.
-
-    The best of the mesh vertices, the mirror direction and the normal, then a local pattern
-    search in the tangent plane (which works at the pole and clamps to the horizon).  An RGB
-    model is ranked by its channel mean and returns its ``(3,)`` value there.
-    """
-    wi = _incident(theta_i_deg, phi_i_deg)
-    cand = np.concatenate([hemisphere(level).vertices, [mirror(wi)], [[0.0, 0.0, 1.0]]])
-
-    def score(wo: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        g = _radiance(model, values, wi, wo, cosine)
-        return (g.mean(axis=1) if g.ndim == 2 else g), g
-
-    s, g = score(cand)
-    k = int(np.argmax(s))
-    best, best_s, best_g = cand[k], s[k], g[k]
-    step = np.radians(63.4) / 2**level  # about one mesh edge
-    for _ in range(PEAK_STEPS):
-        t1, t2 = _tangents(best)
-        trial = _upper(best + step * (_PATTERN[:, :1] * t1 + _PATTERN[:, 1:] * t2))
-        s, g = score(trial)
-        k = int(np.argmax(s))
-        if s[k] > best_s:
-            best, best_s, best_g = trial[k], s[k], g[k]
-        step *= PEAK_SHRINK
-    theta = float(np.degrees(theta_of(best)))
-    phi = float(np.degrees(phi_of(best))) if theta > 0.0 else 0.0
-    return Peak(_scalar(best_g), theta, phi)
-
-
-def peak(model: str | Model, params: Mapping[str, Any] | None = None,
-         theta_i_deg: float = 0.0, phi_i_deg: float = 180.0, *, level: int = DEFAULT_LEVEL,
-         cosine: bool = False) -> Peak:
-    m, v = _resolve(model, params)
-    return peak_resolved(m, v, theta_i_deg, phi_i_deg, level=level, cosine=cosine)

@@ -21,10 +21,14 @@ albedo curve is shown.  Per material the result holds:
 ``solid``       ``f`` at the solid's sample directions (:func:`solid_samples`; or None)
 ``albedo``      ``a(θi) = ∫ f cos θr dω`` (float, or 3 floats for RGB), None until computed
 ``curve``       ``a`` at :data:`CURVE_THETAS` (the albedo view), None until computed
+``*_error``     the quadrature's estimate of the absolute error of ``albedo`` / ``curve``
 ==============  ==================================================================================
 
+The energy test is :func:`tuibrdf.core.quadrature.exceeds_one` (albedo − error > 1):
+:meth:`SideFrame.albedo_exceeds_one` and :meth:`SideFrame.curve_exceeds_one`.
+
 Every value except ``albedo`` and ``curve`` includes the cosine factor when ``cosine`` is set.
-The albedo and the curve are slow (up to 0.3 s and 0.6 s for sharp lobes): ``compute_frame(r,
+The albedo and the curve are slow (up to tens of ms and 0.3 s for sharp lobes): ``compute_frame(r,
 slow=False)`` leaves them None unless already cached, so a viewer can show the rest at once
 and complete the frame in a worker.  Each part is cached by what it depends on (thread-safe
 LRUs), the whole result by its request: a repeated frame costs two dictionary look-ups.
@@ -45,7 +49,12 @@ from .frame import from_degrees, incident, sincos_deg
 from .hemimap import MapInfo, map_values
 from .material import Material
 from .peak import Peak, find_peaks, radiance
-from .quadrature import albedo_curve_resolved, albedo_resolved
+from .quadrature import (
+    AlbedoEstimate,
+    albedo_curve_estimate_resolved,
+    albedo_estimate_resolved,
+    exceeds_one,
+)
 
 PLANES = ("incidence", "perpendicular")
 #: the main views drawn from :func:`extra_values` (beside the map, the solid and the albedo)
@@ -59,6 +68,9 @@ CURVE_STEP_DEG = 3.0
 #: incidence angles of the albedo curve
 CURVE_THETAS = np.arange(0.0, 90.0 + CURVE_STEP_DEG / 2, CURVE_STEP_DEG)
 CURVE_THETAS.setflags(write=False)
+#: the albedo curve is integrated in this many batches (coarse to fine: every 4th angle first),
+#: so that a worker whose request is gone stops within one batch
+CURVE_CHUNKS = 4
 #: the 3D solid's sampling: hemisphere mesh level and barycentric steps per triangle edge
 SOLID_LEVEL, SOLID_SUBDIV = 4, 3
 
@@ -181,8 +193,20 @@ class SideFrame:
     solid: np.ndarray | None = None
     albedo: float | tuple[float, ...] | None = None
     curve: np.ndarray | None = None
+    albedo_error: float | tuple[float, ...] | None = None
+    curve_error: np.ndarray | None = None
     extra: tuple | None = None
     probe: tuple | None = None
+
+    def albedo_exceeds_one(self) -> bool:
+        """The energy test on the albedo: above 1 by more than its error estimate."""
+        return self.albedo is not None and exceeds_one(
+            (self.albedo, 0.0 if self.albedo_error is None else self.albedo_error))
+
+    def curve_exceeds_one(self) -> bool:
+        """The energy test at any point of the albedo curve."""
+        return self.curve is not None and exceeds_one(
+            (self.curve, 0.0 if self.curve_error is None else self.curve_error))
 
     @property
     def peak(self) -> Peak:
@@ -333,23 +357,37 @@ def solid_values(m: Material, theta_i: float, cosine: bool = False,
     return g
 
 
-def _albedo(m: Material, theta_i: float, phi_i: float = 180.0) -> float | tuple[float, ...]:
-    a = np.asarray(albedo_resolved(m.model, m.values, theta_i, phi_i), dtype=float)
+def _plain(a) -> float | tuple[float, ...]:
+    a = np.asarray(a, dtype=float)
     return float(a) if a.ndim == 0 else tuple(float(x) for x in a)
 
 
+def _albedo(m: Material, theta_i: float, phi_i: float = 180.0) -> AlbedoEstimate:
+    """``(albedo, error)`` as floats (or tuples of 3 for RGB)."""
+    e = albedo_estimate_resolved(m.model, m.values, theta_i, phi_i)
+    return AlbedoEstimate(_plain(e.value), _plain(e.error))
+
+
 def _curve(m: Material, check: Callable[[], bool] | None = None,
-           phi_i: float = 180.0) -> np.ndarray | None:
-    """The albedo at every :data:`CURVE_THETAS`; None when ``check`` says stop (up to 0.6 s:
-    a worker whose request is gone stops between two angles)."""
-    out = []
-    for t in CURVE_THETAS:
+           phi_i: float = 180.0) -> AlbedoEstimate | None:
+    """The albedo and its error at every :data:`CURVE_THETAS` (arrays); None when ``check``
+    says stop.  Integrated in :data:`CURVE_CHUNKS` batches (each one batch of the quadrature),
+    so a worker whose request is gone stops after at most one batch."""
+    n = len(CURVE_THETAS)
+    value, error = None, None
+    for c in range(CURVE_CHUNKS):
         if check is not None and not check():
             return None
-        out.append(albedo_curve_resolved(m.model, m.values, [t], phi_i)[0])
-    a = np.asarray(out, dtype=float)
-    a.setflags(write=False)
-    return a
+        idx = np.arange(c, n, CURVE_CHUNKS)  # every 4th angle: the first batch spans 0–90°
+        e = albedo_curve_estimate_resolved(m.model, m.values, CURVE_THETAS[idx], phi_i)
+        v, err = np.asarray(e.value, dtype=float), np.asarray(e.error, dtype=float)
+        if value is None:
+            value = np.empty((n,) + v.shape[1:])
+            error = np.empty((n,) + v.shape[1:])
+        value[idx], error[idx] = v, err
+    value.setflags(write=False)
+    error.setflags(write=False)
+    return AlbedoEstimate(value, error)
 
 
 def _side(req: FrameRequest, m: Material, slow: bool,
@@ -388,7 +426,9 @@ def _side(req: FrameRequest, m: Material, slow: bool,
     else:
         albedo = _ALBEDO.peek((m, t, pi))
         curve = _CURVES.peek((m, pi)) if req.curve else None
-    return SideFrame(m, peaks, sections, mp, solid, albedo, curve, extra, probe)
+    a, a_err = albedo if albedo is not None else (None, None)
+    c, c_err = curve if curve is not None else (None, None)
+    return SideFrame(m, peaks, sections, mp, solid, a, c, a_err, c_err, extra, probe)
 
 
 def compute_frame(req: FrameRequest, *, slow: bool = True,
@@ -417,6 +457,11 @@ def cached_frame(req: FrameRequest) -> FrameResult | None:
 
 def albedo_curve(m: Material, phi_i: float = 180.0) -> np.ndarray:
     """``a`` at :data:`CURVE_THETAS` (cached): ``(n,)`` or ``(n, 3)``."""
+    return _CURVES.get((m, phi_i), lambda: _curve(m, None, phi_i)).value
+
+
+def albedo_curve_estimate(m: Material, phi_i: float = 180.0) -> AlbedoEstimate:
+    """``(a, error)`` at :data:`CURVE_THETAS` (cached)."""
     return _CURVES.get((m, phi_i), lambda: _curve(m, None, phi_i))
 
 

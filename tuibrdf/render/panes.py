@@ -25,7 +25,7 @@ import numpy as np
 from rich.console import Group, RenderableType
 from rich.text import Text
 
-from ..core.conventions import exceeds_one, fmt_value, luminance
+from ..core.conventions import decimals_for, fmt_value, luminance
 from ..core.hemimap import geometry
 from ..core.peak import Peak
 from ..core.scene import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
@@ -90,12 +90,24 @@ def peak_text(peak: Peak, cosine: bool) -> str:
     return f"{what} peak {fmt_value(peak.value)} {_unit(cosine)}{ch}"
 
 
-def albedo_text(a) -> str:
+def albedo_text(a, error=None) -> str:
+    """3 significant digits, or fewer with ``±error`` when the error estimate reaches the third
+    (the digits shown follow the error)."""
     if a is None:
         return "…"
-    if isinstance(a, tuple):
-        return "(" + ",".join(fmt_value(x) for x in a) + ")"
-    return fmt_value(a)
+    vals = a if isinstance(a, tuple) else (a,)
+    top = max(abs(float(x)) for x in vals)
+    err = None if error is None else float(np.max(np.asarray(error, dtype=float)))
+    # the third significant digit's unit; ≥ 1e-300 so that log10 of 0 is never taken
+    unit = 10.0 ** (np.floor(np.log10(max(top, 1e-300))) - 2)
+    if err is None or err < 0.5 * unit:
+        text = [fmt_value(x) for x in vals]
+        tail = ""
+    else:
+        d = decimals_for(err)
+        text = [f"{float(x):.{d}f}" for x in vals]
+        tail = f"±{err:.0e}"
+    return ("(" + ",".join(text) + ")" if isinstance(a, tuple) else text[0]) + tail
 
 
 # ----------------------------------------------------------------------------------- map
@@ -265,7 +277,8 @@ def solid_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
 # ---------------------------------------------------------------------------- albedo curve
 def albedo_pane(res: FrameResult, w: int, h: int, look: Look) -> RenderableType:
     """a(θi) over 0–90° per side (channels for one RGB model, luminance in compare mode), θi
-    marked, the line a = 1 drawn; flagged when a curve exceeds 1 (+ the energy tolerance)."""
+    marked, the line a = 1 drawn; flagged when a curve exceeds 1 by more than its error estimate
+    (:func:`tuibrdf.core.quadrature.exceeds_one`)."""
     if any(s.curve is None for s in res.sides):
         return Text("computing a(θi) over 0–90° …", justify="center")
     t = res.request.theta_i
@@ -276,12 +289,13 @@ def albedo_pane(res: FrameResult, w: int, h: int, look: Look) -> RenderableType:
         curves = [(_label(res, k), luminance(s.curve) if s.curve.ndim == 2 else s.curve)
                   for k, s in enumerate(res.sides)]
     top = max(float(np.max(s.curve)) for s in res.sides)
-    over = any(exceeds_one(s.curve) for s in res.sides)
+    over = any(s.curve_exceeds_one() for s in res.sides)
     flag = f"a>1 (max {fmt_value(top)}): not energy-conserving" if over else ""
     text = albedo_plot(CURVE_THETAS, curves, w, h - 1, theta_i_deg=t, color=look.color)
     if len(res.sides) == 1:
-        parts = [(res.sides[0].material.name, 2),
-                 (f"a(θi={t:g}°) = {albedo_text(res.sides[0].albedo)}", 0), (flag, 1)]
+        s0 = res.sides[0]
+        parts = [(s0.material.name, 2),
+                 (f"a(θi={t:g}°) = {albedo_text(s0.albedo, s0.albedo_error)}", 0), (flag, 1)]
     else:
         parts = [("directional albedo a(θi) = ∫ f cos θr dω", 0), ("(line: a = 1)", 2),
                  (flag, 1)]
@@ -309,13 +323,14 @@ def pane(view: str, res: FrameResult, k: int, w: int, h: int, look: Look) -> Ren
 
 def stats_text(res: FrameResult, view: str, look: Look) -> Text:
     """``a(θi)=0.835  peak 0.703 (Y) at θ=90° φ=0°`` per side (``A: a=… B: a=…`` in compare
-    mode), the albedo flagged in red above 1 + the energy tolerance."""
+    mode), the albedo flagged in red when above 1 by more than its error estimate."""
     compare = len(res.sides) > 1
     line = Text()
     for k, side in enumerate(res.sides):
         tag = f"  {SIDE_LABELS[k]}:" if compare else " "
-        line.append(f"{tag} {'a' if compare else 'a(θi)'}={albedo_text(side.albedo)}")
-        if side.albedo is not None and exceeds_one(side.albedo):
+        a = albedo_text(side.albedo, side.albedo_error)
+        line.append(f"{tag} {'a' if compare else 'a(θi)'}={a}")
+        if side.albedo_exceeds_one():
             line.append(" >1 NOT energy-conserving", style="bold red")
         pk = shown_peak(side, view, look)
         what = "f·cos peak" if res.request.cosine else "peak"
