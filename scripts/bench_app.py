@@ -19,7 +19,10 @@ timestamps the bytes the app writes back:
 * **startup**: spawn → the first frame containing the map's colour bar unit (``sr⁻¹``); and
   ``tuibrdf --help``.
 
-Usage: ``python scripts/bench_app.py [--sizes 80x24,160x48,240x70] [--reps 20]``.
+* **views** (``--views``): key → frame and key → all panes on each of issue 13's views (lit
+  sphere, lit plane, θh × θd slice, f(θh), f(θd)): a parameter key and the view's own key.
+
+Usage: ``python scripts/bench_app.py [--sizes 80x24,160x48,240x70] [--reps 20] [--views]``.
 Prints a Markdown table.  Numbers depend on the machine: read them as "about".
 """
 
@@ -45,7 +48,10 @@ FRAME_MIN = 3000
 IDLE_S = 0.25
 SETTLE_S = 0.15
 KEYS = {"right": b"\x1b[C", "left": b"\x1b[D", "plus": b"+", "minus": b"-", "m": b"m",
-        "q": b"q"}
+        "q": b"q", "v": b"v", "d": b"d", "D": b"D", "x": b"x", "X": b"X", "y": b"y", "Y": b"Y"}
+#: issue 13's views: how many ``v`` from the map reach each, and the view's own key pair
+VIEW_KEYS = {"sphere": (3, ("right", "left")), "plane": (4, ("right", "left")),
+             "slice": (5, ("y", "Y")), "theta-h": (6, ("d", "D")), "theta-d": (7, ("d", "D"))}
 
 
 class Term:
@@ -254,6 +260,49 @@ def catch_up(w: int, h: int, color: str, rate: float = 1e6, hold_s: float = 2.0)
         term.close()
 
 
+def view_latency(w: int, h: int, color: str, reps: int, view: str) -> dict:
+    """Key → frame and key → all panes on one of issue 13's views (phong kd=0.2 ks=0.5 n=20,
+    θi = 30°): a parameter key (+/−, every pane changes) and the view's own key pair."""
+    n_v, own = VIEW_KEYS[view]
+    term = Term(w, h, color, ["phong", "--theta-i", "30"])
+    out: dict = {}
+    try:
+        term.until("sr⁻¹".encode())
+        term.drain()
+        for _ in range(n_v):
+            os.write(term.fd, KEYS["v"])
+            term.drain()
+        for name, seq in (("param", ("plus", "minus")), ("own", own)):
+            times, settled = [], []
+            for i in range(reps):
+                t_key = time.perf_counter()
+                dt, _ = term.key_to_frame(KEYS[seq[i % len(seq)]])
+                times.append(dt)
+                settled.append(term.drain(0.15) - t_key)
+            out[name] = (statistics.median(times), pct(times, 0.95), statistics.median(settled),
+                         pct(settled, 0.95))
+    finally:
+        term.close()
+    return out
+
+
+def views_table(sizes, colors, reps: int) -> None:
+    print("| size | colours | view | param p50/p95 ms | param all panes p50/p95 ms "
+          "| own key | own p50/p95 ms | own all panes p50/p95 ms |")
+    print("|---|---|---|---|---|---|---|---|")
+    for w, h in sizes:
+        for color in colors:
+            for view in VIEW_KEYS:
+                r = view_latency(w, h, color, reps, view)
+                cells = []
+                for k in ("param", "own"):
+                    cells.append(f"{r[k][0] * 1e3:.0f} / {r[k][1] * 1e3:.0f}")
+                    cells.append(f"{r[k][2] * 1e3:.0f} / {r[k][3] * 1e3:.0f}")
+                own = "/".join(VIEW_KEYS[view][1])
+                print(f"| {w}×{h} | {color} | {view} | {cells[0]} | {cells[1]} | {own} | "
+                      f"{cells[2]} | {cells[3]} |", flush=True)
+
+
 def help_time() -> float:
     ts = []
     for _ in range(5):
@@ -270,9 +319,14 @@ def main() -> int:
     ap.add_argument("--reps", type=int, default=20)
     ap.add_argument("--colors", default="truecolor,256")
     ap.add_argument("--no-catch-up", action="store_true", help="skip the held-key test")
+    ap.add_argument("--views", action="store_true",
+                    help="key → frame on each of issue 13's views instead")
     args = ap.parse_args()
     sizes = [tuple(int(v) for v in s.split("x")) for s in args.sizes.split(",")]
     colors = args.colors.split(",")
+    if args.views:
+        views_table(sizes, colors, args.reps)
+        return 0
     print("| size | colours | startup s | main view p50/p95 ms: param | θi | model "
           "| all panes p50/p95 ms: param | θi | model | bytes per 1° θi / changed cells' "
           "minimum | catch-up s |")

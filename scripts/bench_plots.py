@@ -1,16 +1,15 @@
-"""Benchmark the polar cross-section pane: plotext (``tuibrdf.render.polar``) against the braille
-canvas drawn straight from numpy (``tuibrdf.render.polar_braille``), for the same picture.
+"""Benchmark the polar cross-section pane: the braille canvas drawn straight from the frame's
+section arrays (``tuibrdf.render.polar_braille``; the plotext pane it replaced is gone, its
+numbers stay in docs/render.md).
 
     python scripts/bench_plots.py [--repeat N] [--size WxH] [--stat median|min]
 
 Timings per model, the median (or, with ``--stat min``, the fastest: the cost without the other
 jobs of a shared machine) of ``--repeat`` runs after one warm-up:
 
-- *plot*: the picture from ready curves, what a pane pays per frame once the BRDF is
-  evaluated: ``polar.polar_plot`` → ANSI text, then (a separate column) that text parsed back
-  into Rich segments (``Text.from_ansi``), against ``polar_canvas`` → rows of segments;
-- *view*: the whole ``section_view`` (evaluation of the curves and the common scale included),
-  printed to an ANSI string.
+- *plot*: the picture from the frame's curves: ``polar_canvas`` → rows of segments;
+- *pane*: ``panes.section_pane`` (title included) printed to an ANSI string, for the plane of
+  incidence and for the section through the peak (the frame computed once, cached).
 
 Prints a Markdown table (docs/render.md quotes it).
 """
@@ -22,10 +21,10 @@ import statistics
 import time
 
 from rich.console import Console
-from rich.text import Text
 
-from tuibrdf.core.models import MODELS
-from tuibrdf.render import polar, polar_braille
+from tuibrdf.core import scene
+from tuibrdf.core.material import Material
+from tuibrdf.render import panes, polar, polar_braille
 
 CASES = [
     ("cook-torrance", {"kd": 0.0, "f0": 0.04, "m": 0.07}, 60.0),  # the seed's example
@@ -66,34 +65,29 @@ def main() -> None:
     stat = STAT[args.stat]
     w, h = (int(v) for v in args.size.split("x"))
     print(f"\n## Polar section pane at {w}×{h}, truecolor ({args.stat} of {args.repeat}, ms)\n")
-    print("| model | plotext plot | plotext text → segments | braille plot (segments) "
-          "| plotext view | braille view |")
-    print("|---|---|---|---|---|---|")
+    print("| model | braille plot (segments) | incidence pane | peak-section pane |")
+    print("|---|---|---|---|")
     for name, params, ti in CASES:
         row = bench_case(name, params, ti, w, h, args.repeat)
         print(f"| {name} θi={ti:g} | " + " | ".join(f"{x:.2f}" for x in row) + " |")
 
 
 def bench_case(name: str, params: dict, ti: float, w: int, h: int, repeat: int) -> list[float]:
-    m = MODELS[name]
-    v = m.resolve(params)
-    curves = polar.section_curves(m, v, ti, "incidence")
-    vmax = polar.sections_max(m, v, ti)
-
-    def p_plot():
-        return polar.polar_plot(curves, w, h - 1, theta_i_deg=ti, vmax=vmax)
+    res = scene.compute_frame(scene.FrameRequest((Material(name, params),), ti), slow=False)
+    side = res.sides[0]
+    curves = [(lab, scene.SECTION_THETAS, v)
+              for lab, v in polar.channel_curves(name, side.sections["incidence"])]
+    vmax = side.section_max
+    look = panes.Look()
 
     def b_plot():
         canvas, _ = polar_braille.polar_canvas(curves, w, h - 1, theta_i_deg=ti, vmax=vmax)
         return canvas.rows()
 
-    text, _ = p_plot()
     return [
-        ms(p_plot, repeat),
-        ms(lambda: Text.from_ansi(text).divide([]), repeat),
         ms(b_plot, repeat),
-        ms(lambda: ansi(polar.section_view("incidence", m, v, ti, w, h), w), repeat),
-        ms(lambda: ansi(polar_braille.section_view("incidence", m, v, ti, w, h), w), repeat),
+        ms(lambda: ansi(panes.section_pane(res, "incidence", w, h, look), w), repeat),
+        ms(lambda: ansi(panes.section_pane(res, "perpendicular", w, h, look), w), repeat),
     ]
 
 

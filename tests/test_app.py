@@ -8,6 +8,7 @@ import pytest
 
 from tuibrdf.app.app import BrdfApp
 from tuibrdf.app.state import Side, ViewerState
+from tuibrdf.app.text import visible_panes
 from tuibrdf.core.models import MODELS
 
 
@@ -199,9 +200,21 @@ async def test_malformed_preset_is_reported(config_home):
 async def test_every_view_and_toggle_renders_without_error():
     app = make()
     async with app.run_test(size=(100, 30)) as pilot:
-        for key in ("v", "v", "v", "l", "k", "o", "ctrl+left", "c", "v", "v", "v"):
+        from tuibrdf.app.state import MAIN_VIEWS
+
+        n = len(MAIN_VIEWS)
+        keys = ("v", "v", "v", "l", "k", "o", "ctrl+left", *["v"] * (n - 3), "c",
+                *["v"] * n)
+        seen = set()
+        for key in keys:
             await pilot.press(key)
             await pilot.pause()
+            seen.add((app.state.view, app.state.compare))
+            for pane in visible_panes(app.state):  # every pane drew a picture, no message
+                text = "".join(s.text for s in app.query_one(f"#{pane}")._strips)
+                assert "cannot" not in text and "too small" not in text, (pane, text[:80])
+        assert {v for v, _ in seen} == set(MAIN_VIEWS)
+        assert {v for v, c in seen if c} == set(MAIN_VIEWS)
         assert app.state.view == "map" and app.state.log and app.state.cosine
         assert app.frames > 0
 
@@ -361,7 +374,7 @@ async def test_albedo_curve_is_computed_off_the_loop_then_drawn(monkeypatch):
         assert "computing" in shown()
         release.set()
         m = Material("cook-torrance", {"m": 0.05, "kd": 0.1})
-        assert await wait_for(pilot, lambda: scene._CURVES.peek(m) is not None, 500)
+        assert await wait_for(pilot, lambda: scene._CURVES.peek((m, 180.0)) is not None, 500)
         drawn = lambda: "a(θi=30°) = " in shown() and "computing" not in shown()  # noqa: E731
         assert await wait_for(pilot, drawn, 500)
         await pilot.press("right")  # keys still work

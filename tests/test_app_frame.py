@@ -112,7 +112,7 @@ async def test_each_visible_pane_is_evaluated_once_per_frame(monkeypatch):
             return _m.kernel(wi, wo, **kw)
 
         monkeypatch.setitem(MODELS, name, dataclasses.replace(m, kernel=kernel))
-    n_sections = 2 * len(scene.SECTION_THETAS)
+    n_sections = 3 * len(scene.SECTION_THETAS)  # both planes + the section through the peak
     app = BrdfApp(ViewerState(sides=[Side.of("phong")]), sync=True)
     async with app.run_test(size=(120, 36)) as pilot:
         for mode in ("single", "compare"):
@@ -234,6 +234,44 @@ async def test_key_mash_leaves_a_live_app_and_a_valid_state():
         want = app.frame_request()
         assert await wait_for(pilot, lambda: app.frame is not None and
                               app.frame.request == want, 30)
+
+
+async def test_the_lit_plane_is_evaluated_once_per_frame_and_exposure_evaluates_nothing(
+        monkeypatch):
+    # the new views draw from the frame too: one θi step on the lit plane in compare mode
+    # evaluates each side's plane image once (its pixel count) and the sections once; the
+    # exposure and gamma keys change only the drawing (no kernel call)
+    scene.clear_caches()
+    calls = {}
+    for name in ("phong", "cook-torrance"):
+        m = MODELS[name]
+        calls[name] = []
+
+        def kernel(wi, wo, _m=m, _c=calls[name], **kw):
+            _c.append(tuple(np.shape(wo)[:-1]))  # the plane's call: an (H, W) image
+            return _m.kernel(wi, wo, **kw)
+
+        monkeypatch.setitem(MODELS, name, dataclasses.replace(m, kernel=kernel))
+    n_sections = (3 * len(scene.SECTION_THETAS),)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), sync=True)
+    async with app.run_test(size=(120, 36)) as pilot:
+        await pilot.press("p", "p", "v", "v", "v", "v")  # the lit plane, side by side
+        await pilot.pause()
+        assert app.frame.request.extra == "plane"
+        for c in calls.values():
+            c.clear()
+        await pilot.press("right")
+        await pilot.pause()
+        px_w, px_h = app.frame.request.extra_px
+        for name in ("phong", "cook-torrance"):
+            assert calls[name].count((px_h, px_w)) == 1, (name, calls[name])
+            assert calls[name].count(n_sections) == 1, name
+        for c in calls.values():
+            c.clear()
+        await pilot.press("x", "g", "X")
+        await pilot.pause()
+        assert app.state.exposure == 1.0 and app.state.gamma == pytest.approx(2.4)
+        assert all(c == [] for c in calls.values())
 
 
 def test_changed_span_is_what_differs_between_two_strips():

@@ -99,3 +99,20 @@ def test_material_picker_80x24(snap_compare):
         await pilot.press("enter", *"gold")
 
     assert snap_compare(app, terminal_size=(80, 24), run_before=pick)
+
+
+def test_specular_compare_on_the_lit_plane(snap_compare):
+    # issue 13's done-when: the seed's specular pair (p twice) on the lit plane at a grazing
+    # θi = 75°, one exposure for both (X X: 1/4): Phong's highlight is round, Cook-Torrance's
+    # stretches toward the horizon
+    presses = ["p", "p", "v", "v", "v", "v", "X", "X"]
+    assert snap_compare(app_for(theta=75.0), terminal_size=(120, 36), press=presses)
+
+
+@pytest.mark.parametrize("views", [1, 2, 3, 4, 5],
+                         ids=["sphere", "plane", "slice", "theta-h", "theta-d"])
+def test_new_views(snap_compare, views):
+    # v from the albedo view on: lit sphere, lit plane, θh × θd slice, f(θh), f(θd)
+    presses = ["v"] * (2 + views)
+    assert snap_compare(app_for("cook-torrance", theta=45.0), terminal_size=(80, 24),
+                        press=presses)

@@ -279,3 +279,38 @@ def test_a_model_file_is_titled_by_its_name_reread_when_edited_and_cycled_back_t
             break
         s.cycle_model(1)
     assert s.side.model == str(path)
+
+
+def test_issue13_view_settings_stay_in_range():
+    from tuibrdf.app.state import EXPOSURE_MAX, MAIN_VIEWS
+
+    s = ViewerState()
+    assert s.step_fixed(5) is not None  # map view: no fixed angle, refused with a reason
+    s.view = "theta-h"
+    for _ in range(30):
+        s.step_fixed(5)
+    assert s.theta_d == 90.0 and s.step_fixed(5) is not None  # clamped, then refused
+    s.view = "theta-d"
+    assert s.step_fixed(-5) is not None and s.theta_h == 0.0
+    s.view = "slice"
+    s.step_fixed(5)
+    assert s.phi_d == 95.0
+    for _ in range(20):
+        s.scale_exposure(2.0)
+    assert s.exposure == EXPOSURE_MAX and s.scale_exposure(2.0) is not None
+    s.step_gamma(10)
+    assert s.gamma <= 3.0
+    for _ in range(13):
+        s.step_section(15)  # 90 + 195 = 285 → −75 in (−180, 180]
+    assert s.section_azimuth == -75.0
+    for _ in range(24):
+        s.step_phi_i(15)
+    assert s.phi_i == 180.0  # a full turn
+    s.view = "slice"
+    assert s.move_probe(1, 0) is not None and s.probe is None  # the probe reads the map
+    s.view = "map"
+    s.move_probe(1, 0)
+    for _ in range(100):
+        s.move_probe(1, 0)
+    assert s.probe[0] == pytest.approx(2**0.5) and s.probe[1] == 0.0  # held on the horizon
+    assert len(MAIN_VIEWS) == 8

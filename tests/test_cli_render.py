@@ -171,10 +171,11 @@ def test_render_all_stacks_the_four_views(capsys):
     rc, out, _ = run(capsys, "render", "cook-torrance", "-p", "kd=0", "-p", "f0=0.04", "-p",
                      "m=0.07", "--theta-i", "60", "--view", "all", "--color", "none")
     assert rc == 0
-    titles = [ln for ln in out.splitlines() if ln.startswith("cook-torrance")]
+    lines = out.splitlines()
+    titles = [lines[k] for k in range(0, len(lines), 25)]  # 24 rows a view, a blank line
     assert len(titles) == 4
     assert "peak 6.14" in titles[0] and "incidence" in titles[1]
-    assert "perpendicular" in titles[2] and "a(θi=60°)" in titles[3]
+    assert "through peak" in titles[2] and "a(θi=60°)" in titles[3]
     assert len(out.splitlines()) == 4 * 24 + 3  # four 80×24 views, blank lines between
 
 

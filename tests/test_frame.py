@@ -137,7 +137,7 @@ def test_each_pane_is_evaluated_once_and_a_repeated_frame_is_free(monkeypatch):
     req = scene.FrameRequest((mat,), 33.0, map_px=px, solid=True)
     scene.compute_frame(req, slow=False)
     n_map = int(geometry(*px).inside.sum())
-    n_sections = 2 * len(scene.SECTION_THETAS)  # both planes in one call
+    n_sections = 3 * len(scene.SECTION_THETAS)  # both planes and the peak section: one call
     pts, _, tri = scene.solid_samples()
     n_solid = len(pts) + 3 * len(tri)
     assert calls.count(n_map) == 1 and calls.count(n_sections) == 1

@@ -15,7 +15,18 @@ from rich.console import Console
 
 from tuibrdf.core.models import get_model
 from tuibrdf.render.braille import BrailleCanvas, charset_for, legend_sample
-from tuibrdf.render.polar_braille import fwhm_text, peak_section_view, section_view
+from tuibrdf.render.polar_braille import fwhm_text
+from tuibrdf.render.views import render_view
+
+
+def section_view(plane, m, values, theta_i, w, h, **kw):
+    """The sections pane through the one frame computation (``tuibrdf render``'s path)."""
+    return render_view(plane, m, values, theta_i, w, h, **kw)
+
+
+def peak_section_view(m, values, theta_i, w, h, *, azimuth_deg=90.0, **kw):
+    return render_view("perpendicular", m, values, theta_i, w, h,
+                       section_azimuth_deg=azimuth_deg, **kw)
 
 
 def lit_dots(canvas: BrailleCanvas) -> set[tuple[int, int]]:
@@ -164,11 +175,11 @@ def test_peak_section_view_title_and_width():
     values = m.resolve(SEED_CT)
     lines = render(peak_section_view(m, values, 60.0, 100, 24, color="none"), 100)
     # issue 13: the width across the lobe at 60° is 6.6°; the peak sits at θ = 62.0°
-    assert "perpendicular through peak θ=62.0°" in lines[0] and "FWHM 6.6°" in lines[0]
+    assert "perp. through peak θ=62° φ=0°" in lines[0] and "FWHM 6.6°" in lines[0]
     assert "max 6.14" in lines[0]
     lines = render(peak_section_view(m, values, 60.0, 100, 24, azimuth_deg=0.0, color="none"),
                    100)
-    assert "section ψ=0° through peak" in lines[0] and "FWHM 13.8°" in lines[0]
+    assert "ψ=0° through peak" in lines[0] and "FWHM 13.8°" in lines[0]
 
 
 def test_fwhm_text_of_a_triangle():

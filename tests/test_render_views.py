@@ -22,7 +22,13 @@ def to_text(renderable, system=None, width=200) -> str:
 
 
 def test_views_and_cmaps_tuples():
-    assert VIEWS == ("map", "incidence", "perpendicular", "solid", "albedo")
+    assert VIEWS == ("map", "incidence", "perpendicular", "solid", "albedo", "sphere", "plane",
+                     "slice", "theta-h", "theta-d")
+    # the renderer and the frame computation know the same extra views
+    from tuibrdf.core.scene import EXTRA_VIEWS as CORE_EXTRA
+    from tuibrdf.render import EXTRA_VIEWS
+
+    assert EXTRA_VIEWS == CORE_EXTRA
     assert "grey" in CMAPS and "viridis" in CMAPS and "inferno" in CMAPS
 
 

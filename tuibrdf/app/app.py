@@ -18,6 +18,7 @@ from __future__ import annotations
 import threading
 from functools import partial
 
+import numpy as np
 from rich.text import Text
 from textual import work
 from textual.app import App, ComposeResult, SystemCommand
@@ -27,10 +28,13 @@ from textual.widgets import Footer, Static
 from textual.worker import Worker, get_current_worker
 
 from ..core import scene
+from ..core.hemimap import dir_to_uv, geometry
 from ..core.params import _fmt
-from ..core.scene import FrameRequest, FrameResult
-from ..render import MIN_HEIGHT, MIN_WIDTH, panes
-from ..render.views import map_pixels
+from ..core.scene import FrameRequest, FrameResult, section_directions
+from ..core.sections import great_circle
+from ..render import EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, panes
+from ..render.polar_braille import angle_at
+from ..render.views import extra_pixels, map_pixels
 from . import keys
 from .layout import CSS, arrange
 from .loading import MeasuredData
@@ -98,7 +102,8 @@ class BrdfApp(MeasuredData, App):
         with Vertical(id="root"):
             with Horizontal(id="body"):
                 with Container(id="main"):
-                    for pane in ("map-a", "map-b", "diff", "solid-a", "solid-b", "albedo"):
+                    for pane in ("map-a", "map-b", "diff", "solid-a", "solid-b", "albedo",
+                                 "extra-a", "extra-b"):
                         yield Picture(pane, id=pane)
                     yield Static(id="legend")
                 with Vertical(id="side"):
@@ -134,7 +139,7 @@ class BrdfApp(MeasuredData, App):
     def look(self) -> panes.Look:
         s = self.state
         return panes.Look(self.color_system(), s.cmap, s.log, LEVELS, "auto", s.azimuth,
-                          s.elevation, s.channel)
+                          s.elevation, s.exposure, s.gamma, channel=s.channel)
 
     def color_system(self) -> str:
         if self._color:
@@ -189,8 +194,21 @@ class BrdfApp(MeasuredData, App):
                      ("map", "diff")]
             if all(w >= MIN_WIDTH and h >= MIN_HEIGHT for w, h in sizes):
                 map_px = map_pixels(min(w for w, _ in sizes), min(h for _, h in sizes))
+        extra = s.view if s.view in EXTRA_VIEWS else None
+        extra_px = None
+        if extra is not None:
+            sizes = [self._pane_size(p) for p in visible_panes(self.state) if
+                     PANES[p][0] == "extra"]
+            w, h = min(w for w, _ in sizes), min(h for _, h in sizes)
+            if w >= MIN_WIDTH and h >= MIN_HEIGHT:
+                extra_px = extra_pixels(extra, w, h)
+            elif extra in ("sphere", "plane", "slice"):
+                extra = None  # too small: the pane says so
         return FrameRequest(tuple(x.material for x in s.sides), s.theta_i, cosine=s.cosine,
-                            map_px=map_px, solid=s.view == "solid", curve=s.view == "albedo")
+                            map_px=map_px, solid=s.view == "solid", curve=s.view == "albedo",
+                            section_azimuth=s.section_azimuth, extra=extra, extra_px=extra_px,
+                            theta_d=s.theta_d, theta_h=s.theta_h, phi_d=s.phi_d,
+                            sqrt_h=s.sqrt_h, probe=s.probe, phi_i=s.phi_i)
 
     def refresh_frame(self) -> None:
         """Show the current state's frame: at once when computed before, else when the worker
@@ -286,16 +304,20 @@ class BrdfApp(MeasuredData, App):
         w, h = pic.size.width, pic.size.height
         view, k = PANES[pane]
         look, req = self.look, res.request
-        if w < MIN_WIDTH or h < MIN_HEIGHT or (view in ("map", "diff") and not req.map_px):
+        if w < MIN_WIDTH or h < MIN_HEIGHT or (view in ("map", "diff") and not req.map_px) or (
+                view == "extra" and req.extra is None):
             pic.show(Text(f"{w}×{h}: too small for this pane"), None)
             return
         if view in ("map", "diff"):  # every map of a compare grid on the same pixel grid
             w, h = req.map_px[0], req.map_px[1] // 2 + 3
-        what = (req.materials, req.theta_i, req.cosine)
-        key = {"map": (what, req.map_px, look), "diff": (what, req.map_px, look.color),
-               "solid": (what, look), "albedo": (req.materials, req.theta_i, look.color,
-                                                 res.complete, look.channel)}.get(view)
-        key = (pane, w, h, key or (what, look.color, look.log, look.channel))
+        what = (req.materials, req.theta_i, req.cosine, req.phi_i)
+        key = {"map": (what, req.map_px, req.probe, look),
+               "diff": (what, req.map_px, look.color),
+               "solid": (what, look), "albedo": (req.materials, req.theta_i, req.phi_i,
+                                                 look.color, res.complete, look.channel),
+               "extra": (req.materials, req.extra_key, look)}.get(view)
+        key = (pane, w, h, key or (what, req.section_azimuth, look.color, look.log,
+                                   look.channel))
         if pic.shown_for == key:
             return
         try:
@@ -306,6 +328,33 @@ class BrdfApp(MeasuredData, App):
     def _status(self) -> None:
         self.query_one("#status", StatusLine).show_text(
             status_text(self.state, self.frame, self.look, self._loading, self.message))
+
+    def picture_clicked(self, pane: str, x: int, y: int) -> None:
+        """A click at cell ``(x, y)`` of ``pane``: on a map or a section the probe goes to
+        the direction drawn there (the status line then reads it)."""
+        res = self.frame
+        if res is None or pane not in PANES:
+            return
+        view, _ = PANES[pane]
+        uv = None
+        if view == "map" and res.request.map_px is not None and y >= 1:
+            g = geometry(*res.request.map_px)
+            uv = g.to_uv(np.array(x + 0.5), np.array(2.0 * (y - 1) + 1.0))  # cell centre
+        elif view in ("incidence", "perpendicular") and y >= 1:
+            pic = self.query_one(f"#{pane}", Picture)
+            t = angle_at(x, y - 1, pic.size.width, pic.size.height - 1)
+            if t is not None:
+                if view == "incidence":
+                    w = section_directions("incidence", np.array([t]), res.request.phi_i)[0]
+                else:
+                    w, above = great_circle(scene.peak_center(res.sides[0].peak),
+                                            np.array([t]), res.request.section_azimuth)
+                    w = w[0] if above[0] else None
+                if w is not None:
+                    uv = dir_to_uv(w)
+        if uv is None:
+            return
+        self._changed(self.state.set_probe(float(uv[0]), float(uv[1])))
 
     # -- actions -----------------------------------------------------------------------------
     def action_state(self, method: str, args: tuple = ()) -> None:

@@ -23,12 +23,13 @@ Screen { layout: vertical; }
 #body { height: 1fr; }
 #main { width: 55%; height: 1fr; }
 #main.compare-map { layout: grid; grid-size: 2 2; }
-#main.compare-solid { layout: horizontal; }
+#main.compare-solid, #main.compare-extra { layout: horizontal; }
 #side { width: 1fr; height: 1fr; }
 #side Picture { height: 1fr; }
 Picture { border-title-color: $text-muted; }
 #main Picture { border: none; }
-#main.compare-map Picture, #main.compare-solid Picture { border: round $primary-darken-3; }
+#main.compare-map Picture, #main.compare-solid Picture, #main.compare-extra Picture {
+    border: round $primary-darken-3; }
 #legend { padding: 0 1; }
 #toosmall { width: 1fr; height: 1fr; content-align: center middle; display: none; }
 Screen.small #toosmall { display: block; }
@@ -54,6 +55,7 @@ def arrange(app) -> None:
     main = app.query_one("#main")
     main.set_class(s.compare and s.view == "map", "compare-map")
     main.set_class(s.compare and s.view == "solid", "compare-solid")
+    main.set_class(s.compare and s.view not in ("map", "solid", "albedo"), "compare-extra")
     for pic in app.query(Picture):
         pic.display = pic.pane in visible and (pic.pane != "perpendicular"
                                                or h >= BOTH_SECTIONS_H)
@@ -68,7 +70,7 @@ def arrange(app) -> None:
     for panel in app.query(ParamPanel):
         panel.styles.min_height = steady
     if s.compare:
-        for pane in ("map-a", "map-b", "solid-a", "solid-b"):
+        for pane in ("map-a", "map-b", "solid-a", "solid-b", "extra-a", "extra-b"):
             k = PANES[pane][1]
             app.query_one(f"#{pane}").border_title = f"{'AB'[k]}: {s.sides[k].material.label}"
         app.query_one("#diff").border_title = "A − B"

@@ -18,6 +18,15 @@ method                what it does
 ``switch_side``       which side the parameter keys act on (compare mode)
 ``apply_preset``      one of :data:`COMPARE_PRESETS` (the seed's comparisons)
 ``rotate``            azimuth / elevation of the 3D solid (solid view only)
+``step_phi_i``        the light's azimuth φi (wraps; 180° by default)
+``step_section``      the section azimuth ψ of the section through the peak
+``scale_exposure``    the lit views' exposure × or ÷ 2
+``step_gamma``        the lit views' display gamma
+``step_fixed``        the half/difference view's fixed angle (θd, θh or φd)
+``step_phi_d``        φd of the half/difference views
+``toggle_sqrt_h``     √θh or linear θh axis of the slice
+``move_probe``        the probe on the map (Lambert coordinates; shown from the first move)
+``toggle_probe``      probe on / off
 ====================  =====================================================
 """
 
@@ -35,7 +44,14 @@ CHANNEL_NAMES = {"rgb": "R, G and B", "lum": "luminance (Rec.709)", "R": "red on
                  "G": "green only", "B": "blue only"}
 
 #: the main views ``v`` cycles through (the cross-sections are always shown beside them)
-MAIN_VIEWS = ("map", "solid", "albedo")
+MAIN_VIEWS = ("map", "solid", "albedo", "sphere", "plane", "slice", "theta-h", "theta-d")
+#: the half/difference views and the angle each one's ``d`` key steps
+FIXED_ANGLE = {"theta-h": "theta_d", "theta-d": "theta_h", "slice": "phi_d"}
+EXPOSURE_MIN, EXPOSURE_MAX = 2.0**-12, 2.0**12
+GAMMA_MIN, GAMMA_MAX = 1.0, 3.0
+#: the probe's step on the map, in Lambert units (the disc's radius is √2)
+PROBE_STEP = 0.05
+SQRT2 = 2.0**0.5
 
 THETA_MIN, THETA_MAX = 0.0, 90.0
 ELEVATION_MIN, ELEVATION_MAX = -10.0, 90.0
@@ -179,6 +195,16 @@ class ViewerState:
     channel: str = "rgb"
     #: models read from files (absolute paths) the session has shown: ``m`` cycles back
     files: list[str] = field(default_factory=list)
+    section_azimuth: float = 90.0  # ψ of the section through the peak
+    phi_i: float = 180.0  # the light's azimuth (180°: on the left of the map)
+    exposure: float = 1.0  # lit sphere / plane
+    gamma: float = 2.2
+    theta_d: float = 30.0  # half/difference views: the fixed angles
+    theta_h: float = 0.0
+    phi_d: float = 90.0
+    sqrt_h: bool = True
+    #: the probe's Lambert coordinates on the map (None: hidden)
+    probe: tuple[float, float] | None = None
     #: values last used for each model, so cycling away and back keeps them
     memory: dict[str, dict[str, Value]] = field(default_factory=dict)
 
@@ -382,12 +408,92 @@ class ViewerState:
 
     def rotate(self, d_azimuth: float, d_elevation: float) -> str | None:
         if self.view != "solid":
-            return "a/d/w/x (or ctrl+arrows) rotate the 3D solid (press v for that view)"
+            return ", . e E (or ctrl+arrows) rotate the 3D solid (press v for that view)"
         self.azimuth = (self.azimuth + d_azimuth + 180.0) % 360.0 - 180.0
         el = min(ELEVATION_MAX, max(ELEVATION_MIN, self.elevation + d_elevation))
         if d_elevation and el == self.elevation:
             return f"elevation is already {el:g}° (range {ELEVATION_MIN:g}–{ELEVATION_MAX:g}°)"
         self.elevation = el
+        return None
+
+    def step_phi_i(self, delta: float) -> str | None:
+        """φi by ± degrees, wrapped into [0°, 360°)."""
+        self.phi_i = _round((self.phi_i + delta) % 360.0)
+        return None
+
+    # -- the views of the peak section, the lit and the half/difference views -----------------
+    def step_section(self, delta: float) -> str | None:
+        """ψ of the section through the peak, wrapped into (−180°, 180°]."""
+        a = (self.section_azimuth + delta) % 360.0
+        self.section_azimuth = a - 360.0 if a > 180.0 else a
+        return None
+
+    def scale_exposure(self, factor: float) -> str | None:
+        new = min(EXPOSURE_MAX, max(EXPOSURE_MIN, self.exposure * factor))
+        if new == self.exposure:
+            return f"exposure is already {new:g} (range 2^-12–2^12)"
+        self.exposure = new
+        return None
+
+    def step_gamma(self, delta: float) -> str | None:
+        new = min(GAMMA_MAX, max(GAMMA_MIN, _round(self.gamma + delta)))
+        if new == self.gamma:
+            return f"gamma is already {new:g} (range {GAMMA_MIN:g}–{GAMMA_MAX:g})"
+        self.gamma = new
+        return None
+
+    def step_fixed(self, delta: float) -> str | None:
+        """The fixed angle of the half/difference view shown: θd (f(θh)), θh (f(θd)) or φd
+        (slice); θd, θh in [0°, 90°], φd in [0°, 180°]."""
+        name = FIXED_ANGLE.get(self.view)
+        if name is None:
+            return "d/D step the fixed angle of the slice, θh and θd views (press v)"
+        if name == "phi_d":
+            return self.step_phi_d(delta)
+        old = getattr(self, name)
+        new = min(90.0, max(0.0, _round(old + delta)))
+        if new == old:
+            return f"{'θd' if name == 'theta_d' else 'θh'} is already {new:g}° (range 0–90°)"
+        setattr(self, name, new)
+        return None
+
+    def step_phi_d(self, delta: float) -> str | None:
+        new = min(180.0, max(0.0, _round(self.phi_d + delta)))
+        if new == self.phi_d:
+            return f"φd is already {new:g}° (range 0–180°)"
+        self.phi_d = new
+        return None
+
+    def toggle_sqrt_h(self) -> str | None:
+        self.sqrt_h = not self.sqrt_h
+        return None
+
+    def move_probe(self, du: float, dv: float) -> str | None:
+        """Move the probe by ``(du, dv)`` probe steps on the map, kept inside the disc
+        (r ≤ √2); it appears at the centre (the normal) on the first move."""
+        if self.view != "map":
+            return "the probe reads the map (press v for that view)"
+        if self.probe is None:
+            self.probe = (0.0, 0.0)
+            return None
+        u = self.probe[0] + du * PROBE_STEP
+        v = self.probe[1] + dv * PROBE_STEP
+        r = (u * u + v * v) ** 0.5
+        if r > SQRT2:  # r > √2 > 0: back onto the horizon
+            u, v = u * SQRT2 / r, v * SQRT2 / r
+        self.probe = (_round(u), _round(v))
+        return None
+
+    def set_probe(self, u: float, v: float) -> str | None:
+        """The probe at Lambert point ``(u, v)`` (a click), clamped onto the disc."""
+        r = (u * u + v * v) ** 0.5
+        if not r <= SQRT2 + 1e-9:  # also refuses NaN
+            return "that point is outside the hemisphere"
+        self.probe = (float(u), float(v))
+        return None
+
+    def toggle_probe(self) -> str | None:
+        self.probe = None if self.probe is not None else (0.0, 0.0)
         return None
 
     # -- text ---------------------------------------------------------------------------------

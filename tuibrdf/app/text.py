@@ -13,16 +13,18 @@ from .state import COMPARE_PRESETS, Side, ViewerState
 #: pane → (view, side)
 PANES = {"map-a": ("map", 0), "map-b": ("map", 1), "diff": ("diff", 0), "solid-a": ("solid", 0),
          "solid-b": ("solid", 1), "albedo": ("albedo", 0), "incidence": ("incidence", 0),
-         "perpendicular": ("perpendicular", 0)}
+         "perpendicular": ("perpendicular", 0), "extra-a": ("extra", 0),
+         "extra-b": ("extra", 1)}
 
 
 def visible_panes(s: ViewerState) -> list[str]:
     """The panes of the main view (one per side in compare mode), then the two sections."""
     if s.compare:
         main = {"map": ["map-a", "map-b", "diff"], "solid": ["solid-a", "solid-b"],
-                "albedo": ["albedo"]}[s.view]
+                "albedo": ["albedo"]}.get(s.view, ["extra-a", "extra-b"])
     else:
-        main = {"map": ["map-a"], "solid": ["solid-a"], "albedo": ["albedo"]}[s.view]
+        main = {"map": ["map-a"], "solid": ["solid-a"], "albedo": ["albedo"]}.get(s.view,
+                                                                                 ["extra-a"])
     return main + ["incidence", "perpendicular"]
 
 
@@ -38,25 +40,60 @@ def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
     state's (else "…"), then the view, scale, colour map and the last message."""
     line = Text()
     line.append(f"θi {s.theta_i:g}°", style="bold")
+    if s.phi_i != 180.0:
+        line.append(f" φi {s.phi_i:g}°", style="bold")
     materials = tuple(x.material for x in s.sides)
     files = [f for side in s.sides for f in side_files(side) if f in loading]
     if files:
         line.append(f"  loading {files[0]} {loading[files[0]]:.0%}", style="bold yellow")
     elif frame is not None and (frame.request.materials, frame.request.theta_i,
-                                frame.request.cosine) == (materials, s.theta_i, s.cosine):
+                                frame.request.cosine, frame.request.phi_i) == (
+                                    materials, s.theta_i, s.cosine, s.phi_i):
         line.append_text(panes.stats_text(frame, s.view, look))
+        line.append_text(probe_text(frame))
     else:
         for i in range(len(s.sides)):
             line.append(f"  {'AB'[i]}: a=…" if s.compare else "  a(θi) …")
     second = Text()
     scale = "log (3 decades)" if s.log else "linear"
     second.append(f"{VIEW_TITLES[s.view]} · {scale} · {s.cmap}"
-                  f"{' · f·cos θr' if s.cosine else ''}", style="dim")
+                  f"{' · f·cos θr' if s.cosine else ''}{view_settings(s)}", style="dim")
     if s.compare:
         second.append(f" · keys → {'AB'[s.active]}", style="bold")
     if message:
         second.append(f"  {message}", style="bold yellow")
     return Text("\n").join([line, second])
+
+
+def view_settings(s: ViewerState) -> str:
+    """The settings of the view shown (`` · exp 1 γ 2.2``), and ψ when it is not 90°."""
+    out = ""
+    if s.view in ("sphere", "plane"):
+        out += f" · exp {s.exposure:g} γ {s.gamma:g}"
+    elif s.view == "slice":
+        out += f" · φd {s.phi_d:g}° · {'√θh' if s.sqrt_h else 'linear θh'}"
+    elif s.view == "theta-h":
+        out += f" · θd {s.theta_d:g}° φd {s.phi_d:g}°"
+    elif s.view == "theta-d":
+        out += f" · θh {s.theta_h:g}° φd {s.phi_d:g}°"
+    if s.section_azimuth != 90.0:
+        out += f" · section ψ {s.section_azimuth:g}°"
+    return out
+
+
+def probe_text(frame: FrameResult) -> Text:
+    """``probe θr=40° φr=10°  f=0.31 sr⁻¹  f·cosθr=0.24 sr⁻¹`` per side, from the frame."""
+    t = Text()
+    req = frame.request
+    if req.probe is None or any(side.probe is None for side in frame.sides):
+        return t
+    th, ph = req.probe_angles
+    t.append(f"  probe θr={th:.1f}° φr={ph:.1f}°", style="bold cyan")
+    for k, side in enumerate(frame.sides):
+        f, fc = side.probe
+        tag = f"  {'AB'[k]}:" if len(frame.sides) > 1 else " "
+        t.append(f"{tag} f={panes.albedo_text(f)} f·cosθr={panes.albedo_text(fc)} sr⁻¹")
+    return t
 
 
 def legend_text(s: ViewerState) -> Text:

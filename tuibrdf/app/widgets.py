@@ -77,6 +77,13 @@ class Picture(Widget):
         if request is not None and self.display:
             request()
 
+    def on_click(self, event) -> None:
+        """A click on a map or a section moves the probe there (the app decides)."""
+        offset = event.get_content_offset(self)
+        clicked = getattr(self.app, "picture_clicked", None)
+        if offset is not None and clicked is not None:
+            clicked(self.pane, offset.x, offset.y)
+
     def render_line(self, y: int) -> Strip:
         if y < len(self._strips):
             return self._strips[y]

@@ -15,7 +15,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from .common import add_model_args, add_theta_i, fmt, fmt_params, json_params, resolve
+from .common import add_model_args, add_phi_i, add_theta_i, fmt, fmt_params, json_params, resolve
 
 DEFAULT_THETAS = (0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0)
 
@@ -23,16 +23,17 @@ DEFAULT_THETAS = (0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0)
 def add_args(parser: argparse.ArgumentParser) -> None:
     add_model_args(parser)
     add_theta_i(parser, many=True, default=list(DEFAULT_THETAS))
+    add_phi_i(parser)
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
-def albedos(model, params, thetas):
+def albedos(model, params, thetas, phi_i: float = 180.0):
     """``(a, error)`` for each θi: shapes ``(n,)``, or ``(n, 3)`` for an RGB model."""
     import numpy as np
 
     from ..core.quadrature import albedo_estimate_resolved
 
-    est = [albedo_estimate_resolved(model, params, t) for t in thetas]
+    est = [albedo_estimate_resolved(model, params, t, phi_i) for t in thetas]
     return (np.array([np.asarray(e.value, dtype=float) for e in est]),
             np.array([np.asarray(e.error, dtype=float) for e in est]))
 
@@ -45,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
 
     model, params = resolve(args)
     thetas = [float(t) for t in args.theta_i]
-    a, err = albedos(model, params, thetas)
+    a, err = albedos(model, params, thetas, args.phi_i)
     over = [exceeds_one((row, e)) for row, e in zip(a, err, strict=True)]
     if args.json:
         doc = {

@@ -241,6 +241,13 @@ def parse_value(model: Model, p: Param, raw: str) -> Any:
         raise UsageError(f"{e}{grey}") from None
 
 
+def add_phi_i(parser: argparse.ArgumentParser) -> None:
+    """``--phi-i DEG``: the light's azimuth, in [-360, 360]° (default 180: the seed's)."""
+    parser.add_argument("--phi-i", type=bounded("phi_i", -360.0, 360.0), default=180.0,
+                        metavar="DEG", help="light azimuth φi in degrees (default 180: the "
+                                            "light on the −x side, as in the source document)")
+
+
 def add_theta_i(parser: argparse.ArgumentParser, *, many: bool = False,
                 default: Any = None) -> None:
     """``--theta-i DEG`` (or ``DEG [DEG ...]`` with ``many``), in [0, 90]°."""

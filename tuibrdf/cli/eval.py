@@ -14,6 +14,7 @@ import json
 
 from .common import (
     add_model_args,
+    add_phi_i,
     add_theta_i,
     fmt,
     fmt_params,
@@ -27,6 +28,7 @@ from .common import (
 def add_args(parser: argparse.ArgumentParser) -> None:
     add_model_args(parser)
     add_theta_i(parser)
+    add_phi_i(parser)
     parser.add_argument("--theta-r", type=theta_r_deg, nargs="+", required=True, metavar="DEG",
                         help="viewing polar angle(s) θr in degrees, in [0, 90]")
     parser.add_argument("--phi-r", type=phi_r_deg, nargs="+", required=True, metavar="DEG",
@@ -37,7 +39,8 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
-def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False):
+def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False,
+           phi_i: float = 180.0):
     """f(θi; θr, φr) over the outer product θr × φr: shape ``(len θr, len φr)`` (+ ``(3,)``
     for an RGB model)."""
     import numpy as np  # here, not at the top: --help stays light
@@ -45,7 +48,7 @@ def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False):
     from ..core.evaluate import evaluate_resolved
     from ..core.frame import from_degrees, incident
 
-    wi = incident(theta_i)
+    wi = incident(theta_i, phi_i)
     wo = from_degrees(np.asarray(theta_r, dtype=float)[:, None],
                       np.asarray(phi_r, dtype=float)[None, :])
     f = np.asarray(evaluate_resolved(model, params, np.broadcast_to(wi, wo.shape), wo))
@@ -57,7 +60,7 @@ def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False):
 
 def run(args: argparse.Namespace) -> int:
     model, params = resolve(args)
-    f = values(model, params, args.theta_i, args.theta_r, args.phi_r, args.cosine)
+    f = values(model, params, args.theta_i, args.theta_r, args.phi_r, args.cosine, args.phi_i)
     rows = [(tr, pr, f[a, b]) for a, tr in enumerate(args.theta_r)
             for b, pr in enumerate(args.phi_r)]
     quantity = "f*cos(theta_r)" if args.cosine else "f"
@@ -66,6 +69,7 @@ def run(args: argparse.Namespace) -> int:
             "model": model.name,
             "params": json_params(params),
             "theta_i": args.theta_i,
+            "phi_i": args.phi_i,
             "quantity": quantity,
             "unit": "1/sr",
             "rgb": model.rgb,
@@ -74,7 +78,8 @@ def run(args: argparse.Namespace) -> int:
         }
         print(json.dumps(doc, indent=2, allow_nan=False))
         return 0
-    print(f"# {model.name}  {fmt_params(params)}  theta_i={fmt(args.theta_i)}")
+    print(f"# {model.name}  {fmt_params(params)}  theta_i={fmt(args.theta_i)}"
+          + (f"  phi_i={fmt(args.phi_i)}" if args.phi_i != 180.0 else ""))
     cols = ["f_R", "f_G", "f_B"] if model.rgb else ["f"]
     if args.cosine:
         cols = [c + "*cos" for c in cols]

@@ -27,12 +27,12 @@ import os
 import sys
 from typing import Any
 
-from ..render import CMAPS, MIN_HEIGHT, MIN_WIDTH, VIEWS
-from .common import add_model_args, add_theta_i, bounded, choices_type, int_in, resolve
+from ..render import CMAPS, EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, VIEWS
+from .common import add_model_args, add_phi_i, add_theta_i, bounded, choices_type, int_in, resolve
 
-#: the views of ``tuibrdf.render.extra_views.EXTRA_VIEWS`` beyond :data:`tuibrdf.render.VIEWS`
-#: (drawn by it, as is ``perpendicular``; declared with no import so ``--help`` stays light)
-EXTRA = ("sphere", "plane", "slice", "theta-h", "theta-d")
+#: the lit and half/difference views (in :data:`tuibrdf.render.VIEWS`, declared there with no
+#: import so ``--help`` stays light)
+EXTRA = EXTRA_VIEWS
 #: what ``--view all`` draws
 ALL = ("map", "incidence", "perpendicular", "albedo")
 COLORS = ("auto", "truecolor", "256", "none")
@@ -42,7 +42,8 @@ MAX_SIZE = 1000
 def add_args(parser: argparse.ArgumentParser) -> None:
     add_model_args(parser)
     add_theta_i(parser, default=30.0)
-    views = (*VIEWS, *EXTRA, "all")
+    add_phi_i(parser)
+    views = (*VIEWS, "all")
     parser.add_argument("--view", type=choices_type("view", views), default="map",
                         metavar="|".join(views),
                         help="what to draw (default: map); all = map, both cross-sections "
@@ -112,9 +113,9 @@ def picture(model, values, args: argparse.Namespace, color: str) -> str:
     """The text ``run`` prints (ANSI escapes unless ``color == "none"``)."""
     from rich.console import Console
 
+    from ..render.braille import charset_for
     from ..render.views import render_view
 
-    kw: dict[str, Any] = dict(color=color, cosine=args.cosine)
     views = ALL if args.view == "all" else (args.view,)
     buf = io.StringIO()
     con = Console(file=buf, width=args.width, color_system=None if color == "none" else color,
@@ -122,39 +123,21 @@ def picture(model, values, args: argparse.Namespace, color: str) -> str:
                   markup=False, emoji=False, legacy_windows=False, soft_wrap=False,
                   force_jupyter=False, force_interactive=False, _environ={})
     for i, view in enumerate(views):
-        opts = dict(kw)
-        if view in ("map", "solid"):
-            opts.update(cmap=args.cmap, log=args.log)
-        if view in ("incidence", "perpendicular"):
-            opts.update(log=args.log)
-        if view == "solid":
-            opts.update(azimuth_deg=args.azimuth, elevation_deg=args.elevation)
-        if view == "albedo":
-            opts.pop("cosine")  # a(θi) is the integral of f·cos already
         if i:
             con.print()
-        if view == "perpendicular" or view in EXTRA:
-            con.print(extra_picture(view, model, values, args, color))
-            continue
-        con.print(render_view(view, model, values, args.theta_i, args.width, args.height,
-                              **opts))
+        # every view through the one frame computation (render_view → compute_frame → pane)
+        con.print(render_view(
+            view, model, values, args.theta_i, args.width, args.height, color=color,
+            cmap=args.cmap, log=args.log, cosine=args.cosine and view != "albedo",
+            azimuth_deg=args.azimuth, elevation_deg=args.elevation,
+            section_azimuth_deg=args.section_azimuth, exposure=args.exposure, gamma=args.gamma,
+            theta_d_deg=args.theta_d, theta_h_deg=args.theta_h, phi_d_deg=args.phi_d,
+            sqrt_h=not args.linear_theta_h, phi_i_deg=args.phi_i,
+            charset=charset_for(getattr(sys.stdout, "encoding", None))))
     text = buf.getvalue()
     if color == "none":  # for logs and docs: no trailing spaces
         text = "\n".join(line.rstrip() for line in text.split("\n"))
     return text
-
-
-def extra_picture(view: str, model, values, args: argparse.Namespace, color: str):
-    """The renderable of a view of ``tuibrdf.render.extra_views``."""
-    from ..render.braille import charset_for
-    from ..render.extra_views import render_extra
-
-    return render_extra(view, model, values, args.theta_i, args.width, args.height, color=color,
-                        cmap=args.cmap, log=args.log, cosine=args.cosine,
-                        section_azimuth_deg=args.section_azimuth, exposure=args.exposure,
-                        gamma=args.gamma, theta_d_deg=args.theta_d, theta_h_deg=args.theta_h,
-                        phi_d_deg=args.phi_d, sqrt_h=not args.linear_theta_h,
-                        charset=charset_for(getattr(sys.stdout, "encoding", None)))
 
 
 #: stand-ins in a picture for a stream that cannot encode them (plot grids are dotted with ·)

@@ -24,7 +24,7 @@ import argparse
 import os
 import sys
 
-from .common import UsageError, add_theta_i, choices_type, parse_params, unknown
+from .common import UsageError, add_phi_i, add_theta_i, choices_type, parse_params, unknown
 
 COLORS = ("auto", "truecolor", "256", "none")
 FITS = ("abc", "sgd")
@@ -38,6 +38,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-p", "--param", action="append", default=[], metavar="NAME=VALUE",
                         help="set a parameter (repeatable); RGB as R,G,B; angles in degrees")
     add_theta_i(parser, default=30.0)
+    add_phi_i(parser)
     parser.add_argument("--preset", metavar="NAME",
                         help="load a saved preset, or a seed comparison: diffuse, specular")
     parser.add_argument("--color", type=choices_type("color mode", COLORS), default="auto",
@@ -100,7 +101,8 @@ def build_state(args: argparse.Namespace):
 
     sides = material_sides(args)
     if sides is not None:
-        return ViewerState(sides=sides, theta_i=float(args.theta_i))
+        return ViewerState(sides=sides, theta_i=float(args.theta_i),
+                           phi_i=float(args.phi_i) % 360.0)
     name = args.model or "lambert"
     tokens = list(args.param)
     if name.lower().endswith(".binary"):
@@ -124,7 +126,8 @@ def build_state(args: argparse.Namespace):
     else:
         model = MODELS[name]
     values = model.resolve(parse_params(model, tokens))
-    state = ViewerState(sides=[Side(model.name, values)], theta_i=float(args.theta_i))
+    state = ViewerState(sides=[Side(model.name, values)], theta_i=float(args.theta_i),
+                        phi_i=float(args.phi_i) % 360.0)
     if args.preset:
         seed = {p.name for p in COMPARE_PRESETS}
         try:

@@ -44,14 +44,17 @@ def sincos_deg(t) -> tuple[np.ndarray, np.ndarray]:
     return s, c
 
 
-def incident(theta_i_deg: float) -> np.ndarray:
-    """The viewer's light direction: ``θi`` in degrees at ``φi = 180°``.
+def incident(theta_i_deg: float, phi_i_deg: float = 180.0) -> np.ndarray:
+    """The light direction ``wi`` at ``θi``, ``φi`` in degrees (the viewer's default
+    ``φi = 180°``: the light on the −x side): the one place (θi, φi) becomes ``wi``.
 
     Built from exact components so that ``θi = 90°`` lies exactly on the horizon (cos = 0),
-    which ``np.cos(np.pi / 2) = 6e-17`` would not give.
+    which ``np.cos(np.pi / 2) = 6e-17`` would not give, and φi = 180° gives ``(−sin θi, 0,
+    cos θi)`` exactly.
     """
     s, c = sincos_deg(float(theta_i_deg))
-    return np.array([-float(s), 0.0, float(c)])
+    sp, cp = sincos_deg(float(phi_i_deg))
+    return np.array([float(s) * float(cp), float(s) * float(sp), float(c)])
 
 
 def mirror(w: np.ndarray) -> np.ndarray:

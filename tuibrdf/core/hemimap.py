@@ -184,6 +184,7 @@ def map_values(
     method: str = DEFAULT_METHOD,
     cosine: bool = False,
     level: int | None = None,
+    phi_i_deg: float = 180.0,
 ) -> tuple[np.ndarray, MapInfo]:
     """The BRDF (or ``f·cos θr`` when ``cosine``) over the map's pixels.
 
@@ -193,7 +194,7 @@ def map_values(
     if method not in METHODS:
         raise ValueError(f"map method {method!r}: expected one of {', '.join(METHODS)}")
     g = geometry(px_w, px_h)
-    wi = incident(theta_i_deg)
+    wi = incident(theta_i_deg, phi_i_deg)
     n = g.dirs.shape[0]
     used_level = None
     if method == "exact":

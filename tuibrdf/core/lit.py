@@ -100,11 +100,11 @@ def to_local(w: np.ndarray, n: np.ndarray) -> np.ndarray:
 
 
 def lit_sphere(model: Model, values: dict, theta_i_deg: float, px_w: int,
-               px_h: int) -> tuple[np.ndarray, np.ndarray]:
-    """``(radiance, inside)``: the sphere under the light at ``θi`` (see the module
+               px_h: int, *, phi_i_deg: float = 180.0) -> tuple[np.ndarray, np.ndarray]:
+    """``(radiance, inside)``: the sphere under the light at ``θi`` (and ``φi``; see the module
     docstring); radiance ``(px_h, px_w, 3)``, 0 outside the disc."""
     n, inside = sphere_geometry(px_w, px_h)
-    wi = to_local(incident(theta_i_deg), n)
+    wi = to_local(incident(theta_i_deg, phi_i_deg), n)
     wo = to_local(np.array([0.0, 0.0, 1.0]), n)
     # the model returns 0 where either direction is below the local horizon
     rad = _radiance(model, values, wi, wo)
@@ -136,14 +136,19 @@ def plane_rays(px_w: int, px_h: int, view_deg: float,
 
 
 def lit_plane(model: Model, values: dict, theta_i_deg: float, px_w: int, px_h: int, *,
-              view_deg: float | None = None,
-              fov_deg: float = DEFAULT_FOV_DEG) -> tuple[np.ndarray, np.ndarray]:
+              view_deg: float | None = None, fov_deg: float = DEFAULT_FOV_DEG,
+              phi_i_deg: float = 180.0) -> tuple[np.ndarray, np.ndarray]:
     """``(radiance, hits)``: the plane under the light at ``θi`` seen by the camera of
     :func:`plane_rays` (``view_deg`` defaults to ``θi``: the image centre is the mirror
     direction); radiance ``(px_h, px_w, 3)``, 0 above the horizon."""
     d, hits = plane_rays(px_w, px_h, theta_i_deg if view_deg is None else view_deg, fov_deg)
+    # φi ≠ 180°: the light and the camera turn together about the normal (the picture of an
+    # isotropic surface does not change; an anisotropic one shows its other azimuth)
+    sp, cp = sincos_deg(float(phi_i_deg) - 180.0)
+    d = np.stack([cp * d[..., 0] - sp * d[..., 1], sp * d[..., 0] + cp * d[..., 1], d[..., 2]],
+                 axis=-1)
     wo = np.where(hits[..., None], -d, np.array([0.0, 0.0, 1.0]))  # sky: any valid direction
-    rad = _radiance(model, values, incident(theta_i_deg), wo)
+    rad = _radiance(model, values, incident(theta_i_deg, phi_i_deg), wo)
     return np.where(hits[..., None], rad, 0.0), hits
 
 

@@ -102,13 +102,17 @@ def _angles(w: np.ndarray) -> tuple[float, float]:
 
 
 def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
-               cosine: bool = False, level: int = PEAK_LEVEL) -> tuple[Peak, ...]:
-    """``(Peak,)`` for a scalar model, ``(Y, R, G, B)`` peaks for an RGB one (see module)."""
+               cosine: bool = False, level: int = PEAK_LEVEL,
+               phi_i_deg: float = 180.0) -> tuple[Peak, ...]:
+    """``(Peak,)`` for a scalar model, ``(Y, R, G, B)`` peaks for an RGB one (see module);
+    the light at ``θi``, ``φi`` (:func:`~tuibrdf.core.frame.incident`)."""
     if not 0.0 <= float(theta_i_deg) <= 90.0:  # also refuses NaN
         raise ValueError(f"theta_i = {theta_i_deg!r} is invalid: expected in [0, 90]°")
-    wi = incident(theta_i_deg)
+    wi = incident(theta_i_deg, phi_i_deg)
     s_dir = mirror(wi)
-    cand = np.concatenate([hemisphere(level).vertices, [s_dir, HORIZON_MIRROR, NORMAL]])
+    # the horizon on the mirror side: HORIZON_MIRROR turned with the light's azimuth
+    h_mirror = incident(90.0, float(phi_i_deg) + 180.0)
+    cand = np.concatenate([hemisphere(level).vertices, [s_dir, h_mirror, NORMAL]])
     sc = scores(radiance(model, values, wi, cand, cosine))
     k = sc.shape[1]
     cols = np.arange(k)

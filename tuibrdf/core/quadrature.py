@@ -31,7 +31,7 @@ import numpy as np
 
 from . import polar
 from .evaluate import evaluate_resolved
-from .frame import from_degrees, mirror, sincos_deg
+from .frame import incident, mirror, sincos_deg
 from .mesh import hemisphere, refine_adaptive
 from .microfacet import alpha_from_roughness
 from .models import MODELS, get_model
@@ -169,7 +169,7 @@ def _check_phi(phi_i_deg: float) -> float:
 
 
 def _incident(theta_i_deg: float, phi_i_deg: float) -> np.ndarray:
-    return from_degrees(_check_theta(theta_i_deg), _check_phi(phi_i_deg))
+    return incident(_check_theta(theta_i_deg), _check_phi(phi_i_deg))
 
 
 def _radiance(model: Model, values: Mapping[str, Any], wi: np.ndarray, wo: np.ndarray,

@@ -8,7 +8,15 @@ albedo curve is shown.  Per material the result holds:
 
 ==============  ==================================================================================
 ``peaks``       :func:`tuibrdf.core.peak.find_peaks`: the one peak (``(Y, R, G, B)`` for RGB)
-``sections``    ``f`` along both planes (θr from −90° to 90°, :data:`SECTION_THETAS`): one call
+``sections``    ``f`` along both planes (θr from −90° to 90°, :data:`SECTION_THETAS`) and, under
+                ``"peak"``, along the great circle through ``peaks[0]`` (the overall peak: the
+                luminance's for RGB) at the request's section azimuth (signed angle from the
+                peak, the same 181 samples; 0 below the horizon): one kernel call for all three
+``probe``       ``(f, f·cos θr)`` at the request's probe direction (floats, or 3-tuples for RGB),
+                or None when no probe is shown
+``extra``       the arrays of the request's ``extra`` view, or None (:func:`extra_values`):
+                ``sphere``/``plane`` → ``(radiance, mask)``, ``slice`` → ``(f, valid, θh, θd)``,
+                ``theta-h``/``theta-d`` → ``(x, f, valid)``
 ``map``         the Lambert map's pixels and :class:`~tuibrdf.core.hemimap.MapInfo` (or None)
 ``solid``       ``f`` at the solid's sample directions (:func:`solid_samples`; or None)
 ``albedo``      ``a(θi) = ∫ f cos θr dω`` (float, or 3 floats for RGB), None until computed
@@ -37,7 +45,7 @@ from typing import Any
 
 import numpy as np
 
-from .frame import incident, sincos_deg
+from .frame import from_degrees, incident, sincos_deg
 from .hemimap import MapInfo, map_values
 from .material import Material
 from .peak import Peak, find_peaks, radiance
@@ -49,6 +57,10 @@ from .quadrature import (
 )
 
 PLANES = ("incidence", "perpendicular")
+#: the main views drawn from :func:`extra_values` (beside the map, the solid and the albedo)
+EXTRA_VIEWS = ("sphere", "plane", "slice", "theta-h", "theta-d")
+#: samples of the θh and θd line plots over [0°, 90°]
+LINE_SAMPLES = 361
 #: signed θr of the cross-sections: the right half is φr = 0° (incidence) / 90°
 SECTION_THETAS = np.linspace(-90.0, 90.0, 181)
 SECTION_THETAS.setflags(write=False)
@@ -108,6 +120,20 @@ class FrameRequest:
     map_method: str = "exact"
     solid: bool = False
     curve: bool = False
+    #: ψ of the section through the peak (90°: across the peak's vertical plane)
+    section_azimuth: float = 90.0
+    #: one of :data:`EXTRA_VIEWS` when shown, with its pixel grid (sphere, plane, slice) or
+    #: ``None`` (line plots); and the fixed angles of the half/difference views
+    extra: str | None = None
+    extra_px: tuple[int, int] | None = None
+    theta_d: float = 30.0
+    theta_h: float = 0.0
+    phi_d: float = 90.0
+    sqrt_h: bool = True
+    #: the probe's Lambert coordinates on the map (:mod:`tuibrdf.core.hemimap`), or None
+    probe: tuple[float, float] | None = None
+    #: the light's azimuth (degrees, in [0, 360)); 180° puts it on the −x side
+    phi_i: float = 180.0
 
     def __post_init__(self) -> None:
         if not 1 <= len(self.materials) <= 2:
@@ -116,6 +142,44 @@ class FrameRequest:
         if not 0.0 <= t <= 90.0:  # also refuses NaN
             raise ValueError(f"theta_i = {self.theta_i!r} is invalid: expected in [0, 90]°")
         object.__setattr__(self, "theta_i", t)
+        p = float(self.phi_i)
+        if not np.isfinite(p):
+            raise ValueError(f"phi_i = {self.phi_i!r} is invalid: expected a finite angle in °")
+        object.__setattr__(self, "phi_i", p % 360.0)
+        if self.extra is not None and self.extra not in EXTRA_VIEWS:
+            raise ValueError(f"unknown view {self.extra!r}: expected one of "
+                             f"{', '.join(EXTRA_VIEWS)}")
+        if self.extra in ("sphere", "plane", "slice") and self.extra_px is None:
+            raise ValueError(f"the {self.extra} view needs its pixel grid (extra_px)")
+
+    @property
+    def probe_direction(self) -> np.ndarray:
+        """The unit direction of the probe (:func:`tuibrdf.core.hemimap.uv_to_dir`)."""
+        from .hemimap import uv_to_dir
+
+        return uv_to_dir(np.asarray(self.probe, dtype=float))
+
+    @property
+    def probe_angles(self) -> tuple[float, float]:
+        """``(θr, φr)`` of the probe in degrees (φr in (−180°, 180°])."""
+        from .frame import phi_of, theta_of
+
+        w = self.probe_direction
+        return float(np.degrees(theta_of(w))), float(np.degrees(phi_of(w)))
+
+    @property
+    def extra_key(self) -> tuple:
+        """What the extra view's numbers depend on besides the material."""
+        e = self.extra
+        if e in ("sphere", "plane"):
+            return (e, self.theta_i, self.phi_i, self.extra_px)
+        if e == "slice":
+            return (e, self.extra_px, self.phi_d, self.sqrt_h)
+        if e == "theta-h":
+            return (e, self.theta_d, self.phi_d)
+        if e == "theta-d":
+            return (e, self.theta_h, self.phi_d)
+        return (e,)
 
 
 @dataclass(frozen=True)
@@ -131,6 +195,8 @@ class SideFrame:
     curve: np.ndarray | None = None
     albedo_error: float | tuple[float, ...] | None = None
     curve_error: np.ndarray | None = None
+    extra: tuple | None = None
+    probe: tuple | None = None
 
     def albedo_exceeds_one(self) -> bool:
         """The energy test on the albedo: above 1 by more than its error estimate."""
@@ -157,8 +223,8 @@ class SideFrame:
 
     @property
     def section_max(self) -> float:
-        """The largest value along both cross-sections (every channel)."""
-        return max(float(np.max(v)) for v in self.sections.values())
+        """The largest value along both cross-sections through the normal (every channel)."""
+        return max(float(np.max(self.sections[p])) for p in PLANES)
 
 
 @dataclass(frozen=True)
@@ -176,7 +242,8 @@ class FrameResult:
 # ------------------------------------------------------------------------------ the parts
 _PEAKS, _SECTIONS, _MAPS, _SOLIDS = LRU(64), LRU(64), LRU(8), LRU(16)
 _ALBEDO, _CURVES, _FRAMES = LRU(256), LRU(32), LRU(32)
-CACHES = (_PEAKS, _SECTIONS, _MAPS, _SOLIDS, _ALBEDO, _CURVES, _FRAMES)
+_EXTRA, _PROBES = LRU(16), LRU(64)
+CACHES = (_PEAKS, _SECTIONS, _MAPS, _SOLIDS, _ALBEDO, _CURVES, _FRAMES, _EXTRA, _PROBES)
 
 
 def clear_caches() -> None:
@@ -184,24 +251,81 @@ def clear_caches() -> None:
         c.clear()
 
 
-def section_directions(plane: str, thetas_deg: np.ndarray) -> np.ndarray:
+def section_directions(plane: str, thetas_deg: np.ndarray, phi_i_deg: float = 180.0
+                       ) -> np.ndarray:
     """Unit directions for signed ``θr`` in ``plane`` (exact at ±90°): incidence
-    ``(sin θr, 0, cos θr)``, perpendicular ``(0, sin θr, cos θr)``."""
+    ``(sin θr, 0, cos θr)``, perpendicular ``(0, sin θr, cos θr)`` for the light at
+    φi = 180°; turned by φi − 180° about the normal otherwise (positive θr: the mirror side)."""
     if plane not in PLANES:
         raise ValueError(f"unknown plane {plane!r}: expected one of {', '.join(PLANES)}")
     s, c = sincos_deg(np.asarray(thetas_deg, dtype=float))
     zero = np.zeros_like(s)
-    return np.stack([s, zero, c] if plane == "incidence" else [zero, s, c], axis=-1)
+    w = np.stack([s, zero, c] if plane == "incidence" else [zero, s, c], axis=-1)
+    return turn(w, float(phi_i_deg) - 180.0)
 
 
-def _sections(m: Material, theta_i: float, cosine: bool) -> dict[str, np.ndarray]:
-    wo = np.concatenate([section_directions(p, SECTION_THETAS) for p in PLANES])
-    g = radiance(m.model, m.values, incident(theta_i), wo, cosine)  # both planes, one call
+def turn(w: np.ndarray, deg: float) -> np.ndarray:
+    """Directions ``w (..., 3)`` turned by ``deg`` about the normal (exact for 0°)."""
+    if deg % 360.0 == 0.0:
+        return w
+    sp, cp = (float(x) for x in sincos_deg(deg))
+    return np.stack([cp * w[..., 0] - sp * w[..., 1], sp * w[..., 0] + cp * w[..., 1],
+                     w[..., 2]], axis=-1)
+
+
+def peak_center(peak: Peak) -> np.ndarray:
+    """The unit direction of ``peak`` (the centre of the section through it)."""
+    return from_degrees(peak.theta_deg, peak.phi_deg)
+
+
+def _sections(m: Material, theta_i: float, cosine: bool, center: np.ndarray,
+              azimuth: float, phi_i: float = 180.0) -> dict[str, np.ndarray]:
+    """Both planes through the normal and the great circle through ``center`` at section
+    azimuth ``azimuth`` (:func:`tuibrdf.core.sections.great_circle`), in one kernel call."""
+    from .sections import great_circle
+
+    w, above = great_circle(center, SECTION_THETAS, azimuth)
+    w = np.where(above[:, None], w, np.array([0.0, 0.0, 1.0]))  # below: any valid direction
+    wo = np.concatenate([section_directions(p, SECTION_THETAS, phi_i) for p in PLANES] + [w])
+    g = radiance(m.model, m.values, incident(theta_i, phi_i), wo, cosine)  # 3 sections, 1 call
     n = len(SECTION_THETAS)
-    out = {p: g[k * n:(k + 1) * n] for k, p in enumerate(PLANES)}
+    out = {p: g[k * n:(k + 1) * n] for k, p in enumerate((*PLANES, "peak"))}
+    out["peak"] = np.where(above[:, None] if g.ndim == 2 else above, out["peak"], 0.0)
     for v in out.values():
         v.setflags(write=False)
     return out
+
+
+def probe_values(m: Material, theta_i: float, w: np.ndarray, phi_i: float = 180.0) -> tuple:
+    """``(f, f·cos θr)`` at the unit direction ``w`` (floats, or 3-tuples for RGB)."""
+    f = np.asarray(radiance(m.model, m.values, incident(theta_i, phi_i), w[None, :],
+                            False))[0]
+    c = max(float(w[2]), 0.0)
+
+    def out(x):
+        return float(x) if np.ndim(x) == 0 else tuple(float(y) for y in x)
+
+    return out(f), out(f * c)
+
+
+def extra_values(m: Material, req: FrameRequest) -> tuple:
+    """The arrays of ``req.extra`` for material ``m`` (see the module's table)."""
+    from . import halfdiff, lit
+
+    e, model, values = req.extra, m.model, m.values
+    if e in ("sphere", "plane"):
+        px_w, px_h = req.extra_px
+        if e == "sphere":
+            return lit.lit_sphere(model, values, req.theta_i, px_w, px_h, phi_i_deg=req.phi_i)
+        return lit.lit_plane(model, values, req.theta_i, px_w, px_h, phi_i_deg=req.phi_i)
+    if e == "slice":
+        return halfdiff.slice_image(model, values, req.phi_d, n_h=req.extra_px[0],
+                                    n_d=req.extra_px[1], sqrt_h=req.sqrt_h)
+    if e == "theta-h":
+        return halfdiff.theta_h_curve(model, values, req.theta_d, req.phi_d, n=LINE_SAMPLES)
+    if e == "theta-d":
+        return halfdiff.theta_d_curve(model, values, req.theta_h, req.phi_d, n=LINE_SAMPLES)
+    raise ValueError(f"unknown view {e!r}")
 
 
 @lru_cache(maxsize=4)
@@ -223,11 +347,12 @@ def solid_samples(level: int = SOLID_LEVEL, subdiv: int = SOLID_SUBDIV):
     return pts, face, tri
 
 
-def solid_values(m: Material, theta_i: float, cosine: bool = False) -> np.ndarray:
+def solid_values(m: Material, theta_i: float, cosine: bool = False,
+                 phi_i: float = 180.0) -> np.ndarray:
     """``f`` at the samples then at the face corners, in one kernel call: ``(S + 3F, ...)``."""
     pts, _, tri = solid_samples()
     wo = np.concatenate([pts, tri.reshape(-1, 3)])
-    g = radiance(m.model, m.values, incident(theta_i), wo, cosine)
+    g = radiance(m.model, m.values, incident(theta_i, phi_i), wo, cosine)
     g.setflags(write=False)
     return g
 
@@ -237,13 +362,14 @@ def _plain(a) -> float | tuple[float, ...]:
     return float(a) if a.ndim == 0 else tuple(float(x) for x in a)
 
 
-def _albedo(m: Material, theta_i: float) -> AlbedoEstimate:
+def _albedo(m: Material, theta_i: float, phi_i: float = 180.0) -> AlbedoEstimate:
     """``(albedo, error)`` as floats (or tuples of 3 for RGB)."""
-    e = albedo_estimate_resolved(m.model, m.values, theta_i)
+    e = albedo_estimate_resolved(m.model, m.values, theta_i, phi_i)
     return AlbedoEstimate(_plain(e.value), _plain(e.error))
 
 
-def _curve(m: Material, check: Callable[[], bool] | None = None) -> AlbedoEstimate | None:
+def _curve(m: Material, check: Callable[[], bool] | None = None,
+           phi_i: float = 180.0) -> AlbedoEstimate | None:
     """The albedo and its error at every :data:`CURVE_THETAS` (arrays); None when ``check``
     says stop.  Integrated in :data:`CURVE_CHUNKS` batches (each one batch of the quadrature),
     so a worker whose request is gone stops after at most one batch."""
@@ -253,7 +379,7 @@ def _curve(m: Material, check: Callable[[], bool] | None = None) -> AlbedoEstima
         if check is not None and not check():
             return None
         idx = np.arange(c, n, CURVE_CHUNKS)  # every 4th angle: the first batch spans 0–90°
-        e = albedo_curve_estimate_resolved(m.model, m.values, CURVE_THETAS[idx])
+        e = albedo_curve_estimate_resolved(m.model, m.values, CURVE_THETAS[idx], phi_i)
         v, err = np.asarray(e.value, dtype=float), np.asarray(e.error, dtype=float)
         if value is None:
             value = np.empty((n,) + v.shape[1:])
@@ -266,32 +392,43 @@ def _curve(m: Material, check: Callable[[], bool] | None = None) -> AlbedoEstima
 
 def _side(req: FrameRequest, m: Material, slow: bool,
           check: Callable[[], bool] | None) -> SideFrame | None:
-    t, cos = req.theta_i, req.cosine
-    peaks = _PEAKS.get((m, t, cos), lambda: find_peaks(m.model, m.values, t, cosine=cos))
-    sections = _SECTIONS.get((m, t, cos), lambda: _sections(m, t, cos))
+    t, cos, pi = req.theta_i, req.cosine, req.phi_i
+    peaks = _PEAKS.get((m, t, pi, cos), lambda: find_peaks(m.model, m.values, t, cosine=cos,
+                                                           phi_i_deg=pi))
+    az = req.section_azimuth
+    sections = _SECTIONS.get((m, t, pi, cos, peaks[0][1:3], az),
+                             lambda: _sections(m, t, cos, peak_center(peaks[0]), az, pi))
     mp = None
     if req.map_px is not None:
         px = req.map_px
         how = req.map_method
-        mp = _MAPS.get((m, t, cos, px, how), lambda: map_values(
-            m.model, m.values, t, px[0], px[1], cosine=cos, method=how))
-    solid = _SOLIDS.get((m, t, cos), lambda: solid_values(m, t, cos)) if req.solid else None
+        mp = _MAPS.get((m, t, pi, cos, px, how), lambda: map_values(
+            m.model, m.values, t, px[0], px[1], cosine=cos, method=how, phi_i_deg=pi))
+    solid = (_SOLIDS.get((m, t, pi, cos), lambda: solid_values(m, t, cos, pi))
+             if req.solid else None)
+    extra = None
+    if req.extra is not None:
+        extra = _EXTRA.get((m, req.extra_key), lambda: extra_values(m, req))
+    probe = None
+    if req.probe is not None:
+        probe = _PROBES.get((m, t, pi, req.probe),
+                            lambda: probe_values(m, t, req.probe_direction, pi))
     if slow:
-        albedo = _ALBEDO.get((m, t), lambda: _albedo(m, t))
+        albedo = _ALBEDO.get((m, t, pi), lambda: _albedo(m, t, pi))
         curve = None
         if req.curve:
-            curve = _CURVES.peek(m)
+            curve = _CURVES.peek((m, pi))
             if curve is None:
-                curve = _curve(m, check)
+                curve = _curve(m, check, pi)
                 if curve is None:
                     return None  # abandoned
-                _CURVES.put(m, curve)
+                _CURVES.put((m, pi), curve)
     else:
-        albedo = _ALBEDO.peek((m, t))
-        curve = _CURVES.peek(m) if req.curve else None
+        albedo = _ALBEDO.peek((m, t, pi))
+        curve = _CURVES.peek((m, pi)) if req.curve else None
     a, a_err = albedo if albedo is not None else (None, None)
     c, c_err = curve if curve is not None else (None, None)
-    return SideFrame(m, peaks, sections, mp, solid, a, c, a_err, c_err)
+    return SideFrame(m, peaks, sections, mp, solid, a, c, a_err, c_err, extra, probe)
 
 
 def compute_frame(req: FrameRequest, *, slow: bool = True,
@@ -318,13 +455,13 @@ def cached_frame(req: FrameRequest) -> FrameResult | None:
     return _FRAMES.peek(req)
 
 
-def albedo_curve(m: Material) -> np.ndarray:
+def albedo_curve(m: Material, phi_i: float = 180.0) -> np.ndarray:
     """``a`` at :data:`CURVE_THETAS` (cached): ``(n,)`` or ``(n, 3)``."""
-    return _CURVES.get(m, lambda: _curve(m)).value
+    return _CURVES.get((m, phi_i), lambda: _curve(m, None, phi_i)).value
 
 
-def albedo_curve_estimate(m: Material) -> AlbedoEstimate:
+def albedo_curve_estimate(m: Material, phi_i: float = 180.0) -> AlbedoEstimate:
     """``(a, error)`` at :data:`CURVE_THETAS` (cached)."""
-    return _CURVES.get(m, lambda: _curve(m))
+    return _CURVES.get((m, phi_i), lambda: _curve(m, None, phi_i))
 
 

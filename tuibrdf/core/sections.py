@@ -107,37 +107,25 @@ def peak_in_plane(
     model: Model,
     values: dict,
     theta_i_deg: float,
-    *,
-    n: int = 361,
-    refine: int = 3,
 ) -> tuple[float, float]:
-    """``(θr, f)``: the signed θr (degrees, positive on the mirror side φr = 0, negative on the
-    light's side) where the model's value in the plane of incidence is largest, and that value
-    (for RGB models, of the channel sum).
+    """``(θr, f)``: the lobe's peak from :func:`tuibrdf.core.peak.find_peaks` (the one peak
+    finder; the overall peak, the luminance's for RGB models) as a signed θr in degrees
+    (positive on the mirror side |φr| ≤ 90°, negative on the light's side), and its value.
 
-    A grid of ``n`` points over [−90°, 90°], then ``refine`` rounds of a 21-point grid over the
-    best cell and its neighbours (each round shrinks the step 10×: 0.5° → 5e-4° after 3).  A
-    constant section (Lambert) gives the mirror direction θr = θi.
+    For an isotropic model lit at φi = 180° the overall peak lies in the plane of incidence
+    (the lobe is symmetric about it).  A flat lobe (Lambert: the value at the mirror direction
+    equals the peak) gives the mirror direction θr = θi.
     """
+    from .peak import find_peaks, radiance
+
+    pk = find_peaks(model, values, theta_i_deg)[0]
     wi = incident(theta_i_deg)
-
-    def f_at(t: np.ndarray) -> np.ndarray:
-        wo = from_degrees(np.abs(t), np.where(t < 0, 180.0, 0.0))
-        v = np.asarray(evaluate_resolved(model, values, wi, wo), dtype=float)
-        return v.sum(axis=-1) if v.ndim == 2 else v
-
-    t = np.linspace(-90.0, 90.0, n)
-    v = f_at(t)
-    if float(np.max(v)) - float(np.min(v)) <= 1e-12 * max(abs(float(np.max(v))), 1e-300):
-        return float(theta_i_deg), float(v[0])  # flat section: no peak, use the mirror
-    step = t[1] - t[0]
-    best = float(t[int(np.argmax(v))])
-    for _ in range(refine):
-        t = np.clip(np.linspace(best - step, best + step, 21), -90.0, 90.0)
-        v = f_at(t)
-        best = float(t[int(np.argmax(v))])
-        step = step / 10.0
-    return best, float(np.max(f_at(np.array([best]))))
+    at_mirror = radiance(model, values, wi, np.array([[-wi[0], -wi[1], wi[2]]]), False)
+    m = float(np.mean(at_mirror))  # scalar, or compare the luminance-like mean for RGB
+    if np.ndim(at_mirror) == 1 and m >= pk.value * (1.0 - 1e-12):
+        return float(theta_i_deg), pk.value  # flat (or centred on S): the mirror
+    sign = 1.0 if abs(pk.phi_deg) <= 90.0 else -1.0
+    return sign * pk.theta_deg, pk.value
 
 
 def center_direction(theta_deg: float) -> np.ndarray:

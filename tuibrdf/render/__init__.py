@@ -4,11 +4,16 @@ The names every front end lists are declared here, with no import, so ``tuibrdf 
 show them without loading numpy or Rich.
 """
 
-#: every picture: the map, the two cross-sections, the 3D solid, the albedo curve
-VIEWS: tuple[str, ...] = ("map", "incidence", "perpendicular", "solid", "albedo")
+#: the lit and half/difference views (issue 13; ``tuibrdf.core.scene.EXTRA_VIEWS``)
+EXTRA_VIEWS: tuple[str, ...] = ("sphere", "plane", "slice", "theta-h", "theta-d")
+#: every picture: the map, the two cross-sections, the 3D solid, the albedo curve, the extras
+VIEWS: tuple[str, ...] = ("map", "incidence", "perpendicular", "solid", "albedo",
+                          *EXTRA_VIEWS)
 VIEW_TITLES = {"map": "equal-area map", "incidence": "plane of incidence",
-               "perpendicular": "perpendicular plane", "solid": "3D photometric solid",
-               "albedo": "albedo a(θi)"}
+               "perpendicular": "section through the peak", "solid": "3D photometric solid",
+               "albedo": "albedo a(θi)", "sphere": "lit sphere", "plane": "lit plane",
+               "slice": "θh × θd slice", "theta-h": "f(θh) at fixed θd",
+               "theta-d": "f(θd) at fixed θh"}
 #: colour maps (:mod:`.colormap`)
 CMAPS: tuple[str, ...] = ("grey", "viridis", "inferno")
 #: the smallest pane, in cells

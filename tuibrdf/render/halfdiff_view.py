@@ -113,10 +113,37 @@ def slice_view(
         raise ValueError(f"view size {width}×{height} too small for the θh × θd image")
     f, valid, th, td = slice_image(model, values, phi_d_deg, n_h=img_w, n_d=2 * rows,
                                    sqrt_h=sqrt_h)
+    return slice_picture(model.name, f, valid, th, td, width, height, phi_d_deg=phi_d_deg,
+                         sqrt_h=sqrt_h, log=log, cmap=cmap, levels=levels, rgb_mode=rgb_mode,
+                         color=color)
+
+
+def slice_pixels(width: int, height: int) -> tuple[int, int]:
+    """``(n_h, n_d)``: the θh × θd samples of a ``width × height`` slice view."""
+    return int(width) - MARGIN, 2 * (int(height) - 4)
+
+
+def slice_scale(extra: tuple, phi_d_deg: float) -> float:
+    """The colour scale's top of a slice ``(f, valid, θh, θd)`` (:func:`scale_max`)."""
+    f, _, th, td = extra
+    return scale_max(f, th[None, :], td[:, None], phi_d_deg)
+
+
+def slice_picture(name: str, f: np.ndarray, valid: np.ndarray, th: np.ndarray, td: np.ndarray,
+                  width: int, height: int, *, phi_d_deg: float = DEFAULT_PHI_D,
+                  sqrt_h: bool = True, vmax: float | None = None, log: bool = False,
+                  cmap: str = "grey", levels: int = DEFAULT_LEVELS, rgb_mode: str = "auto",
+                  color: str = "truecolor") -> Group:
+    """The slice view of precomputed samples (:func:`slice_image`); ``vmax`` the colour
+    scale's top (default: the slice's own, :func:`slice_scale`)."""
+    img_w, rows = int(width) - MARGIN, int(height) - 4
+    if img_w < 4 or rows < 2:
+        raise ValueError(f"view size {width}×{height} too small for the θh × θd image")
     data = np.where(valid[..., None] if f.ndim == 3 else valid, f, np.nan)[::-1]  # θd up
     if rgb_mode == "auto":
         rgb_mode = "color" if cmap == "grey" else "luminance"
-    vmax = scale_max(f, th[None, :], td[:, None], phi_d_deg)
+    if vmax is None:
+        vmax = slice_scale((f, valid, th, td), phi_d_deg)
     scale = Scale(vmax if vmax > 0 else 1.0, log)  # all zero: the lowest colour, no division
     col = colorize(data, cmap, levels=levels, log=log, rgb_mode=rgb_mode, scale=scale)
     image = HalfBlockImage(col.index, col.palette, color_system=color)
@@ -136,10 +163,32 @@ def slice_view(
     axis = axis_line(img_w, pos, [f"{t}°" for t in ticks], "θh")
     bar_cmap = "grey" if (data.ndim == 3 and rgb_mode == "color") else cmap
     bar = colorbar(col.scale, bar_cmap, int(width), levels=levels, color_system=color)
-    head = title([(model.name, 2), (f"θh×θd at φd={phi_d_deg:g}°", 0),
+    head = title([(name, 2), (f"θh×θd at φd={phi_d_deg:g}°", 0),
                   *scale_note(f, valid, vmax),
                   ("√θh axis" if sqrt_h else "linear θh", 3)], int(width))
     return Group(head, LeftLabelled(image, labels, color), axis, bar)
+
+
+def line_scale(view: str, extra: tuple, req) -> float:
+    """The y axis's top of a ``theta-h``/``theta-d`` curve ``(x, f, valid)`` of request
+    ``req`` (its fixed angles)."""
+    xs, f, _ = extra
+    if view == "theta-h":
+        return scale_max(f, xs, req.theta_d, req.phi_d)
+    return scale_max(f, req.theta_h, xs, req.phi_d)
+
+
+def line_picture(view: str, name: str, extra: tuple, theta_d_deg: float, theta_h_deg: float,
+                 phi_d_deg: float, vmax: float, width: int, height: int, *, log: bool = False,
+                 color: str = "truecolor", charset: str = "braille") -> Group:
+    """The ``theta-h`` or ``theta-d`` plot of precomputed samples ``(x, f, valid)``."""
+    xs, f, valid = extra
+    if view == "theta-h":
+        what, xlabel = f"f(θh) at θd={theta_d_deg:g}° φd={phi_d_deg:g}°", "θh"
+    else:
+        what, xlabel = f"f(θd) at θh={theta_h_deg:g}° φd={phi_d_deg:g}°", "θd"
+    return line_view([(name, 2), (what, 0)], xs, f, valid, name, vmax, width, height,
+                     xlabel=xlabel, log=log, color=color, charset=charset)
 
 
 def line_view(

@@ -66,8 +66,18 @@ def lit_view(
 ) -> Group:
     """Title + the half-block picture of the lit ``kind`` (``sphere`` or ``plane``)."""
     px_w, px_h = int(width), 2 * (int(height) - 1)
-    rad, img, mask = lit_arrays(kind, model, values, theta_i_deg, px_w, px_h,
-                                exposure=exposure, gamma=gamma, fov_deg=fov_deg)
+    rad, _, mask = lit_arrays(kind, model, values, theta_i_deg, px_w, px_h,
+                              exposure=exposure, gamma=gamma, fov_deg=fov_deg)
+    return lit_picture(kind, model.name, theta_i_deg, rad, mask, width, exposure=exposure,
+                       gamma=gamma, color=color, fov_deg=fov_deg)
+
+
+def lit_picture(kind: str, name: str, theta_i_deg: float, rad: np.ndarray, mask: np.ndarray,
+                width: int, *, exposure: float = DEFAULT_EXPOSURE, gamma: float = DEFAULT_GAMMA,
+                color: str = "truecolor", fov_deg: float = DEFAULT_FOV_DEG) -> Group:
+    """Title + the half-block picture of radiance ``rad`` (``(px_h, px_w, 3)``, from
+    :func:`lit_arrays` or the frame) tone-mapped with ``exposure`` and ``gamma``."""
+    img = tone_map_core(rad, exposure, gamma)
     n_surface = int(np.count_nonzero(mask))
     if kind == "plane" and color != "none":
         img = np.where(mask[..., None], img, np.array(SKY_RGB, dtype=np.uint8))
@@ -79,7 +89,7 @@ def lit_view(
     what = "lit sphere" if kind == "sphere" else "lit plane"
     how = "" if kind == "sphere" else f"(mirror view, fov {fov_deg:g}°)"
     clip = f"{100.0 * clipped / max(n_surface, 1):.0f}% clipped" if clipped else ""
-    head = title([(model.name, 1), (f"θi={theta_i_deg:g}°", 3), (what, 0), (how, 6),
+    head = title([(name, 1), (f"θi={theta_i_deg:g}°", 3), (what, 0), (how, 6),
                   (f"L max {fmt_value(peak)}", 2), (f"exp {exposure:g} γ {gamma:g}", 4),
                   (clip, 5)], width)
     return Group(head, image)

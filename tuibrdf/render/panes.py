@@ -10,7 +10,8 @@ whose peak that is.
 
 =================  =================================================================
 :func:`pane`       dispatch by view name (``map``, ``incidence``, ``perpendicular``,
-                   ``solid``, ``albedo``; plus ``diff`` in compare mode)
+                   ``solid``, ``albedo``, ``extra``: the request's lit or
+                   half/difference view; plus ``diff`` in compare mode)
 :func:`stats_text` the status line's numbers: albedo, energy flag, peak and direction
 =================  =================================================================
 """
@@ -31,9 +32,13 @@ from ..core.scene import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
 from .albedo_plot import albedo_plot
 from .colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize
 from .halfblock import HalfBlockImage, Mark
-from .polar import caption_parts, plot_body, polar_plot, side_curves
+from .polar import caption_parts, plot_body, side_curves
+from .polar_braille import fwhm_text, polar_canvas
 from .solid import solid_image
 from .text import INCIDENT_MARK, MIRROR_MARK, RING_RGB, mark_legend, title, where
+
+#: the probe's mark on the map (issue 13 §4)
+PROBE_MARK = dict(glyph="+", ascii="+", rgb=(0, 230, 230))
 
 SIDE_LABELS = ("A", "B")
 #: diverging palette of the difference map: blue (B larger) – grey – red (A larger)
@@ -51,6 +56,9 @@ class Look:
     rgb_mode: str = "auto"  # auto | color | luminance
     azimuth: float = -60.0  # the 3D solid's camera
     elevation: float = 25.0
+    exposure: float = 1.0  # the lit views' tone mapping (core/lit.py)
+    gamma: float = 2.2
+    charset: str = "braille"  # the sections and line plots (render/braille.py)
     #: the curves of an RGB model (sections, albedo): rgb (three) | lum | R | G | B
     channel: str = "rgb"
 
@@ -141,6 +149,10 @@ def map_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     r, c = info.incident_px
     if (r // 2, c) != (marks[0].row, marks[0].col):
         marks.append(Mark(r // 2, c, **INCIDENT_MARK))
+    if res.request.probe is not None:  # the probe, over the other marks
+        r, c = geometry(px_w, px_h).to_pixel(np.asarray(res.request.probe, dtype=float))
+        marks = [mk for mk in marks if (mk.row, mk.col) != (r // 2, c)]
+        marks.append(Mark(r // 2, c, **PROBE_MARK))
     image = HalfBlockImage(index, pal, marks, color_system=look.color, ring=ring_index)
     if info.vmin >= peak.value * (1.0 - 1e-12):  # Lambert: no "the" peak
         what = "f·cosθr" if cosine else "f"
@@ -199,24 +211,69 @@ def signed_text(d: np.ndarray) -> Text:
 
 # ----------------------------------------------------------------------- cross-sections
 def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Group:
-    """The sides' values along ``plane`` (R, G, B curves for an RGB model alone), both planes
-    and both sides on one radius scale; the caption gives the section max."""
+    """The sides' values along ``plane`` (R, G, B curves for an RGB model alone) on a braille
+    canvas, both sides on one radius scale; the caption gives the section max.
+    ``perpendicular`` is the great circle through the frame's peak (``peaks[0]``) at the
+    request's section azimuth, the peak straight up (``sections["peak"]``)."""
     compare = len(res.sides) > 1
+    key = "peak" if plane == "perpendicular" else plane
     curves = [(label, SECTION_THETAS, v, *style) for label, v, *style in side_curves(
-        [(s.material.label, s.sections[plane]) for s in res.sides], look.channel)]
-    vmax = max(s.section_max for s in res.sides)
+        [(s.material.label, s.sections[key]) for s in res.sides], look.channel)]
+    vmax = max(max(s.section_max, float(np.max(s.sections["peak"]))) for s in res.sides)
     t = res.request.theta_i
-    text, caption = polar_plot(curves, w, h - 1, log=look.log, color=look.color,
-                               theta_i_deg=t if plane == "incidence" else None, vmax=vmax)
+    canvas, caption = polar_canvas(curves, w, h - 1, log=look.log, color=look.color,
+                                   theta_i_deg=t if plane == "incidence" else None, vmax=vmax,
+                                   charset=look.charset)
+    az = res.request.section_azimuth
+    if plane == "perpendicular":
+        pk = res.sides[0].peak
+        name = "perp." if az == 90.0 else f"ψ={az:g}°"
+        what = (f"{name} through peak θ={round(pk.theta_deg, 1):g}° "
+                f"φ={round(pk.phi_deg) % 360:g}°")
+    else:
+        what = plane
     if compare:
         a, b = (s.material.label for s in res.sides)
-        parts = [(plane, 0), (f"A {a} vs B {b}", 2)]
+        parts = [(what, 0), (f"A {a} vs B {b}", 2)]
     else:
-        sides = "φ 180°|0°" if plane == "incidence" else "φ 270°|90°"
-        what = "f·cosθr" if res.request.cosine else "f"
-        parts = [(res.sides[0].material.label, 2), (f"θi={t:g}°", 3), (plane, 0),
-                 (f"({sides})", 4), (what, 1)]
-    return Group(title([*parts, *caption_parts(caption)], w), plot_body(text, look.color))
+        fn = "f·cosθr" if res.request.cosine else "f"
+        if plane == "perpendicular":
+            v = res.sides[0].sections["peak"]
+            width_s = fwhm_text(SECTION_THETAS, luminance(v) if v.ndim == 2 else v)
+            # the width across the lobe is the point of this view (issue 13 §1): it goes
+            # before the model's name (which the panel shows) when the title is cropped
+            parts = [(res.sides[0].material.label, 2), (f"θi={t:g}°", 4), (what, 0),
+                     (width_s, 1), (fn, 5)]
+        else:
+            parts = [(res.sides[0].material.label, 2), (f"θi={t:g}°", 3), (plane, 0),
+                     (f"(φ {res.request.phi_i:g}°|{(res.request.phi_i + 180) % 360:g}°)", 4),
+                     (fn, 1)]
+    return Group(title([*parts, *caption_parts(caption)], w), canvas)
+
+
+# ---------------------------------------------------------------- lit, half/difference
+def extra_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> RenderableType:
+    """The request's extra view (sphere, plane, slice, θh or θd curve) of side ``k``; in
+    compare mode both sides on one scale (the same exposure, the larger maximum)."""
+    from . import halfdiff_view, lit_view
+
+    req, side = res.request, res.sides[k]
+    name = _label(res, k)
+    if req.extra in ("sphere", "plane"):
+        rad, mask = side.extra
+        return lit_view.lit_picture(req.extra, name, req.theta_i, rad, mask, w,
+                                    exposure=look.exposure, gamma=look.gamma, color=look.color)
+    if req.extra == "slice":
+        f, valid, th, td = side.extra
+        vmax = max(halfdiff_view.slice_scale(s.extra, req.phi_d) for s in res.sides)
+        return halfdiff_view.slice_picture(name, f, valid, th, td, w, h, phi_d_deg=req.phi_d,
+                                           sqrt_h=req.sqrt_h, vmax=vmax, log=look.log,
+                                           cmap=look.cmap, levels=look.levels,
+                                           rgb_mode=look.rgb_mode, color=look.color)
+    vmax = max(halfdiff_view.line_scale(req.extra, s.extra, req) for s in res.sides)
+    return halfdiff_view.line_picture(req.extra, name, side.extra, req.theta_d, req.theta_h,
+                                      req.phi_d, vmax, w, h, log=look.log, color=look.color,
+                                      charset=look.charset)
 
 
 # --------------------------------------------------------------------------------- solid
@@ -225,6 +282,7 @@ def solid_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     side = res.sides[k]
     peak = shown_peak(side, "solid", look)
     index, pal = solid_image(side.solid, res.request.theta_i, w, 2 * (h - 1), rmax=peak.value,
+                             phi_i_deg=res.request.phi_i,
                              cmap=look.cmap, log=look.log, azimuth_deg=look.azimuth,
                              elevation_deg=look.elevation)
     what = "f·cosθr·wo" if res.request.cosine else "f·wo"
@@ -274,6 +332,8 @@ def pane(view: str, res: FrameResult, k: int, w: int, h: int, look: Look) -> Ren
         return solid_pane(res, k, w, h, look)
     if view == "albedo":
         return albedo_pane(res, w, h, look)
+    if view == "extra":
+        return extra_pane(res, k, w, h, look)
     raise ValueError(f"unknown pane {view!r}")
 
 

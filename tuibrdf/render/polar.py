@@ -28,10 +28,6 @@ import numpy as np
 import plotext as plt
 from rich.text import Text
 
-from ..core.conventions import fmt_value
-from ..core.frame import sincos_deg
-from .colormap import LOG_DECADES
-
 PLOT_LOCK = threading.Lock()
 #: curve colours in order (plotext's 16-colour names: readable on dark and light terminals)
 CURVE_COLORS = ("red", "cyan", "green", "magenta", "yellow", "blue")
@@ -72,68 +68,6 @@ def radius(values: np.ndarray, vmax: float, log: bool, decades: float) -> np.nda
     lo = max(vmax * 10.0**-decades, 5e-324)
     r = 1.0 + np.log10(np.maximum(v, lo) / vmax) / decades
     return np.clip(np.where(v > lo, r, 0.0), 0.0, 1.0)
-
-
-def polar_plot(
-    curves: Sequence[Curve],
-    width: int,
-    height: int,
-    *,
-    theta_i_deg: float | None = None,
-    log: bool = False,
-    decades: float = LOG_DECADES,
-    color: str = "truecolor",
-    vmax: float | None = None,
-) -> tuple[str, str]:
-    """Build the plot; returns ``(text, caption)``.  ``text`` is plotext's output (ANSI colours
-    unless ``color == "none"``), exactly ``height`` lines of ``width`` cells; ``caption`` gives
-    the curves' maximum and what the guide circles are.  ``vmax`` sets the scale (the outer
-    circle) when several plots must be read on one scale; by default the curves' maximum."""
-    own = max((float(np.max(c[2])) for c in curves), default=0.0)
-    vmax = max(own, vmax or 0.0)
-    vmax = vmax if vmax > 0 else 1.0  # an all-zero curve still gets a unit circle
-    if log:
-        rmax, guides = 1.0, [1.0 - k / decades for k in range(int(decades))]
-        caption = (f"section max {fmt_value(own)} · log, circles every decade below "
-                   f"{fmt_value(vmax)}")
-    else:
-        step = nice_step(vmax)
-        guides = list(step * np.arange(1, int(np.floor(vmax / step + 1e-9)) + 1))
-        rmax = max(vmax, guides[-1] if guides else vmax)
-        caption = f"section max {fmt_value(own)} · circles every {fmt_value(step)}"
-    # equal aspect: one data unit spans the same physical length in x and y
-    span = rmax * 1.08
-    k = max(2 * span / width, span / (CELL_ASPECT * height))
-    xr, y0 = k * width / 2, -0.03 * rmax
-    # without colours the guides use a dot marker, so they never read as a curve
-    guide_marker = "·" if color == "none" else "braille"
-    ring = np.radians(np.linspace(-90.0, 90.0, 61))  # 3° chords: round enough, cheap
-    with PLOT_LOCK:
-        plt.clf()
-        plt.theme("clear")
-        plt.plotsize(width, height)
-        plt.frame(False)
-        plt.xticks([])
-        plt.yticks([])
-        plt.xlim(-xr, xr)
-        plt.ylim(y0, y0 + k * CELL_ASPECT * height)
-        for g in guides:
-            plt.plot((g * np.sin(ring)).tolist(), (g * np.cos(ring)).tolist(),
-                     marker=guide_marker, color=GUIDE_COLOR)
-        plt.plot([-rmax, rmax], [0.0, 0.0], marker=guide_marker, color=GUIDE_COLOR)
-        if theta_i_deg is not None:
-            s, c = sincos_deg(float(theta_i_deg))
-            plt.plot([0.0, -float(s) * rmax], [0.0, float(c) * rmax], marker="braille",
-                     color=INCIDENT_COLOR)
-        for j, (label, thetas, vals, *style) in enumerate(curves):
-            r = radius(vals, vmax, log, decades)
-            s, c = sincos_deg(np.asarray(thetas, dtype=float))
-            marker = style[0] if style else "braille"
-            col = style[1] if len(style) > 1 else curve_color(label, j)
-            plt.plot((r * s).tolist(), (r * c).tolist(), marker=marker, color=col,
-                     label=label if len(curves) > 1 else None)
-        text = finish_plot(color)
-    return text, caption
 
 
 def caption_parts(caption: str) -> list[tuple[str, int]]:

@@ -51,8 +51,9 @@ def solid_image(
     log: bool = False,
     azimuth_deg: float = -60.0,
     elevation_deg: float = 25.0,
+    phi_i_deg: float = 180.0,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """``(index (px_h, px_w), palette)`` of the shaded solid.
+    """``(index (px_h, px_w), palette)`` of the shaded solid (the light's guide at θi, φi).
 
     ``values``: :func:`tuibrdf.core.scene.solid_values` (at the samples, then at the face
     corners; RGB values are drawn by their luminance); ``rmax``: the radius scale, the frame's
@@ -83,7 +84,7 @@ def solid_image(
     circle = np.stack([np.cos(t), np.sin(t), np.zeros_like(t)], axis=1) * scale_r
     s = np.linspace(0.0, 1.1, 2 * max(px_w, px_h))[:, None] * scale_r
     normal = s * np.array([0.0, 0.0, 1.0])
-    light_line = s * incident(theta_i_deg)
+    light_line = s * incident(theta_i_deg, phi_i_deg)
     pal = palette(cmap, SHADE_LEVELS)
     guide_pal = np.array([AXIS_RGB, LIGHT_RGB], dtype=np.uint8)
     allp = np.concatenate([pts, circle, normal, light_line])

@@ -35,7 +35,7 @@ from ..core.hemimap import DEFAULT_METHOD
 from ..core.material import Material
 from ..core.params import Model
 from ..core.scene import FrameRequest, compute_frame
-from . import CMAPS, MIN_HEIGHT, MIN_WIDTH, VIEWS
+from . import CMAPS, EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, VIEWS
 from .colormap import DEFAULT_LEVELS, check_cmap
 from .halfblock import COLOR_SYSTEMS
 from .panes import Look, pane
@@ -61,13 +61,29 @@ def map_pixels(width: int, height: int) -> tuple[int, int]:
     return int(width), 2 * (int(height) - 3)
 
 
+def extra_pixels(view: str, width: int, height: int) -> tuple[int, int] | None:
+    """The pixel (sample) grid of an extra view in a ``width × height`` pane: the lit views a
+    title line above half-block pixels, the slice :func:`.halfdiff_view.slice_pixels`."""
+    if view in ("sphere", "plane"):
+        return int(width), 2 * (int(height) - 1)
+    if view == "slice":
+        from .halfdiff_view import slice_pixels
+
+        return slice_pixels(width, height)
+    return None
+
+
 def request_for(view: str, materials: tuple[Material, ...], theta_i_deg: float, width: int,
-                height: int, *, cosine: bool = False, method: str = DEFAULT_METHOD
-                ) -> FrameRequest:
-    """The frame request of ``view`` in a ``width × height`` pane."""
+                height: int, *, cosine: bool = False, method: str = DEFAULT_METHOD,
+                **extra: Any) -> FrameRequest:
+    """The frame request of ``view`` in a ``width × height`` pane; ``extra``: the request's
+    section azimuth and fixed angles (:class:`~tuibrdf.core.scene.FrameRequest`)."""
+    ex = view if view in EXTRA_VIEWS else None
     return FrameRequest(materials, theta_i_deg, cosine=cosine and view != "albedo",
                         map_px=map_pixels(width, height) if view == "map" else None,
-                        map_method=method, solid=view == "solid", curve=view == "albedo")
+                        map_method=method, solid=view == "solid", curve=view == "albedo",
+                        extra=ex, extra_px=extra_pixels(view, width, height) if ex else None,
+                        **extra)
 
 
 def render_view(
@@ -87,6 +103,15 @@ def render_view(
     rgb_mode: str = "auto",
     azimuth_deg: float = -60.0,
     elevation_deg: float = 25.0,
+    section_azimuth_deg: float = 90.0,
+    exposure: float = 1.0,
+    gamma: float = 2.2,
+    theta_d_deg: float = 30.0,
+    theta_h_deg: float = 0.0,
+    phi_d_deg: float = 90.0,
+    sqrt_h: bool = True,
+    charset: str = "braille",
+    phi_i_deg: float = 180.0,
 ) -> RenderableType:
     """The picture of ``view`` in ``width × height`` terminal cells (title line included).
 
@@ -100,7 +125,10 @@ def render_view(
     if not 0.0 <= theta_i <= 90.0:
         raise ValueError(f"theta_i {theta_i_deg} out of range: expected 0..90 degrees")
     req = request_for(view, (Material(model, values),), theta_i, width, height, cosine=cosine,
-                      method=method)
+                      method=method, section_azimuth=float(section_azimuth_deg),
+                      theta_d=float(theta_d_deg), theta_h=float(theta_h_deg),
+                      phi_d=float(phi_d_deg), sqrt_h=bool(sqrt_h), phi_i=float(phi_i_deg))
     res = compute_frame(req, slow=view == "albedo")
-    look = Look(color, cmap, log, levels, rgb_mode, azimuth_deg, elevation_deg)
-    return pane(view, res, 0, width, height, look)
+    look = Look(color, cmap, log, levels, rgb_mode, azimuth_deg, elevation_deg, exposure, gamma,
+                charset)
+    return pane("extra" if view in EXTRA_VIEWS else view, res, 0, width, height, look)
