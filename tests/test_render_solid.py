@@ -77,3 +77,70 @@ def test_log_of_constant_brdf_is_the_same_hemisphere():
     lin = solid_image("lambert", v, 20, 40, 30)[0]
     log = solid_image("lambert", v, 20, 40, 30, log=True)[0]
     assert (lin == log).all()
+
+
+def _holes(index: np.ndarray) -> int:
+    """Uncovered pixels strictly inside the surface's outline.
+
+    The solid of a constant BRDF is a hemispherical dome whose projection is that of a
+    half-ball (every ray from the base disc toward a camera above it meets the dome): a convex
+    set.  A pixel with surface pixels at least 2 px away on both sides in its row *and* in its
+    column is inside it, and must be drawn (by the surface, or a guide in front of it); the
+    2 px keep out the half-pixel staircase of the outline itself."""
+    surf = (index != TRANSPARENT) & (index < SHADE_LEVELS)
+    h, w = index.shape
+    r, c = np.nonzero(surf)
+    inf = 10 ** 6
+    left, right = np.full(h, inf), np.full(h, -inf)
+    np.minimum.at(left, r, c)
+    np.maximum.at(right, r, c)
+    top, bottom = np.full(w, inf), np.full(w, -inf)
+    np.minimum.at(top, c, r)
+    np.maximum.at(bottom, c, r)
+    rr, cc = np.mgrid[0:h, 0:w]
+    inside = ((cc >= left[:, None] + 2) & (cc <= right[:, None] - 2)
+              & (rr >= top[None, :] + 2) & (rr <= bottom[None, :] - 2))
+    return int((inside & (index == TRANSPARENT)).sum())
+
+
+@pytest.mark.parametrize("px_w, px_h", [(40, 30), (120, 80), (240, 138), (480, 300)])
+@pytest.mark.parametrize("elevation", [25.0, 90.0])
+def test_lambert_solid_is_closed_at_every_pane_size(px_w, px_h, elevation):
+    # constant f: points kd/π·wo fill a dome; no uncovered pixel inside its convex outline,
+    # at the largest panes too, where the samples are sparser than the pixels
+    index = solid_image("lambert", {"kd": 0.8}, 30, px_w, px_h, elevation_deg=elevation)[0]
+    # the dome is drawn, and large
+    assert ((index != TRANSPARENT) & (index < SHADE_LEVELS)).sum() > 0.05 * px_w * px_h
+    assert _holes(index) == 0
+
+
+def _components(mask: np.ndarray) -> int:
+    """Number of 4-connected components of ``mask`` (a plain flood fill, for the test)."""
+    seen = np.zeros_like(mask, dtype=bool)
+    n = 0
+    h, w = mask.shape
+    for r0, c0 in zip(*np.nonzero(mask), strict=True):
+        if seen[r0, c0]:
+            continue
+        n += 1
+        stack = [(r0, c0)]
+        seen[r0, c0] = True
+        while stack:
+            r, c = stack.pop()
+            for rr, cc in ((r + 1, c), (r - 1, c), (r, c + 1), (r, c - 1)):
+                if 0 <= rr < h and 0 <= cc < w and mask[rr, cc] and not seen[rr, cc]:
+                    seen[rr, cc] = True
+                    stack.append((rr, cc))
+    return n
+
+
+@pytest.mark.parametrize("px_w, px_h", [(160, 94), (240, 138)])
+def test_sharp_lobe_is_one_connected_surface(px_w, px_h):
+    # cook-torrance m = 0.07 at θi = 60°: a long thin lobe toward the mirror direction.  Its
+    # surface is connected, so its pixels form one 4-connected region, not scattered dots.
+    # Seen from the side (az 90°, el 10°), away from the guides that could cut it.
+    index = solid_image("cook-torrance", {"kd": 0.0, "m": 0.07}, 60, px_w, px_h,
+                        azimuth_deg=90.0, elevation_deg=10.0)[0]
+    lobe = (index != TRANSPARENT) & (index < SHADE_LEVELS)
+    assert lobe.sum() > 100  # the lobe is many pixels long and wide at this size
+    assert _components(lobe) == 1

@@ -7,7 +7,11 @@
 - View: orthographic, camera at ``azimuth`` (from +x, the mirror side, toward +y) and
   ``elevation`` above the surface; screen right = ``(−sin az, cos az, 0)``, screen up =
   camera direction × right.
-- Z-buffer: the nearest sample per pixel wins (ties broken by sample order: deterministic).
+- Surface: the barycentric grid of each mesh triangle is cut into ``subdiv²`` small triangles
+  (over the samples), and these are rasterised (every pixel whose centre lies inside, depth
+  interpolated), so the surface is closed at any pane size however far a lobe stretches it;
+  the samples are also splatted, so a triangle thinner than a pixel still shows.
+- Z-buffer: the nearest fragment per pixel wins (ties broken by fragment order: deterministic).
 - Shading: Lambert-like, ``0.2 + 0.8·|n·l|`` with ``n`` the triangle normal of the *deformed*
   surface and ``l`` a light over the camera's left shoulder, quantised through the colour map.
 - Log (``log=True``): the radius is the decade position ``1 + log10(f / max) / 3`` clipped at 0,
@@ -18,11 +22,13 @@
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from ..core.conventions import luminance
 from ..core.frame import incident
-from ..core.scene import solid_samples
+from ..core.scene import SOLID_SUBDIV, solid_samples
 from .colormap import LOG_DECADES, palette, quantise
 from .halfblock import TRANSPARENT
 from .polar import radius
@@ -38,6 +44,68 @@ def camera(azimuth_deg: float, elevation_deg: float) -> np.ndarray:
     d = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
     right = np.array([-np.sin(az), np.cos(az), 0.0])
     return np.stack([right, np.cross(d, right), d])
+
+
+@lru_cache(maxsize=4)
+def _grid_triangles(n_faces: int, subdiv: int) -> np.ndarray:
+    """``(n_faces·subdiv², 3)`` sample indices of the small triangles of every face's
+    barycentric grid, the samples listed face by face as
+    :func:`tuibrdf.core.scene.solid_samples` lists them (``(i, j)`` row-major, ``i + j ≤ n``)."""
+    i, j = np.meshgrid(np.arange(subdiv + 1), np.arange(subdiv + 1), indexing="ij")
+    keep = i + j <= subdiv
+    local = np.full((subdiv + 1, subdiv + 1), -1, dtype=np.int64)
+    local[i[keep], j[keep]] = np.arange(keep.sum())
+    tris = []
+    for a in range(subdiv):
+        for b in range(subdiv - a):
+            tris.append((local[a, b], local[a + 1, b], local[a, b + 1]))  # "up"
+            if a + b <= subdiv - 2:
+                tris.append((local[a + 1, b], local[a + 1, b + 1], local[a, b + 1]))  # "down"
+    out = (np.arange(n_faces)[:, None, None] * int(keep.sum()) + np.array(tris)[None])
+    out = out.reshape(-1, 3)
+    out.setflags(write=False)
+    return out
+
+
+def rasterise(x: np.ndarray, y: np.ndarray, depth: np.ndarray, px_w: int, px_h: int):
+    """Fragments ``(pixel id, depth, triangle)`` of triangles with corners ``x, y (T, 3)``
+    (pixel units, x to the right, y down) and corner depths ``(T, 3)``: every pixel whose
+    centre lies inside a triangle or on its edges, all triangles at once (no Python loop)."""
+    x0, x1, x2 = x.T
+    y0, y1, y2 = y.T
+    # first and last pixel centres (c + 0.5) inside each triangle's bounding box, on screen
+    lo_x = np.maximum(np.ceil(np.minimum(np.minimum(x0, x1), x2) - 0.5), 0).astype(np.int64)
+    hi_x = np.minimum(np.floor(np.maximum(np.maximum(x0, x1), x2) - 0.5), px_w - 1)
+    lo_y = np.maximum(np.ceil(np.minimum(np.minimum(y0, y1), y2) - 0.5), 0).astype(np.int64)
+    hi_y = np.minimum(np.floor(np.maximum(np.maximum(y0, y1), y2) - 0.5), px_h - 1)
+    nx = np.maximum(hi_x.astype(np.int64) - lo_x + 1, 0)
+    ny = np.maximum(hi_y.astype(np.int64) - lo_y + 1, 0)
+    count = nx * ny
+    hit = np.nonzero(count)[0]  # most triangles of a small solid hold no pixel centre
+    count = count[hit]
+    tri = np.repeat(hit, count)
+    local = np.arange(len(tri)) - np.repeat(np.cumsum(count) - count, count)
+    nxt = nx[tri]  # ≥ 1: only triangles with a candidate pixel are repeated
+    ix = lo_x[tri] + local % nxt
+    iy = lo_y[tri] + local // nxt
+    cx, cy = ix + 0.5, iy + 0.5
+    ax, bx, qx = x0[tri] - cx, x1[tri] - cx, x2[tri] - cx
+    ay, by, qy = y0[tri] - cy, y1[tri] - cy, y2[tri] - cy
+    # edge functions: w_k is twice the signed area of the triangle opposite corner k
+    w0 = bx * qy - qx * by
+    w1 = qx * ay - ax * qy
+    w2 = ax * by - bx * ay
+    area = w0 + w1 + w2
+    # either winding; a small tolerance so the shared edge of two triangles leaves no crack
+    eps = 1e-9 * np.maximum(np.abs(area), 1.0)
+    inside = (area != 0) & (
+        ((w0 >= -eps) & (w1 >= -eps) & (w2 >= -eps))
+        | ((w0 <= eps) & (w1 <= eps) & (w2 <= eps)))
+    # a degenerate triangle (area 0) has no inside: its corners are splatted by the caller
+    tri, area = tri[inside], area[inside]
+    z = (w0[inside] * depth[tri, 0] + w1[inside] * depth[tri, 1]
+         + w2[inside] * depth[tri, 2]) / area  # area ≠ 0 for every kept fragment
+    return iy[inside] * px_w + ix[inside], z, tri
 
 
 def solid_image(
@@ -93,7 +161,7 @@ def solid_image(
         np.full(len(circle) + len(normal), SHADE_LEVELS),
         np.full(len(light_line), SHADE_LEVELS + 1),
     ])
-    xyz = allp @ cam.T  # (screen x, screen y, depth)
+    xyz = allp @ cam.T  # (screen x, screen y, depth); the surface's samples come first
     # fit the guides' extent (hemisphere of radius scale_r, normal to 1.1·scale_r), so the
     # scale stays put while the view rotates: base circle y ∈ ±r|sin el|, normal tip 1.1·r·cos el
     se, ce = abs(np.sin(np.radians(elevation_deg))), np.cos(np.radians(elevation_deg))
@@ -102,9 +170,16 @@ def solid_image(
     cols = np.floor(px_w / 2 + xyz[:, 0] * k).astype(np.int64)
     rows = np.floor(px_h / 2 - (xyz[:, 1] - (lo + hi) / 2) * k).astype(np.int64)
     ok = (cols >= 0) & (cols < px_w) & (rows >= 0) & (rows < px_h)
-    pid = (rows * px_w + cols)[ok]
-    order = np.lexsort((-xyz[ok, 2], pid))  # by pixel, nearest first
+    # the small triangles over each face's samples, in pixel units (x right, y down)
+    tris = _grid_triangles(len(corner_dirs), SOLID_SUBDIV)
+    sx = px_w / 2 + xyz[: len(dirs), 0] * k
+    sy = px_h / 2 - (xyz[: len(dirs), 1] - (lo + hi) / 2) * k
+    t_pid, t_z, t_id = rasterise(sx[tris], sy[tris], xyz[: len(dirs), 2][tris], px_w, px_h)
+    pid = np.concatenate([t_pid, (rows * px_w + cols)[ok]])
+    z = np.concatenate([t_z, xyz[ok, 2]])
+    frag = np.concatenate([code[tris[t_id, 0]], code[ok]])  # a triangle shades as its face
+    order = np.lexsort((-z, pid))  # by pixel, nearest first
     first_pid, first = np.unique(pid[order], return_index=True)
     index = np.full(px_w * px_h, TRANSPARENT, dtype=np.int64)
-    index[first_pid] = code[ok][order][first]
+    index[first_pid] = frag[order][first]
     return index.reshape(px_h, px_w), np.concatenate([pal, guide_pal])
