@@ -215,6 +215,14 @@ class PolarResult:
     evaluations: np.ndarray
 
 
+def _grow(kept: tuple, new: tuple) -> tuple:
+    """The panels kept so far (``None`` each before the first pass) with the new ones appended,
+    array by array: the bookkeeping both adaptive loops share."""
+    if kept[0] is None:
+        return new
+    return tuple(np.concatenate([a, b]) for a, b in zip(kept, new, strict=True))
+
+
 def _rule(g: np.ndarray, half: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """K15 value and |K15 − G7| of panels from their 15 values ``g (p, 15[, k])``."""
     if g.ndim == 2:
@@ -334,12 +342,8 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
         g = fn(case[j], cpsi[j], spsi[j], tuple(x[j] for x in params), rmax[j], rho, d)
         budget -= 15 * np.bincount(case[j], minlength=ncase)
         k, e = _rule(g, half)
-        if lo is None:
-            lo, hi, node, k_all, e_all = new_lo, new_hi, new_node, k, e
-        else:
-            lo, hi, node = (np.concatenate([lo, new_lo]), np.concatenate([hi, new_hi]),
-                            np.concatenate([node, new_node]))
-            k_all, e_all = np.concatenate([k_all, k]), np.concatenate([e_all, e])
+        lo, hi, node, k_all, e_all = _grow((lo, hi, node, k_all, e_all),
+                                           (new_lo, new_hi, new_node, k, e))
         tot_v, tot_e = _sum_by(node, k_all, n), _sum_by(node, e_all, n)
         if tol is None:
             tol = rtol * _size(_sum_by(case, _times(wpsi, tot_v), ncase)) + atol
@@ -432,12 +436,8 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
         k, e = _rule(iv.reshape(len(new_lo), 15, *iv.shape[1:]), half)
         # the inner errors, integrated with the outer weights
         e = e + _sum_by(np.repeat(np.arange(len(new_lo)), 15), _times(wpsi, ie), len(new_lo))
-        if lo is None:
-            lo, hi, pc, k_all, e_all = new_lo, new_hi, new_pc, k, e
-        else:
-            lo, hi, pc = (np.concatenate([lo, new_lo]), np.concatenate([hi, new_hi]),
-                          np.concatenate([pc, new_pc]))
-            k_all, e_all = np.concatenate([k_all, k]), np.concatenate([e_all, e])
+        lo, hi, pc, k_all, e_all = _grow((lo, hi, pc, k_all, e_all),
+                                         (new_lo, new_hi, new_pc, k, e))
         tot_v, tot_e = _sum_by(pc, k_all, ncase), _sum_by(pc, e_all, ncase)
         tol = rtol * _size(tot_v) + atol
         npan = np.bincount(pc, minlength=ncase)
