@@ -74,6 +74,7 @@ class Term:
         fcntl.ioctl(fd, termios.TIOCSWINSZ, struct.pack("HHHH", h, w, 0, 0))
         self.buf = bytearray()
         self.screen = None  # a pyte screen fed with everything read (bytes per update)
+        self.unfed: list[bytes] = []  # read but not yet fed to it
         try:
             import pyte
         except ImportError:
@@ -92,12 +93,15 @@ class Term:
             return None
         t = time.perf_counter()
         self.sent_since_key = getattr(self, "sent_since_key", 0) + len(data)
-        if self.screen is not None:
-            self.stream.feed(data)
+        if self.screen is not None:  # fed to the emulator later: pyte costs ~1 ms per KB, and
+            self.unfed.append(data)  # feeding here delayed the next read (and its time stamp)
         return t, data
 
     def cells(self) -> dict:
         """The emulated screen: (row, col) → (char, fg, bg, bold, reverse)."""
+        for data in self.unfed:
+            self.stream.feed(data)
+        self.unfed.clear()
         out = {}
         for y in range(self.screen.lines):
             row = self.screen.buffer[y]

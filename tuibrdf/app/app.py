@@ -8,9 +8,12 @@ core caches results by request); otherwise :meth:`BrdfApp.compute` runs in an ex
 thread worker (``@work(exclusive=True, thread=True)``): the newest request cancels the older
 ones, and a result that is no longer the current request is dropped, so the latest state
 always wins and its frame always arrives.  The worker posts the fast part (maps, sections,
-peak) at once and the slow part (albedo, albedo curve) when done.  A frame waits while
-Textual's output writer still has frames queued (a slow terminal), and each pane is redrawn
-only when what it shows changed.
+peak) at once and the slow part (albedo, albedo curve) when done; the fast part waits up to
+:data:`HOLD_S` for the slow one, so a fast model's key costs one paint: every pane, the panels
+and the status line together (a slow frame lets the panels and status go ahead after
+:data:`PENDING_S`).  A frame waits while Textual's output writer still has frames queued (a
+slow terminal), and each pane is redrawn only when what it shows changed, through
+:func:`tuibrdf.render.lines.pane_lines` (rows of segments, not Rich's line splitting).
 """
 
 from __future__ import annotations
@@ -45,6 +48,12 @@ from .text import PANES, legend_text, status_text, visible_panes
 from .widgets import ParamPanel, Picture, StatusLine
 
 RETRY_S = 0.02  # re-check a busy writer after this long
+#: a frame not computed by then: the panels and status line go ahead of it (a key's new value
+#: shows at once on a slow model; a fast frame brings them itself, in the same paint)
+PENDING_S = 0.05
+#: how long maps and sections wait for their albedo (a fast model's albedo takes 1–2 ms:
+#: both then go out in one paint; a slow one does not hold the picture up)
+HOLD_S = 0.006
 FILE_POLL_S = 1.0  # how often a model file's mtime is checked (an edit redraws)
 #: colour levels of the maps: 32 keeps a full 160×48 map update near 50 KiB (docs/app.md)
 LEVELS = 32
@@ -159,19 +168,29 @@ class BrdfApp(MeasuredData, App):
         self.call_later(self._update, self._changes)
 
     def _update(self, change: int) -> None:
-        """The panels and the status line now; the frame at once or from the worker."""
+        """The frame at once when computed before, else from the worker (the panels and the
+        status line go with it, so one key costs one paint)."""
         if change != self._changes:
             return  # a newer change is queued behind this one
         try:
             if self._relayout:
                 self._relayout = False
                 arrange(self)
-            for i, panel in enumerate(self.query(ParamPanel)):
-                if i < len(self.state.sides):
-                    panel.show(self.state, i)
             self.refresh_frame()
         except NoMatches:  # keys still queued while the app closes: no widgets left
             pass
+
+    def _panels(self) -> None:
+        for i, panel in enumerate(self.query(ParamPanel)):
+            if i < len(self.state.sides):
+                panel.show(self.state, i)
+
+    def _pending(self, req: FrameRequest) -> None:
+        """The frame of ``req`` is slow to come: show the panels and the status line (its
+        numbers "…") now rather than with it."""
+        if req == self.request and (self.frame is None or self.frame.request != req):
+            self._panels()
+            self._status()
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         """While a modal screen (help, save, palette) is open, the viewer's keys wait."""
@@ -214,16 +233,17 @@ class BrdfApp(MeasuredData, App):
         """Show the current state's frame: at once when computed before, else when the worker
         has computed it."""
         if self.screen.has_class("small"):
+            self._panels()
             self._status()
             return
         if not self._files_ready():  # measured data still loading: its panes say so
             for pane in visible_panes(self.state):
                 self.query_one(f"#{pane}", Picture).show(
                     Text("loading measured data …", justify="center"), None)
+            self._panels()
             self._status()
             return
         req = self.request = self.frame_request()
-        self._status()
         if self.sync:
             try:
                 self.show_frame(scene.compute_frame(req))
@@ -232,7 +252,9 @@ class BrdfApp(MeasuredData, App):
             return
         done = scene.cached_frame(req)
         if done is not None:
-            self.show_frame(done)
+            self.frame_ready(done)
+        else:
+            self.set_timer(PENDING_S, partial(self._pending, req))
         busy = self._worker is not None and self._worker.is_running
         if (done is None or not done.complete) and not (busy and self._worker_for == req):
             self._worker, self._worker_for = self.compute(req), req
@@ -254,7 +276,7 @@ class BrdfApp(MeasuredData, App):
             return
         try:
             res = scene.compute_frame(req, slow=False)
-            post(self.show_frame, res)
+            post(self.frame_ready, res)
             if not res.complete and not worker.is_cancelled:
                 res = scene.compute_frame(req, check=lambda: not worker.is_cancelled)
                 if res is not None:
@@ -267,6 +289,7 @@ class BrdfApp(MeasuredData, App):
             for pane in visible_panes(self.state):
                 self.query_one(f"#{pane}", Picture).show(Text(f"cannot draw: {error}"), None)
             self.message = f"cannot compute this frame: {error}"
+            self._panels()
             self._status()
 
     def _writer_busy(self) -> bool:
@@ -276,9 +299,22 @@ class BrdfApp(MeasuredData, App):
         except AttributeError:
             return False
 
+    def frame_ready(self, res: FrameResult) -> None:
+        """A result for the screen: a complete one at once; one still waiting for its albedo
+        waits up to :data:`HOLD_S` for it, so that a fast model's key costs one paint."""
+        if res.complete or res.request != self.request:
+            self.show_frame(res)
+        else:
+            self.set_timer(HOLD_S, partial(self._show_partial, res))
+
+    def _show_partial(self, res: FrameResult) -> None:
+        if self.frame is None or self.frame.request != res.request:
+            self.show_frame(res)
+
     def show_frame(self, res: FrameResult) -> None:
-        """Draw ``res`` if it is still the current request: the main view now, the two
-        cross-sections one frame later (plotext, ≈ 8 ms each at 160×48)."""
+        """Draw ``res`` if it is still the current request: every visible pane, the panels and
+        the status line in one go (one paint; each pane redrawn only if what it shows
+        changed)."""
         if res.request != self.request or not self.is_running:
             return  # a newer request is on its way, or the app is closing
         if self._writer_busy():  # trailing edge: try again when the terminal has caught up
@@ -286,18 +322,12 @@ class BrdfApp(MeasuredData, App):
             return
         self.frame = res
         self.frames += 1
-        shown = visible_panes(self.state)
-        for pane in shown[:-2]:
+        for pane in visible_panes(self.state):
             self._draw(pane, res)
         if self.state.compare and self.state.view == "map":
             self.query_one("#legend", Static).update(legend_text(self.state))
+        self._panels()
         self._status()
-        self.call_after_refresh(self._draw_later, res, shown[-2:])
-
-    def _draw_later(self, res: FrameResult, shown: list[str]) -> None:
-        if res is self.frame and not self.screen.has_class("small"):
-            for pane in shown:
-                self._draw(pane, res)
 
     def _draw(self, pane: str, res: FrameResult) -> None:
         pic = self.query_one(f"#{pane}", Picture)

@@ -6,7 +6,6 @@ import os
 
 from rich.console import RenderableType
 from rich.segment import Segment
-from rich.style import Style
 from rich.text import Text
 from textual.filter import ANSIToTruecolor
 from textual.geometry import Region
@@ -15,9 +14,8 @@ from textual.widget import Widget
 from textual.widgets import Static
 
 from ..core.params import _fmt
+from ..render.lines import BLANK, pane_lines
 from .state import Side, ViewerState
-
-BLANK = Style()  # never None: Textual's NO_COLOR filter crashes on a None style
 
 
 def changed_span(a: Strip, b: Strip) -> tuple[int, int]:
@@ -47,27 +45,33 @@ class Picture(Widget):
         super().__init__(**kw)
         self.pane = pane
         self._strips: list[Strip] = []
+        self._lines: list[list[Segment]] = []  # the segments of each strip
         self.shown_for: object = None  # what the strips were made from (the app's key)
 
     def show(self, renderable: RenderableType, key: object = None) -> None:
         w, h = self.size.width, self.size.height
-        console = self.app.console
-        options = console.options.update(width=w, height=h)
-        lines = console.render_lines(renderable, options, style=BLANK, pad=True)
-        if self.app.no_color:  # Textual's Monochrome filter crashes on a None style
-            lines = [[s if s.style is not None else Segment(s.text, BLANK) for s in line]
-                     for line in lines]
-        old = self._strips
-        self._strips = [Strip(line, w).crop_extend(0, w, BLANK) for line in lines[:h]]
+        lines = pane_lines(renderable, self.app.console, w, h)
+        old, old_lines = self._strips, self._lines
         self.shown_for = key
-        if len(old) != len(self._strips) or any(s.cell_length != w for s in old):
+        self._lines = lines
+        if len(old) != h or any(s.cell_length != w for s in old):
+            self._strips = [Strip(line, w) for line in lines]
             self.refresh()
             return
         # only the cells that changed go to the terminal: per changed line, the span between
-        # the first and the last segment that differ
-        pairs = enumerate(zip(old, self._strips, strict=True))
-        regions = [Region(x0, y, x1 - x0, 1) for y, (a, b) in pairs
-                   if a != b for x0, x1 in [changed_span(a, b)] if x1 > x0]
+        # the first and the last segment that differ (an unchanged line keeps its Strip)
+        regions = []
+        strips = []
+        for y, (a, a_line, line) in enumerate(zip(old, old_lines, lines, strict=True)):
+            if a_line == line:
+                strips.append(a)
+                continue
+            b = Strip(line, w)
+            strips.append(b)
+            x0, x1 = changed_span(a, b)
+            if x1 > x0:
+                regions.append(Region(x0, y, x1 - x0, 1))
+        self._strips = strips
         if regions:
             self.refresh(*regions)
 
