@@ -45,7 +45,7 @@ from .presets import PresetError, apply_loaded, list_presets, load_preset, prese
 from .screens import HelpScreen, SafeCommandPalette, SaveScreen, ValueScreen
 from .state import ViewerState
 from .text import PANES, legend_text, status_text, visible_panes
-from .widgets import ParamPanel, Picture, StatusLine
+from .widgets import ParamPanel, Picture, QuietStatic, StatusLine
 
 RETRY_S = 0.02  # re-check a busy writer after this long
 #: a frame not computed by then: the panels and status line go ahead of it (a key's new value
@@ -121,7 +121,7 @@ class BrdfApp(MeasuredData, App):
                     yield Picture("incidence", id="incidence")
                     yield Picture("perpendicular", id="perpendicular")
             yield StatusLine(id="status")
-        yield Static(id="toosmall")
+        yield QuietStatic(id="toosmall")
         yield Footer(compact=True, show_command_palette=False)
 
     def on_mount(self) -> None:

@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-from textual.widgets import Static
+from rich.text import Text
 
 from ..core.models import MODELS
 from .state import panel_rows
 from .text import PANES, visible_panes
-from .widgets import ParamPanel, Picture
+from .widgets import ParamPanel, Picture, QuietStatic
 
 MIN_W, MIN_H = 60, 18
 #: compare mode draws three maps, two panels and two sections: below this it says so
@@ -50,7 +50,7 @@ def arrange(app) -> None:
         msg = (f"The terminal is {w}×{h}: compare mode needs at least "
                f"{COMPARE_MIN_W}×{COMPARE_MIN_H}.\nEnlarge the window, or press c for one side "
                "(q quits).")
-    app.query_one("#toosmall", Static).update(msg)
+    app.query_one("#toosmall", QuietStatic).show_text(Text(msg))
     visible = set(visible_panes(s))
     main = app.query_one("#main")
     main.set_class(s.compare and s.view == "map", "compare-map")

@@ -7,6 +7,7 @@ import os
 from rich.console import RenderableType
 from rich.segment import Segment
 from rich.text import Text
+from textual.css.scalar import Unit
 from textual.filter import ANSIToTruecolor
 from textual.geometry import Region
 from textual.strip import Strip
@@ -102,7 +103,8 @@ class Picture(Widget):
 class QuietStatic(Static):
     """A ``Static`` updated only when its text changes, and re-laid out (which costs a layout
     and compositing of the whole screen) only when its height may change: a new number of
-    lines, or a line wrapping differently at the widget's width."""
+    lines, or a line wrapping differently at the widget's width, beyond its min-height (a
+    panel as tall as the longest model's keeps its height when the model changes)."""
 
     _shown: tuple | None = None
     _rows: tuple | None = None
@@ -110,8 +112,12 @@ class QuietStatic(Static):
     def _row_count(self, text: Text) -> tuple:
         width = max(1, self.content_region.width)
         if text.no_wrap or self.styles.text_wrap == "nowrap":
-            return text.plain.count("\n") + 1, width
-        return len(text.wrap(self.app.console, width)), width  # Rich's own word wrap
+            rows = text.plain.count("\n") + 1
+        else:
+            rows = len(text.wrap(self.app.console, width))  # Rich's own word wrap
+        floor = self.styles.min_height
+        floor = int(floor.value) if floor is not None and floor.unit == Unit.CELLS else 0
+        return max(rows + self.styles.gutter.height, floor), width
 
     def show_text(self, text: Text) -> None:
         key = (text.plain, tuple(text.spans), str(text.style))  # Text == ignores the style
