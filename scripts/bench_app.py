@@ -14,6 +14,8 @@ timestamps the bytes the app writes back:
   that change: the app's own screen before and after the key is replayed through ``pyte`` (a
   terminal emulator) when installed, each changed cell costing its character plus the shortest
   SGR that sets its colours; without pyte the minimum is not reported.
+* **CPU per key**: the viewer's CPU time (all threads, ``/proc/PID/task/*/schedstat``) over
+  the keys of each kind, per key: what a loaded machine inflates far less than latency.
 * **catch-up**: a key held 2 s (30 repeats/s) while the reader drains the pty at ~1 MB/s;
   the time from the last key until the output stops (idle ``IDLE_S``).
 * **startup**: spawn → the first frame containing the map's colour bar unit (``sr⁻¹``); and
@@ -30,6 +32,7 @@ from __future__ import annotations
 
 import argparse
 import fcntl
+import glob
 import os
 import pty
 import select
@@ -96,6 +99,18 @@ class Term:
         if self.screen is not None:  # fed to the emulator later: pyte costs ~1 ms per KB, and
             self.unfed.append(data)  # feeding here delayed the next read (and its time stamp)
         return t, data
+
+    def cpu(self) -> float:
+        """CPU seconds the viewer has used so far, every thread (``/proc``, nanoseconds): a
+        cost a loaded machine inflates far less than latency."""
+        total = 0
+        for task in glob.glob(f"/proc/{self.pid}/task/*/schedstat"):
+            try:
+                with open(task) as f:
+                    total += int(f.read().split()[0])
+            except (OSError, ValueError, IndexError):  # a thread that just ended
+                pass
+        return total * 1e-9
 
     def cells(self) -> dict:
         """The emulated screen: (row, col) → (char, fg, bg, bold, reverse)."""
@@ -213,6 +228,7 @@ def latency(w: int, h: int, color: str, reps: int) -> dict:
             times, sizes = [], []
             settled = []
             ratios = []
+            cpu0 = term.cpu()
             for i in range(reps):
                 before = term.cells() if term.screen is not None else None
                 t_key = time.perf_counter()
@@ -229,7 +245,8 @@ def latency(w: int, h: int, color: str, reps: int) -> dict:
             out[name] = (statistics.median(times), pct(times, 0.95), statistics.median(sizes),
                          statistics.median(settled), pct(settled, 0.95),
                          (statistics.median(a for a, _ in ratios),
-                          statistics.median(b for _, b in ratios)) if ratios else None)
+                          statistics.median(b for _, b in ratios)) if ratios else None,
+                         (term.cpu() - cpu0) / reps)
     finally:
         term.close()
     return out
@@ -333,8 +350,8 @@ def main() -> int:
         return 0
     print("| size | colours | startup s | main view p50/p95 ms: param | θi | model "
           "| all panes p50/p95 ms: param | θi | model | bytes per 1° θi / changed cells' "
-          "minimum | catch-up s |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+          "minimum | CPU per key ms: param | θi | model | catch-up s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for w, h in sizes:
         for color in colors:
             r = latency(w, h, color, args.reps)
@@ -346,8 +363,9 @@ def main() -> int:
             least = r["theta"][5]
             sent = (f"{least[0] / 1e3:.1f} / {least[1] / 1e3:.1f} kB = {least[0] / least[1]:.2f}×"
                     if least else f"{r['theta'][2] / 1e3:.1f} kB / ?")
+            cpu = [f"{r[k][6] * 1e3:.1f}" for k in ("param", "theta", "model")]
             print(f"| {w}×{h} | {color} | {r['startup']:.2f} | {' | '.join(ms)} | "
-                  f"{' | '.join(done)} | {sent} | {cu:.2f} |", flush=True)
+                  f"{' | '.join(done)} | {sent} | {' | '.join(cpu)} | {cu:.2f} |", flush=True)
     print(f"\n`tuibrdf --help`: {help_time() * 1e3:.0f} ms (median of 5)")
     return 0
 

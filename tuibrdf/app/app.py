@@ -18,6 +18,7 @@ slow terminal), and each pane is redrawn only when what it shows changed, throug
 
 from __future__ import annotations
 
+import gc
 import threading
 from functools import partial
 
@@ -47,6 +48,10 @@ from .state import ViewerState
 from .text import PANES, legend_text, status_text, visible_panes
 from .widgets import ParamPanel, Picture, QuietStatic, StatusLine
 
+#: after start-up (Textual, numpy, the models: ≈ 10⁵ objects kept for the whole session) the
+#: collector stops scanning what exists then: a full collection took 23–48 ms here, a stall
+#: of any key it fell on; later ones scan only the objects made since (docs/app.md)
+FREEZE_S = 1.0
 RETRY_S = 0.02  # re-check a busy writer after this long
 #: a frame not computed by then: the panels and status line go ahead of it (a key's new value
 #: shows at once on a slow model; a fast frame brings them itself, in the same paint)
@@ -128,6 +133,8 @@ class BrdfApp(MeasuredData, App):
         self._changed(self.message, relayout=True)
         self.set_interval(FILE_POLL_S, self._check_files)
         self.background(_list_presets, self._listed)
+        if not self.sync:
+            self.set_timer(FREEZE_S, gc.freeze)
 
     def on_resize(self, event) -> None:
         self._changed(self.message, relayout=True)

@@ -15,7 +15,7 @@ from textual.widget import Widget
 from textual.widgets import Static
 
 from ..core.params import _fmt
-from ..render.lines import BLANK, pane_lines
+from ..render.lines import BLANK, pane_lines, render_rows
 from .state import Side, ViewerState
 
 
@@ -34,33 +34,25 @@ def changed_span(a: Strip, b: Strip) -> tuple[int, int]:
     return x0, max(x0, x1)
 
 
-class Picture(Widget):
-    """Shows precomputed lines; ``render_line`` only returns a stored ``Strip``.
+class Rows(Widget):
+    """Shows stored rows of segments; ``render_line`` only returns a stored ``Strip``, and a
+    new set of rows marks only the cells that changed for repaint (:meth:`_set`)."""
 
-    The app renders a pane's renderable once per change (:meth:`show`), not once per refresh.
-    """
-
-    DEFAULT_CSS = "Picture { width: 1fr; height: 1fr; }"
-
-    def __init__(self, pane: str, **kw) -> None:
+    def __init__(self, **kw) -> None:
         super().__init__(**kw)
-        self.pane = pane
         self._strips: list[Strip] = []
         self._lines: list[list[Segment]] = []  # the segments of each strip
-        self.shown_for: object = None  # what the strips were made from (the app's key)
 
-    def show(self, renderable: RenderableType, key: object = None) -> None:
-        w, h = self.size.width, self.size.height
-        lines = pane_lines(renderable, self.app.console, w, h)
+    def _set(self, lines: list[list[Segment]], w: int, h: int) -> None:
+        """Show ``h`` rows of ``w`` cells; only the cells that changed go to the terminal: per
+        changed row, the span between the first and the last segment that differ (an
+        unchanged row keeps its Strip)."""
         old, old_lines = self._strips, self._lines
-        self.shown_for = key
         self._lines = lines
         if len(old) != h or any(s.cell_length != w for s in old):
             self._strips = [Strip(line, w) for line in lines]
             self.refresh()
             return
-        # only the cells that changed go to the terminal: per changed line, the span between
-        # the first and the last segment that differ (an unchanged line keeps its Strip)
         regions = []
         strips = []
         for y, (a, a_line, line) in enumerate(zip(old, old_lines, lines, strict=True)):
@@ -76,6 +68,33 @@ class Picture(Widget):
         if regions:
             self.refresh(*regions)
 
+    def render_line(self, y: int) -> Strip:
+        if y < len(self._strips):
+            return self._strips[y]
+        return Strip([Segment(" " * self.size.width, BLANK)], self.size.width)
+
+    def get_line_filters(self):
+        # ANSIToTruecolor costs ≈ 10 ms per 160×48 frame and our colours are RGB already;
+        # keep the others (NO_COLOR relies on Monochrome)
+        return [f for f in super().get_line_filters() if not isinstance(f, ANSIToTruecolor)]
+
+
+class Picture(Rows):
+    """A pane: the app renders its renderable once per change (:meth:`show`), not once per
+    refresh."""
+
+    DEFAULT_CSS = "Picture { width: 1fr; height: 1fr; }"
+
+    def __init__(self, pane: str, **kw) -> None:
+        super().__init__(**kw)
+        self.pane = pane
+        self.shown_for: object = None  # what the strips were made from (the app's key)
+
+    def show(self, renderable: RenderableType, key: object = None) -> None:
+        w, h = self.size.width, self.size.height
+        self.shown_for = key
+        self._set(pane_lines(renderable, self.app.console, w, h), w, h)
+
     def on_resize(self, event) -> None:
         self.shown_for = None
         request = getattr(self.app, "request_rebuild", None)
@@ -88,16 +107,6 @@ class Picture(Widget):
         clicked = getattr(self.app, "picture_clicked", None)
         if offset is not None and clicked is not None:
             clicked(self.pane, offset.x, offset.y)
-
-    def render_line(self, y: int) -> Strip:
-        if y < len(self._strips):
-            return self._strips[y]
-        return Strip([Segment(" " * self.size.width, BLANK)], self.size.width)
-
-    def get_line_filters(self):
-        # ANSIToTruecolor costs ≈ 10 ms per 160×48 frame and our colours are RGB already;
-        # keep the others (NO_COLOR relies on Monochrome)
-        return [f for f in super().get_line_filters() if not isinstance(f, ANSIToTruecolor)]
 
 
 class QuietStatic(Static):
@@ -176,18 +185,55 @@ class ParamPanel(QuietStatic):
         self.show_text(text)
 
 
-class StatusLine(QuietStatic):
-    """Two lines: θi and the frame's numbers; the view, scale, colour map and a message."""
+class StatusLine(Rows):
+    """Two lines: θi and the frame's numbers; the view, scale, colour map and a message.  The
+    numbers may wrap to a third line; the last line is cut with "…" at the width, so a long
+    message never adds one.  A picture, so a new number re-sends only the cells around it
+    (a ``Static`` re-sent both lines whole: ≈ 1.1 kB a key at 160 columns)."""
 
     DEFAULT_CSS = "StatusLine { height: auto; max-height: 3; padding: 0 1; }"
 
+    def __init__(self, **kw) -> None:
+        super().__init__(**kw)
+        self._source = Text()  # the text as given (re-cut at a new width)
+        self._text = Text()  # as shown
+        self._key: tuple | None = None
+
+    def render(self) -> Text:
+        """The text shown (tests read it)."""
+        return self._text
+
+    def _rows(self, width: int) -> list[list[Segment]]:
+        return render_rows(self._text, self.app.console, max(1, width))[:3]
+
+    def get_content_height(self, container, viewport, width: int) -> int:
+        return max(1, len(self._rows(width)))
+
     def show_text(self, text: Text) -> None:
-        """The numbers may wrap; the last line (view, scale, message) is cut with "…" at the
-        width, so a long message never pushes the status to a third row."""
-        width = self.size.width - 2  # the padding
+        key = (text.plain, tuple(text.spans), str(text.style))  # Text == ignores the style
+        if key == self._key:
+            return
+        self._key, self._source = key, text
+        width = self.size.width
         lines = text.split("\n")
         if width > 10 and len(lines) > 1:
             last = lines[-1]
             last.truncate(width, overflow="ellipsis")
             text = Text("\n").join([*lines[:-1], last])
-        super().show_text(text)
+        self._text = text
+        if width < 1:  # not laid out yet: drawn by on_resize
+            return
+        h = len(self._rows(width))
+        lines = pane_lines(text, self.app.console, width, h)
+        if h != self.size.height:  # a new height: laid out again, the rows drawn in the
+            self._strips = [Strip(line, width) for line in lines]  # same paint
+            self._lines = lines
+            self.refresh(layout=True)
+            return
+        self._set(lines, width, h)
+
+    def on_resize(self, event) -> None:
+        if self._strips and event.size.width == self._strips[0].cell_length:
+            return  # a new height for rows already drawn at this width
+        self._key = None
+        self.show_text(self._source)

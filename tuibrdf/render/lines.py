@@ -31,9 +31,10 @@ def _fit(row: list[Segment], own: int, width: int) -> list[Segment]:
     return Segment.adjust_line_length(row, width, BLANK)
 
 
-def _rows(part: RenderableType, console: Console, width: int) -> list[list[Segment]]:
+def render_rows(part: RenderableType, console: Console, width: int) -> list[list[Segment]]:
+    """Every row of ``part`` at ``width`` cells (its own height, not cropped or padded)."""
     if isinstance(part, Group):
-        return [row for p in part.renderables for row in _rows(p, console, width)]
+        return [row for p in part.renderables for row in render_rows(p, console, width)]
     if isinstance(part, HalfBlockImage):
         rows = part.rows(part.color_system or console_system(console))
         return [_fit(r, part.width, width) for r in rows]
@@ -47,7 +48,7 @@ def pane_lines(renderable: RenderableType, console: Console, width: int,
                height: int) -> list[list[Segment]]:
     """``height`` rows of ``width`` cells (cropped, or padded with blank rows), no segment
     with a ``None`` style."""
-    rows = _rows(renderable, console, width)[:height]
+    rows = render_rows(renderable, console, width)[:height]
     rows += [[Segment(" " * width, BLANK)] for _ in range(height - len(rows))]
     return [[s if s.style is not None else Segment(s.text, BLANK) for s in row]
             for row in rows]
