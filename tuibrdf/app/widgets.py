@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import os
+from os.path import commonprefix
 
+from rich.cells import cell_len
 from rich.console import RenderableType
 from rich.segment import Segment
 from rich.text import Text
@@ -19,18 +21,24 @@ from ..render.lines import BLANK, pane_lines, render_rows
 from .state import Side, ViewerState
 
 
-def changed_span(a: Strip, b: Strip) -> tuple[int, int]:
-    """Cells ``[x0, x1)`` of two equally wide strips outside their common first and last
-    segments (what must be redrawn to turn ``a`` into ``b``)."""
-    sa, sb = list(a), list(b)
+def changed_span(sa: list[Segment], sb: list[Segment], width: int) -> tuple[int, int]:
+    """Cells ``[x0, x1)`` of two rows of ``width`` cells outside what they share at both ends
+    (what must be redrawn to turn ``sa`` into ``sb``): the equal segments at each end, then
+    the common start (end) of the first (last) segments that differ when their styles are
+    equal.  Cells ``[0, x0)`` and ``[x1, width)`` are equal; ``x1 <= x0``: nothing changed."""
+    n = min(len(sa), len(sb))
     x0 = i = 0
-    while i < min(len(sa), len(sb)) and sa[i] == sb[i]:
-        x0 += sa[i].cell_length
+    while i < n and sa[i] == sb[i]:
+        x0 += cell_len(sa[i].text)
         i += 1
-    x1, j = b.cell_length, 0
-    while j < min(len(sa), len(sb)) - i and sa[-1 - j] == sb[-1 - j]:
-        x1 -= sb[-1 - j].cell_length
+    if i < n and sa[i].style == sb[i].style:  # both start at x0: a common start is equal
+        x0 += cell_len(commonprefix([sa[i].text, sb[i].text]))
+    x1, j = width, 0
+    while j < n - i and sa[-1 - j] == sb[-1 - j]:
+        x1 -= cell_len(sb[-1 - j].text)
         j += 1
+    if j < n and sa[-1 - j].style == sb[-1 - j].style:  # both end at x1: so does a common end
+        x1 -= cell_len(commonprefix([sa[-1 - j].text[::-1], sb[-1 - j].text[::-1]]))
     return x0, max(x0, x1)
 
 
@@ -59,9 +67,8 @@ class Rows(Widget):
             if a_line == line:
                 strips.append(a)
                 continue
-            b = Strip(line, w)
-            strips.append(b)
-            x0, x1 = changed_span(a, b)
+            strips.append(Strip(line, w))
+            x0, x1 = changed_span(a_line, line, w)
             if x1 > x0:
                 regions.append(Region(x0, y, x1 - x0, 1))
         self._strips = strips
