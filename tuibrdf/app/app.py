@@ -110,6 +110,7 @@ class BrdfApp(MeasuredData, App):
         self._changes = 0  # changes so far; only the last one queued updates the screen
         self._relayout = False  # a change since the last update may show other panes
         self._preset_names: list[str] = []  # the saved presets, for the command palette
+        self._widgets: dict[str, object] = {}  # id → widget (BrdfApp.one)
 
     # -- layout ------------------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -165,6 +166,16 @@ class BrdfApp(MeasuredData, App):
         cs = self.console.color_system
         return "truecolor" if cs == "truecolor" else ("none" if cs is None else "256")
 
+    def one(self, wid: str):
+        """The viewer's widget ``#wid``, looked up once (a query walks the whole DOM: 6 % of
+        a key's time when every draw asked again)."""
+        w = self._widgets.get(wid)
+        if w is None:
+            if not self.screen_stack:  # closing: no screen left
+                raise NoMatches(f"#{wid}: the viewer has closed")
+            w = self._widgets[wid] = self.screen_stack[0].query_one(f"#{wid}")
+        return w
+
     # -- one frame ---------------------------------------------------------------------------
     def _changed(self, message: str | None = None, relayout: bool = False) -> None:
         """After any change: the screen follows once the events already queued are handled
@@ -188,9 +199,8 @@ class BrdfApp(MeasuredData, App):
             pass
 
     def _panels(self) -> None:
-        for i, panel in enumerate(self.query(ParamPanel)):
-            if i < len(self.state.sides):
-                panel.show(self.state, i)
+        for i in range(len(self.state.sides)):
+            self.one(f"panel-{'ab'[i]}").show(self.state, i)
 
     def _pending(self, req: FrameRequest) -> None:
         """The frame of ``req`` is slow to come: show the panels and the status line (its
@@ -208,7 +218,7 @@ class BrdfApp(MeasuredData, App):
         self._changed(self.message)
 
     def _pane_size(self, pane: str) -> tuple[int, int]:
-        size = self.query_one(f"#{pane}", Picture).size
+        size = self.one(pane).size
         return size.width, size.height
 
     def frame_request(self) -> FrameRequest:
@@ -245,7 +255,7 @@ class BrdfApp(MeasuredData, App):
             return
         if not self._files_ready():  # measured data still loading: its panes say so
             for pane in visible_panes(self.state):
-                self.query_one(f"#{pane}", Picture).show(
+                self.one(pane).show(
                     Text("loading measured data …", justify="center"), None)
             self._panels()
             self._status()
@@ -294,7 +304,7 @@ class BrdfApp(MeasuredData, App):
     def _failed(self, req: FrameRequest, error: Exception) -> None:
         if req == self.request:
             for pane in visible_panes(self.state):
-                self.query_one(f"#{pane}", Picture).show(Text(f"cannot draw: {error}"), None)
+                self.one(pane).show(Text(f"cannot draw: {error}"), None)
             self.message = f"cannot compute this frame: {error}"
             self._panels()
             self._status()
@@ -332,12 +342,12 @@ class BrdfApp(MeasuredData, App):
         for pane in visible_panes(self.state):
             self._draw(pane, res)
         if self.state.compare and self.state.view == "map":
-            self.query_one("#legend", Static).update(legend_text(self.state))
+            self.one("legend").update(legend_text(self.state))
         self._panels()
         self._status()
 
     def _draw(self, pane: str, res: FrameResult) -> None:
-        pic = self.query_one(f"#{pane}", Picture)
+        pic = self.one(pane)
         w, h = pic.size.width, pic.size.height
         view, k = PANES[pane]
         look, req = self.look, res.request
@@ -363,7 +373,7 @@ class BrdfApp(MeasuredData, App):
             pic.show(Text(f"cannot draw {pane}: {e}"), None)
 
     def _status(self) -> None:
-        self.query_one("#status", StatusLine).show_text(
+        self.one("status").show_text(
             status_text(self.state, self.frame, self.look, self._loading, self.message))
 
     def picture_clicked(self, pane: str, x: int, y: int) -> None:
@@ -378,7 +388,7 @@ class BrdfApp(MeasuredData, App):
             g = geometry(*res.request.map_px)
             uv = g.to_uv(np.array(x + 0.5), np.array(2.0 * (y - 1) + 1.0))  # cell centre
         elif view in ("incidence", "perpendicular") and y >= 1:
-            pic = self.query_one(f"#{pane}", Picture)
+            pic = self.one(pane)
             t = angle_at(x, y - 1, pic.size.width, pic.size.height - 1)
             if t is not None:
                 if view == "incidence":
