@@ -61,3 +61,22 @@ def test_pads_and_crops():
     rows = pane_lines(Text("abcdefgh\nij\nkl", no_wrap=True, overflow="crop"), con, 4, 2)
     assert ["".join(s.text for s in row) for row in rows] == ["abcd", "ij  "]
     assert all(s.style is not None for row in rows for s in row)  # never a None style
+
+
+@pytest.mark.parametrize("text", [
+    Text("title  θi=30°", style="bold"), Text(""), Text("abcdefgh", no_wrap=True, overflow="crop"),
+    Text("abcdefgh", no_wrap=True, overflow="ellipsis"), Text("abcdefgh"),
+    Text("centred", justify="center"), Text("tab\there"), Text("two\nlines"),
+    Text("wide 漢字"), Text("dim part", style="dim red on blue"),
+    Text.assemble(("a", "bold"), "b")])
+def test_text_rows_as_rich_draws_them(text):
+    # titles take a shortcut past Rich (one style, one row): the same cells as Rich, and the
+    # cases the shortcut must leave to Rich (wrapping, ellipsis, justification, tabs, wide
+    # characters, spans) too
+    for system in SYSTEMS:
+        con = console(system)
+        for w in (4, 20):
+            want = con.render_lines(text, con.options.update(width=w, height=None),
+                                    style=BLANK, pad=True)
+            got = pane_lines(text, con, w, len(want))
+            assert cells(got) == cells(want), (system, w)

@@ -12,14 +12,26 @@ every pane.
 
 from __future__ import annotations
 
+from rich.cells import cell_len
 from rich.console import Console, Group, RenderableType
 from rich.segment import Segment
 from rich.style import Style
+from rich.text import Text
 
 from .braille import BrailleCanvas
 from .halfblock import HalfBlockImage, console_system
 
 BLANK = Style()  # never None: Textual's NO_COLOR filter crashes on a None style
+
+
+def _plain_line(text: Text, width: int) -> bool:
+    """One row of one style that Rich would not wrap, justify or expand: its characters are
+    its cells."""
+    plain = text.plain
+    return (not text.spans and "\n" not in plain and "\t" not in plain
+            and text.justify in (None, "default", "left") and plain.isprintable()
+            and len(plain) == cell_len(plain)
+            and (len(plain) <= width or (text.no_wrap and text.overflow == "crop")))
 
 
 def _fit(row: list[Segment], own: int, width: int) -> list[Segment]:
@@ -40,6 +52,10 @@ def render_rows(part: RenderableType, console: Console, width: int) -> list[list
         return [_fit(r, part.width, width) for r in rows]
     if isinstance(part, BrailleCanvas):
         return [_fit(r, part.width, width) for r in part.rows()]
+    if isinstance(part, Text) and _plain_line(part, width):  # a title: one style, one line
+        style = console.get_style(part.style) if part.style else BLANK
+        text = part.plain
+        return [_fit([Segment(text, style)] if text else [], len(text), width)]
     return console.render_lines(part, console.options.update(width=width, height=None),
                                 style=BLANK, pad=True)
 
