@@ -5,9 +5,10 @@ timestamps the bytes the app writes back:
 
 * **main view**: from writing the key to the last byte of the first output burst larger than
   ``FRAME_MIN`` bytes (the picture update; bursts are chunks < ``GAP_S`` apart, the app's writer
-  thread writes a frame in one go).  Parameter change (``+``/``-`` on phong's Kd), θi change
-  (→ only, from θi = 0°: every key asks for an albedo never computed before) and model change
-  (``m``).  p50 / p95 over ``--reps`` keys each.
+  thread writes a frame in one go; the largest burst when none is that big: a small update).
+  Parameter change (``+``/``-`` on phong's Kd), θi change (→ only, from θi = 0°: every key
+  asks for an albedo never computed before) and model change (``m``).  p50 / p95 over
+  ``--reps`` keys each.
 * **all panes**: key → the last byte before the output stays idle for ``SETTLE_S`` (map, the
   two sections, the status line's albedo and peak from a worker thread), for every key kind.
 * **bytes per update**: all bytes written for one 1° θi key, against the minimum for the cells
@@ -145,24 +146,34 @@ class Term:
                 return last
             last = got[0]
 
-    def key_to_frame(self, key: bytes, timeout: float = 10.0) -> tuple[float, int]:
-        """(seconds from the key to the end of the first big burst, bytes of that burst)."""
+    def key_to_frame(self, key: bytes, timeout: float = 10.0) -> tuple[float, int, float]:
+        """(seconds from the key to the end of the first burst over ``FRAME_MIN`` bytes — or
+        of the largest burst when none is that big: a small update —, the bytes of that
+        burst, seconds to the last byte before ``SETTLE_S`` of quiet)."""
         t_key = time.perf_counter()
         self.sent_since_key = 0
         os.write(self.fd, key)
         end = t_key + timeout
+        bursts: list[tuple[float, int]] = []  # (end, bytes)
         size, last = 0, None
         while time.perf_counter() < end:
-            got = self.read(GAP_S if size else 0.5)
+            got = self.read(GAP_S if size else (SETTLE_S if bursts else 1.0))
             if got is None:
-                if size >= FRAME_MIN:
-                    return last - t_key, size
-                size = 0  # a small burst (panel or status only): wait for the picture
+                if size:
+                    bursts.append((last, size))
+                    size = 0
+                    continue
+                if bursts:
+                    break
                 continue
             t, data = got
             size += len(data)
             last = t
-        raise TimeoutError("no frame")
+        if not bursts:
+            raise TimeoutError("no frame")
+        big = [b for b in bursts if b[1] >= FRAME_MIN]
+        main = big[0] if big else max(bursts, key=lambda b: b[1])
+        return main[0] - t_key, main[1], bursts[-1][0] - t_key
 
     def close(self) -> None:
         try:
@@ -231,10 +242,9 @@ def latency(w: int, h: int, color: str, reps: int) -> dict:
             cpu0 = term.cpu()
             for i in range(reps):
                 before = term.cells() if term.screen is not None else None
-                t_key = time.perf_counter()
-                dt, n = term.key_to_frame(KEYS[seq[i % len(seq)]])
+                dt, n, done = term.key_to_frame(KEYS[seq[i % len(seq)]])
                 times.append(dt)
-                settled.append(term.drain(SETTLE_S) - t_key)
+                settled.append(done)
                 n_all = n
                 if before is not None:
                     n_all = term.sent_since_key
@@ -296,10 +306,9 @@ def view_latency(w: int, h: int, color: str, reps: int, view: str) -> dict:
         for name, seq in (("param", ("plus", "minus")), ("own", own)):
             times, settled = [], []
             for i in range(reps):
-                t_key = time.perf_counter()
-                dt, _ = term.key_to_frame(KEYS[seq[i % len(seq)]])
+                dt, _, done = term.key_to_frame(KEYS[seq[i % len(seq)]])
                 times.append(dt)
-                settled.append(term.drain(0.15) - t_key)
+                settled.append(done)
             out[name] = (statistics.median(times), pct(times, 0.95), statistics.median(settled),
                          pct(settled, 0.95))
     finally:
