@@ -20,6 +20,7 @@ from rich.text import Text
 
 from .braille import BrailleCanvas
 from .halfblock import HalfBlockImage, console_system
+from .halfdiff_view import LeftLabelled
 
 BLANK = Style()  # never None: Textual's NO_COLOR filter crashes on a None style
 
@@ -50,7 +51,7 @@ def render_rows(part: RenderableType, console: Console, width: int) -> list[list
     if isinstance(part, HalfBlockImage):
         rows = part.rows(part.color_system or console_system(console))
         return [_fit(r, part.width, width) for r in rows]
-    if isinstance(part, BrailleCanvas):
+    if isinstance(part, BrailleCanvas | LeftLabelled):
         return [_fit(r, part.width, width) for r in part.rows()]
     if isinstance(part, Text) and _plain_line(part, width):  # a title: one style, one line
         style = console.get_style(part.style) if part.style else BLANK
