@@ -281,36 +281,54 @@ class _Integrand:
         return np.concatenate(out)
 
 
+#: Graded cuts toward a panel's end (horizon or break) in the inner refinement (_divide).
+END_LEVELS = 3
+
 #: A panel whose error is this many times its share is cut in four rather than two: fewer
 #: refinement rounds (each a kernel call with its fixed cost) for a few more evaluations.
 QUARTER_ABOVE = 1e3
 
 
-def _divide(lo: np.ndarray, hi: np.ndarray, owner: np.ndarray, excess: np.ndarray):
-    """Children of panels ``[lo, hi]``: halves, or quarters where ``excess`` (error over its
-    share) is above :data:`QUARTER_ABOVE`."""
-    parts = np.where(excess > QUARTER_ABOVE, 4, 2)
+def _divide(lo: np.ndarray, hi: np.ndarray, owner: np.ndarray, excess: np.ndarray,
+            end: np.ndarray | None = None):
+    """Children ``(lo, hi, owner, end)`` of panels ``[lo, hi]``: halves, or quarters where
+    ``excess`` (error over its share) is above :data:`QUARTER_ABOVE`; a panel flagged ``end``
+    (it ends at the horizon or at a radial break, where a nearly singular integrand sits at
+    grazing incidence) is cut graded toward that end instead, :data:`END_LEVELS` pieces of
+    ratio 4 after a half (only its last child keeps the flag)."""
+    if end is None:
+        end = np.zeros(len(lo), dtype=bool)
+    parts = np.where(end, END_LEVELS + 1, np.where(excess > QUARTER_ABOVE, 4, 2))
     k = np.repeat(parts, parts)
     j = np.arange(len(k)) - np.repeat(np.cumsum(parts) - parts, parts)
     a, b = np.repeat(lo, parts), np.repeat(hi, parts)
-    w = (b - a) / k
+    w = b - a
+    graded = np.repeat(end, parts)
+    # graded: ends at b − w/2, b − w/8, b − w/32, ...; else uniform
+    off = 0.5 * 0.25 ** np.minimum(j, k - 1)
+    right = np.where(graded, b - w * off, a + (j + 1) * (w / k))
+    left = np.where(j == 0, a, np.where(graded, b - w * 0.5 * 0.25 ** np.maximum(j - 1, 0),
+                                        a + j * (w / k)))
     # the last child ends exactly at hi (no rounding gap before ρmax)
-    return a + j * w, np.where(j == k - 1, b, a + (j + 1) * w), np.repeat(owner, parts)
+    last = j == k - 1
+    return left, np.where(last, b, right), np.repeat(owner, parts), graded & last
 
 
-def _initial_panels(edges: list[np.ndarray], rmax: np.ndarray):
-    """Panels ``(lo, hi, node)`` from increasing breakpoints per node, cut at ρmax."""
+def _initial_panels(edges: list[tuple[np.ndarray, np.ndarray]], rmax: np.ndarray):
+    """Panels ``(lo, hi, node, end)`` from increasing breakpoints per node ``(value, is a
+    radial break)``, cut at ρmax; ``end``: the panel ends at a break or at ρmax."""
     n = len(rmax)
-    lo_l, hi_l, node_l = [], [], []
+    lo_l, hi_l, node_l, end_l = [], [], [], []
     prev = np.zeros(n)
-    for e in [*edges, rmax]:
+    for e, brk in [*edges, (rmax, np.ones(n, dtype=bool))]:
         e = np.minimum(e, rmax)
         keep = e > prev
         lo_l.append(prev[keep])
         hi_l.append(e[keep])
         node_l.append(np.flatnonzero(keep))
+        end_l.append((brk | (e >= rmax))[keep])
         prev = np.where(keep, e, prev)
-    return np.concatenate(lo_l), np.concatenate(hi_l), np.concatenate(node_l)
+    return tuple(np.concatenate(x) for x in (lo_l, hi_l, node_l, end_l))
 
 
 def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
@@ -329,10 +347,10 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
     n, ncase = len(case), len(budget)
     cpsi, spsi = np.cos(psi), np.sin(psi)
     rmax, params = _rho_max(fn.frame, fn.c, case, cpsi)
-    new_lo, new_hi, new_node = _initial_panels(edges(case, cpsi, rmax), rmax)
+    new_lo, new_hi, new_node, new_end = _initial_panels(edges(case, cpsi, rmax), rmax)
     if len(new_lo) == 0:  # every node has ρmax = 0 (the far side at θi = 90°)
         return np.zeros(n), np.zeros(n), tol if tol is not None else np.full(ncase, atol)
-    lo = hi = node = k_all = e_all = None
+    lo = hi = node = end = k_all = e_all = None
     while len(new_lo):
         mid, half = 0.5 * (new_lo + new_hi), 0.5 * (new_hi - new_lo)
         rho = mid[:, None] + half[:, None] * X15
@@ -342,8 +360,8 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
         g = fn(case[j], cpsi[j], spsi[j], tuple(x[j] for x in params), rmax[j], rho, d)
         budget -= 15 * np.bincount(case[j], minlength=ncase)
         k, e = _rule(g, half)
-        lo, hi, node, k_all, e_all = _grow((lo, hi, node, k_all, e_all),
-                                           (new_lo, new_hi, new_node, k, e))
+        lo, hi, node, end, k_all, e_all = _grow((lo, hi, node, end, k_all, e_all),
+                                                (new_lo, new_hi, new_node, new_end, k, e))
         tot_v, tot_e = _sum_by(node, k_all, n), _sum_by(node, e_all, n)
         if tol is None:
             tol = rtol * _size(_sum_by(case, _times(wpsi, tot_v), ncase)) + atol
@@ -354,22 +372,28 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
                  & (hi - lo > 2 * MIN_WIDTH) & (budget[case[node]] > 0))
         if not split.any():
             break
-        new_lo, new_hi, new_node = _divide(lo[split], hi[split], node[split],
-                                           esize[split] / (tol_node / npan.clip(1))[node[split]])
+        new_lo, new_hi, new_node, new_end = _divide(
+            lo[split], hi[split], node[split],
+            esize[split] / (tol_node / npan.clip(1))[node[split]], end[split])
         keep = ~split
-        lo, hi, node, k_all, e_all = lo[keep], hi[keep], node[keep], k_all[keep], e_all[keep]
+        lo, hi, node, end = lo[keep], hi[keep], node[keep], end[keep]
+        k_all, e_all = k_all[keep], e_all[keep]
     return _sum_by(node, k_all, n), _sum_by(node, e_all, n), tol
 
 
-def _outer_breaks(frame: str, c: Cases, symmetric: bool):
-    """Initial ψ panels ``(lo, hi, case)``: breakpoints at 0, ±π/2, ±π, and at grazing
-    incidence (half and mirror frames) a geometric grading toward ±π/2, where ρmax(ψ) turns
-    over within ~cot θi.  ``symmetric``: only ψ ∈ [0, π]."""
+def _outer_breaks(frame: str, c: Cases, symmetric: bool,
+                  azimuth_breaks: Callable[[float, float], list[float]] | None = None):
+    """Initial ψ panels ``(lo, hi, case)``: breakpoints at 0, ±π/2, ±π, ``±azimuth_breaks(sin
+    θi, cos θi)`` (ψ in [0, π]), and at grazing incidence (half and mirror frames) a geometric
+    grading toward ±π/2, where ρmax(ψ) turns over within ~cot θi.  ``symmetric``: only
+    ψ ∈ [0, π]."""
     plo, phi_, pcase = [], [], []
     for i in range(len(c.st)):
         br = {-np.pi, -np.pi / 2, 0.0, np.pi / 2, np.pi}
         st, ct = float(c.st[i]), float(c.ct[i])
         tilted = c.tilt is not None and c.tilt[i] > 0.0
+        if azimuth_breaks is not None:
+            br.update(x for a in azimuth_breaks(st, ct) if 0.0 < a < np.pi for x in (a, -a))
         if frame != "normal" and not tilted and ct > 0.0 and ct < 0.5 * st:
             w = OUTER_START * ct / st
             while w < OUTER_LIMIT:
@@ -385,7 +409,9 @@ def _outer_breaks(frame: str, c: Cases, symmetric: bool):
 def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: Cases, *,
               scale: float, radial_breaks: Callable[..., list[np.ndarray]] | None = None,
               symmetric: bool = False, rtol: float = 1e-6, atol: float = 1e-13,
-              max_evals: int = 400_000) -> PolarResult:
+              max_evals: int = 400_000,
+              azimuth_breaks: Callable[[float, float], list[float]] | None = None
+              ) -> PolarResult:
     """``∫ f(wi, wo) cos θo dωo`` for every incidence of ``c`` (see the module docstring).
 
     ``f(wi (n, 3), wo (n, 3))`` returns ``(n,)`` or ``(n, k)``.  ``scale`` is the lobe's
@@ -415,17 +441,23 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
         grading.append(g)
         g *= GRADING
 
-    def edges(case: np.ndarray, cpsi: np.ndarray, rmax: np.ndarray) -> list[np.ndarray]:
-        out = [np.full(len(case), x) for x in grading]
+    def edges(case: np.ndarray, cpsi: np.ndarray, rmax: np.ndarray):
+        n = len(case)
+        out = [(np.full(n, x), np.zeros(n, dtype=bool)) for x in grading]
         extra = [] if radial_breaks is None else list(
             radial_breaks(c.st[case], c.ct[case], cpsi, rmax))
         if not extra:
             return out
         extra = [np.where((x > 0.0) & (x < rmax), x, rmax) for x in extra]
-        full = np.sort(np.stack([*out, *extra], axis=1), axis=1)
-        return [full[:, i] for i in range(full.shape[1])]
+        vals = np.stack([*(e for e, _ in out), *extra], axis=1)
+        brk = np.zeros(vals.shape, dtype=bool)
+        brk[:, len(out):] = True
+        order = np.argsort(vals, axis=1, kind="stable")
+        vals = np.take_along_axis(vals, order, axis=1)
+        brk = np.take_along_axis(brk, order, axis=1)
+        return [(vals[:, i], brk[:, i]) for i in range(vals.shape[1])]
 
-    new_lo, new_hi, new_pc = _outer_breaks(frame, c, symmetric)
+    new_lo, new_hi, new_pc = _outer_breaks(frame, c, symmetric, azimuth_breaks)
     lo = hi = pc = k_all = e_all = tol = None
     while len(new_lo):
         mid, half = 0.5 * (new_lo + new_hi), 0.5 * (new_hi - new_lo)
@@ -445,8 +477,8 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
                  & (hi - lo > 2 * MIN_WIDTH) & (budget[pc] > 0))
         if not split.any():
             break
-        new_lo, new_hi, new_pc = _divide(lo[split], hi[split], pc[split],
-                                         _size(e_all[split]) / (tol / npan.clip(1))[pc[split]])
+        new_lo, new_hi, new_pc, _ = _divide(lo[split], hi[split], pc[split],
+                                            _size(e_all[split]) / (tol / npan.clip(1))[pc[split]])
         keep = ~split
         lo, hi, pc, k_all, e_all = lo[keep], hi[keep], pc[keep], k_all[keep], e_all[keep]
     k = 2.0 if symmetric else 1.0
