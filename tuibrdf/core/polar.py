@@ -53,6 +53,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -119,6 +120,11 @@ class Cases:
     #: half frame: the polar axis is tilted by this angle away from the light (0: the normal)
     tilt: np.ndarray | None = None
 
+    @cached_property
+    def canonical(self) -> bool:
+        """Every ``u = (1, 0, 0)`` and ``v = (0, 1, 0)`` (φi = 0)."""
+        return bool(np.all(self.u == (1.0, 0.0, 0.0)) and np.all(self.v == (0.0, 1.0, 0.0)))
+
     @property
     def wi(self) -> np.ndarray:
         return self.st[:, None] * self.u + self.ct[:, None] * np.array([0.0, 0.0, 1.0])
@@ -169,41 +175,56 @@ def directions(frame: str, c: Cases, case: np.ndarray, cpsi: np.ndarray, spsi: n
     """``(wo (p, n, 3), weight (p, n))`` at polar points ``rho (p, n)`` of panels whose outer
     node has incidence ``case (p,)``, ``cos ψ``, ``sin ψ``, :func:`_rho_max`'s ``params`` and
     ``rmax`` ``(p,)``; ``d = ρmax − ρ`` (accurate near the horizon).  weight = cos θo · J
-    (module docstring)."""
-    st, ct = c.st[case][:, None], c.ct[case][:, None]
-    u, v = c.u[case], c.v[case]
+    (module docstring).  wo is built from its components ``(x, y)`` along ``u`` and ``v``;
+    when every incidence has ``u = (1, 0, 0)``, ``v = (0, 1, 0)`` (φi = 0, which
+    :func:`integrate` uses for an isotropic model) they are wo's own."""
+    st = c.st[case][:, None]
     cp, sp = cpsi[:, None], spsi[:, None]
     sr = np.sin(rho)
-    wo = np.empty(rho.shape + (3,))
     if frame == "normal":
-        a = -cp[..., None] * u[:, None, :] + sp[..., None] * v[:, None, :]
-        wo[..., :2] = sr[..., None] * a[..., :2]
+        x, y = -cp * sr, sp * sr
         cz = np.sin(d)  # cos θo = sin(π/2 − ρ), exact to the last bit near the horizon
-        wo[..., 2] = cz
-        return wo, cz * sr
-    cr = np.cos(rho)
-    if frame == "mirror":
+        w = cz * sr
+    elif frame == "mirror":
         r, _ = params
+        cr = np.cos(rho)
         # S = −sin θi u + cos θi N,  e1 = −(cos θi u + sin θi N)
-        a = cp[..., None] * (-ct[..., None] * u[:, None, :]) + sp[..., None] * v[:, None, :]
-        wo[..., :2] = -cr[..., None] * st[..., None] * u[:, None, :2] + sr[..., None] * a[..., :2]
+        x = -(st * cr + (c.ct[case][:, None] * cp) * sr)
+        y = sp * sr
         cz = r[:, None] * np.sin(d)
-        wo[..., 2] = cz
-        return wo, cz * sr
-    a0, a1, k, phi0 = params
-    t = np.zeros(len(case)) if c.tilt is None else c.tilt[case]
-    c0, s0 = np.cos(t)[:, None], np.sin(t)[:, None]
-    # h = cos ρ A + sin ρ (cos ψ E1 + sin ψ E2), A = cos t N − sin t u, E1 = sin t N + cos t u
-    hu = -cr * s0 + sr * cp * c0  # component along u
-    hv = sr * sp
-    wih = a0[:, None] * cr + a1[:, None] * sr  # wi·h ≥ 0 on the domain
-    two = 2.0 * wih
-    wo[..., :2] = ((two * hu - st)[..., None] * u[:, None, :2]
-                   + (two * hv)[..., None] * v[:, None, :2])
-    # cos θo = (K/2)(cos(2ρ − φ0) − cos(2ρmax − φ0)) = K sin(ρmax + ρ − φ0) sin(ρmax − ρ)
-    cz = np.maximum(k[:, None] * np.sin(rmax[:, None] + rho - phi0[:, None]), 0.0) * np.sin(d)
+        w = cz * sr
+    elif c.tilt is None or not np.any(c.tilt[case]):
+        a0, a1, k, _ = params
+        cr = np.cos(rho)
+        # h = cos ρ N + sin ρ (cos ψ u + sin ψ v); wo = 2(wi·h)h − wi
+        two_s = 2.0 * (a0[:, None] * cr + a1[:, None] * sr) * sr  # 2(wi·h) sin ρ ≥ 0
+        x, y = two_s * cp - st, two_s * sp
+        # cos θo = R cos(2ρ − β) = R sin(2(ρmax − ρ)), K = 2R (module docstring)
+        cz = (0.5 * k)[:, None] * np.sin(2.0 * d)
+        w = cz * 2.0 * two_s
+    else:
+        a0, a1, k, phi0 = params
+        cr = np.cos(rho)
+        t = c.tilt[case]
+        c0, s0 = np.cos(t)[:, None], np.sin(t)[:, None]
+        # h = cos ρ A + sin ρ (cos ψ E1 + sin ψ E2), A = cos t N − sin t u, E1 = sin t N + cos t u
+        wih = a0[:, None] * cr + a1[:, None] * sr  # wi·h ≥ 0 on the domain
+        x = 2.0 * wih * (-cr * s0 + sr * cp * c0) - st
+        y = 2.0 * wih * sr * sp
+        # cos θo = (K/2)(cos(2ρ − φ0) − cos(2ρmax − φ0)) = K sin(ρmax + ρ − φ0) sin(ρmax − ρ)
+        cz = (np.maximum(k[:, None] * np.sin(rmax[:, None] + rho - phi0[:, None]), 0.0)
+              * np.sin(d))
+        w = cz * 4.0 * wih * sr
+    wo = np.empty(rho.shape + (3,))
+    if c.canonical:
+        wo[..., 0] = x
+        wo[..., 1] = y
+    else:
+        u, v = c.u[case], c.v[case]
+        wo[..., 0] = x * u[:, None, 0] + y * v[:, None, 0]
+        wo[..., 1] = x * u[:, None, 1] + y * v[:, None, 1]
     wo[..., 2] = cz
-    return wo, cz * 4.0 * wih * sr
+    return wo, w
 
 
 @dataclass
@@ -431,6 +452,12 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
         # tangent to ψ = ±π/2, instead of a near-step of ρmax(ψ) at ψ = ±π/2)
         rho0 = 0.5 * np.arctan2(c.ct, c.st)
         c = Cases(c.st, c.ct, c.u, c.v, np.where(rho0 < TILT_WITHIN * scale, rho0, 0.0))
+    if symmetric:
+        # isotropic: f is unchanged by a rotation about N, so every incidence is turned to
+        # φi = 0 (wo's components along u and v are then its x and y)
+        one = np.ones(ncase)
+        c = Cases(c.st, c.ct, np.stack([one, 0 * one, 0 * one], -1),
+                  np.stack([0 * one, one, 0 * one], -1), c.tilt)
     fn = _Integrand(f, frame, c)
     budget = np.full(ncase, int(max_evals), dtype=np.int64)
     scale = float(min(max(scale, 1e-6), np.pi / 2))

@@ -149,7 +149,15 @@ def _cook_torrance_lobe(v: Mapping[str, Any]) -> Lobe:
     exp(−tan²ρ/m²) is ≤ 2.5e-2 of the peak at ρ = π/6 and they cost evaluations for nothing;
     measured in docs/accuracy.md)."""
     m = float(v["m"])
-    return Lobe("half", m, _vcavity_breaks, azimuths=_vcavity_azimuths if m >= 0.3 else None)
+    # beyond tan²ρ = 45 m², D/D(0) = exp(−tan²ρ/m²)/cos⁴ρ < exp(−45)(1 + 45 m²)² ≤ 6e-17
+    # (m ≤ 1): the specular term, and its kinks, are nil there; only the smooth diffuse
+    # term is left, and a break would cost a panel at every outer node for nothing
+    cut = math.atan(math.sqrt(45.0) * m)
+
+    def breaks(st, ct, cpsi, rmax):
+        return [np.where(b < cut, b, rmax) for b in _vcavity_breaks(st, ct, cpsi, rmax)]
+
+    return Lobe("half", m, breaks, azimuths=_vcavity_azimuths if m >= 0.3 else None)
 
 
 def _sgd_lobe(v: Mapping[str, Any]) -> Lobe:
