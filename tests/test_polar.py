@@ -441,3 +441,17 @@ def test_abc_against_tensor_reference(theta):
     est = albedo_estimate("abc", None, theta)
     assert np.max(np.abs(est.value - ref) / ref) < 3.0 * conv + 1e-7
     assert np.all(est.error <= DEFAULT_RTOL * np.abs(est.value) + 1e-13)
+
+
+@pytest.mark.parametrize("name,params,theta", [
+    ("sgd", {}, 77.0),  # blue is a third of red here
+    ("gltf", {"base_color": (1.0, 0.05, 0.002), "metallic": 1.0}, 70.0),
+])
+def test_rgb_tolerance_holds_in_every_channel(name, params, theta):
+    # each channel's estimate is within the relative tolerance of that channel (not of the
+    # brightest one), and bounds its error against the tensor rule
+    est = albedo_estimate(name, params, theta)
+    assert np.all(est.error <= DEFAULT_RTOL * np.abs(est.value) + 1e-13)
+    ref = reference_albedo(name, params, theta, n=24)
+    assert np.max(np.abs(reference_albedo(name, params, theta) - ref) / ref) < 1e-12
+    assert np.all(np.abs(est.value - ref) <= est.error + 1e-15)

@@ -255,9 +255,11 @@ def _rule(g: np.ndarray, half: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return k, np.abs(k - gg)
 
 
-def _size(x: np.ndarray) -> np.ndarray:
-    """Per row: |x|, or the largest channel of an RGB row."""
-    return np.abs(x).max(axis=1) if x.ndim == 2 else np.abs(x)
+def _ratio(e: np.ndarray, tol: np.ndarray) -> np.ndarray:
+    """Per row: error over tolerance, ``(p,)``; for RGB rows the worst channel (each channel
+    has its own tolerance: a dim channel is as accurate, relatively, as a bright one)."""
+    r = e / tol
+    return r.max(axis=1) if r.ndim == 2 else r
 
 
 def _sum_by(idx: np.ndarray, x: np.ndarray, n: int) -> np.ndarray:
@@ -358,13 +360,13 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
     """Inner integrals ``∫₀^ρmax g dρ`` for the outer nodes ``ψⱼ`` (incidence ``case[j]``,
     outer weight ``wpsi[j]``): ``(value, error, tol)``.
 
-    ``tol (c,)`` is each incidence's absolute tolerance for the whole albedo; a node may use
-    ``INNER_SHARE·tol/(2π)`` (the outer weights sum to 2π).  When None (the first pass), it is
-    set from the first round's own total.  ``budget (c,)`` evaluations left per incidence,
-    decremented here; a spent incidence is not refined further.  Every panel stays in the pool
-    with its K15 value and error; each round bisects, per node still above its tolerance, the
-    panels whose error is above the node's tolerance divided by its number of panels (at least
-    the worst one)."""
+    ``tol (c,)`` or ``(c, k)`` is each incidence's absolute tolerance (per channel) for the
+    whole albedo; a node may use ``INNER_SHARE·tol/(2π)`` (the outer weights sum to 2π).
+    When None (the first pass), it is set from the first round's own total.  ``budget (c,)``
+    evaluations left per incidence, decremented here; a spent incidence is not refined
+    further.  Every panel stays in the pool with its K15 value and error; each round cuts
+    (:func:`_divide`), per node still above its tolerance, the panels whose error is above the
+    node's tolerance divided by its number of panels (at least the worst one)."""
     n, ncase = len(case), len(budget)
     cpsi, spsi = np.cos(psi), np.sin(psi)
     rmax, params = _rho_max(fn.frame, fn.c, case, cpsi)
@@ -385,17 +387,16 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
                                                 (new_lo, new_hi, new_node, new_end, k, e))
         tot_v, tot_e = _sum_by(node, k_all, n), _sum_by(node, e_all, n)
         if tol is None:
-            tol = rtol * _size(_sum_by(case, _times(wpsi, tot_v), ncase)) + atol
+            tol = rtol * np.abs(_sum_by(case, _times(wpsi, tot_v), ncase)) + atol
         tol_node = INNER_SHARE * tol[case] / (2.0 * np.pi)
-        npan = np.bincount(node, minlength=n)
-        esize = _size(e_all)
-        split = ((_size(tot_e) > tol_node)[node] & (esize > (tol_node / npan.clip(1))[node])
+        npan = np.bincount(node, minlength=n).clip(1)
+        excess = _ratio(e_all, _times(1.0 / npan, tol_node)[node])
+        split = ((_ratio(tot_e, tol_node) > 1.0)[node] & (excess > 1.0)
                  & (hi - lo > 2 * MIN_WIDTH) & (budget[case[node]] > 0))
         if not split.any():
             break
-        new_lo, new_hi, new_node, new_end = _divide(
-            lo[split], hi[split], node[split],
-            esize[split] / (tol_node / npan.clip(1))[node[split]], end[split])
+        new_lo, new_hi, new_node, new_end = _divide(lo[split], hi[split], node[split],
+                                                    excess[split], end[split])
         keep = ~split
         lo, hi, node, end = lo[keep], hi[keep], node[keep], end[keep]
         k_all, e_all = k_all[keep], e_all[keep]
@@ -498,14 +499,14 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
         lo, hi, pc, k_all, e_all = _grow((lo, hi, pc, k_all, e_all),
                                          (new_lo, new_hi, new_pc, k, e))
         tot_v, tot_e = _sum_by(pc, k_all, ncase), _sum_by(pc, e_all, ncase)
-        tol = rtol * _size(tot_v) + atol
-        npan = np.bincount(pc, minlength=ncase)
-        split = ((_size(tot_e) > tol)[pc] & (_size(e_all) > (tol / npan.clip(1))[pc])
+        tol = rtol * np.abs(tot_v) + atol
+        npan = np.bincount(pc, minlength=ncase).clip(1)
+        excess = _ratio(e_all, _times(1.0 / npan, tol)[pc])
+        split = ((_ratio(tot_e, tol) > 1.0)[pc] & (excess > 1.0)
                  & (hi - lo > 2 * MIN_WIDTH) & (budget[pc] > 0))
         if not split.any():
             break
-        new_lo, new_hi, new_pc, _ = _divide(lo[split], hi[split], pc[split],
-                                            _size(e_all[split]) / (tol / npan.clip(1))[pc[split]])
+        new_lo, new_hi, new_pc, _ = _divide(lo[split], hi[split], pc[split], excess[split])
         keep = ~split
         lo, hi, pc, k_all, e_all = lo[keep], hi[keep], pc[keep], k_all[keep], e_all[keep]
     k = 2.0 if symmetric else 1.0
