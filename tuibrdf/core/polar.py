@@ -103,7 +103,7 @@ OUTER_START, OUTER_GRADING, OUTER_LIMIT = 2.0, 8.0, np.pi / 8
 #: would differ by a few ulps of π.
 MIN_WIDTH = 1e-12
 #: Fraction of the tolerance given to the inner integrals (the rest is for the outer one).
-INNER_SHARE = 0.5
+INNER_SHARE = 0.7
 #: Largest batch of directions handed to a kernel at once (bounds the temporaries' memory).
 CHUNK = 1 << 15
 
@@ -356,12 +356,13 @@ def _initial_panels(edges: list[tuple[np.ndarray, np.ndarray]], rmax: np.ndarray
 
 def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
            edges: Callable[..., list[np.ndarray]], tol: np.ndarray | None,
-           rtol: float, atol: float, budget: np.ndarray):
+           rtol: float, atol: float, budget: np.ndarray, span: float = 2.0 * np.pi):
     """Inner integrals ``∫₀^ρmax g dρ`` for the outer nodes ``ψⱼ`` (incidence ``case[j]``,
     outer weight ``wpsi[j]``): ``(value, error, tol)``.
 
     ``tol (c,)`` or ``(c, k)`` is each incidence's absolute tolerance (per channel) for the
-    whole albedo; a node may use ``INNER_SHARE·tol/(2π)`` (the outer weights sum to 2π).
+    whole albedo; a node may use ``INNER_SHARE·tol/span`` (the outer weights sum to ``span``:
+    2π, or π for a symmetric integrand).
     When None (the first pass), it is set from the first round's own total.  ``budget (c,)``
     evaluations left per incidence, decremented here; a spent incidence is not refined
     further.  Every panel stays in the pool with its K15 value and error; each round cuts
@@ -388,7 +389,7 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
         tot_v, tot_e = _sum_by(node, k_all, n), _sum_by(node, e_all, n)
         if tol is None:
             tol = rtol * np.abs(_sum_by(case, _times(wpsi, tot_v), ncase)) + atol
-        tol_node = INNER_SHARE * tol[case] / (2.0 * np.pi)
+        tol_node = INNER_SHARE * tol[case] / span
         npan = np.bincount(node, minlength=n).clip(1)
         excess = _ratio(e_all, _times(1.0 / npan, tol_node)[node])
         split = ((_ratio(tot_e, tol_node) > 1.0)[node] & (excess > 1.0)
@@ -492,7 +493,8 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
         psi = (mid[:, None] + half[:, None] * X15).ravel()
         case = np.repeat(new_pc, 15)
         wpsi = (half[:, None] * WK15).ravel()
-        iv, ie, tol = _inner(fn, case, psi, wpsi, edges, tol, rtol, atol, budget)
+        iv, ie, tol = _inner(fn, case, psi, wpsi, edges, tol, rtol, atol, budget,
+                             np.pi if symmetric else 2.0 * np.pi)
         k, e = _rule(iv.reshape(len(new_lo), 15, *iv.shape[1:]), half)
         # the inner errors, integrated with the outer weights
         e = e + _sum_by(np.repeat(np.arange(len(new_lo)), 15), _times(wpsi, ie), len(new_lo))
