@@ -112,6 +112,15 @@ def test_kronrod_constants():
         exact = 2.0 / (k + 1) if k % 2 == 0 else 0.0
         assert np.sum(polar.WK15 * polar.X15**k) == pytest.approx(exact, abs=1e-14)
     assert abs(np.sum(polar.WK15 * polar.X15**24) - 2 / 25) > 1e-9  # 23 is the limit
+    # the small panels' pair: G3 is numpy's 3-point rule, K7 exact for x^k, k ≤ 11
+    x, w = np.polynomial.legendre.leggauss(3)
+    on = polar.WG7 > 0
+    assert np.allclose(polar.X7[on], x, atol=1e-15) and np.allclose(polar.WG7[on], w,
+                                                                      atol=1e-15)
+    for k in range(12):
+        exact = 2.0 / (k + 1) if k % 2 == 0 else 0.0
+        assert np.sum(polar.WK7 * polar.X7**k) == pytest.approx(exact, abs=1e-14)
+    assert abs(np.sum(polar.WK7 * polar.X7**12) - 2 / 13) > 1e-6
 
 
 @pytest.mark.parametrize("theta", [0.0, 30.0, 60.0, 89.0, 89.9, 90.0])

@@ -87,6 +87,30 @@ X15, WK15, WG15 = _kronrod15()
 for _a in (X15, WK15, WG15):
     _a.setflags(write=False)
 
+# The 7-point Kronrod extension of the 3-point Gauss rule (Kronrod 1965; the values of
+# QUADPACK's documentation and of scipy's tables): nodes (positive half, descending), Kronrod
+# weights, Gauss weights 5/9 and 8/9 on ±√(3/5) and 0.  Checked in tests/test_polar.py.
+_XGK7 = (0.960491268708020283423507092629080, 0.774596669241483377035853079956480,
+         0.434243749346802558002071502844628, 0.0)
+_WGK7 = (0.104656226026467265193823857192073, 0.268488089868333440728569280666710,
+         0.401397414775962222905051818618432, 0.450916538658474142345110087045571)
+
+
+def _kronrod7() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    x, wk = np.array(_XGK7), np.array(_WGK7)
+    wg = np.array([0.0, 5.0 / 9.0, 0.0, 8.0 / 9.0])
+    return (np.concatenate([-x[:-1], x[::-1]]), np.concatenate([wk[:-1], wk[::-1]]),
+            np.concatenate([wg[:-1], wg[::-1]]))
+
+
+#: K7 nodes on [-1, 1] (ascending), Kronrod weights, Gauss weights (0 off the G3 nodes): the
+#: inner rule of panels narrower than :data:`SMALL_PANEL` lobe widths.
+X7, WK7, WG7 = _kronrod7()
+for _a in (X7, WK7, WG7):
+    _a.setflags(write=False)
+#: Inner panels narrower than this many lobe widths (nearly polynomial there) use K7 for K15.
+SMALL_PANEL = 0.5
+
 FRAMES = ("normal", "mirror", "half")
 #: Ratio of the geometric radial grading from the lobe width out to the horizon.
 GRADING = 4.0
@@ -244,14 +268,16 @@ def _grow(kept: tuple, new: tuple) -> tuple:
     return tuple(np.concatenate([a, b]) for a, b in zip(kept, new, strict=True))
 
 
-def _rule(g: np.ndarray, half: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """K15 value and |K15 − G7| of panels from their 15 values ``g (p, 15[, k])``."""
+def _rule(g: np.ndarray, half: np.ndarray, wk: np.ndarray = WK15,
+          wg: np.ndarray = WG15) -> tuple[np.ndarray, np.ndarray]:
+    """Kronrod value and |Kronrod − Gauss| of panels from their values ``g (p, n[, k])`` at
+    the rule's nodes (K15/G7 by default, or K7/G3)."""
     if g.ndim == 2:
-        k = np.einsum("pn,n->p", g, WK15) * half
-        gg = np.einsum("pn,n->p", g, WG15) * half
+        k = np.einsum("pn,n->p", g, wk) * half
+        gg = np.einsum("pn,n->p", g, wg) * half
     else:
-        k = np.einsum("pnc,n->pc", g, WK15) * half[:, None]
-        gg = np.einsum("pnc,n->pc", g, WG15) * half[:, None]
+        k = np.einsum("pnc,n->pc", g, wk) * half[:, None]
+        gg = np.einsum("pnc,n->pc", g, wg) * half[:, None]
     return k, np.abs(k - gg)
 
 
@@ -283,25 +309,30 @@ class _Integrand:
         self.wi = c.wi
         self.count = np.zeros(len(c.st), dtype=np.int64)
 
-    def __call__(self, case, cpsi, spsi, params, rmax, rho, d) -> np.ndarray:
-        """Values ``(p, 15)`` or ``(p, 15, k)`` for panels ``(p,)``."""
-        out = []
-        step = max(CHUNK // rho.shape[1], 1)
+    def __call__(self, groups: list[tuple]) -> list[np.ndarray]:
+        """Values ``(p, n)`` or ``(p, n, k)`` for each group of panels ``(case, cos ψ, sin ψ,
+        params, ρmax, ρ (p, n), d (p, n))``; the directions of all groups go to the model in
+        one call (in chunks of :data:`CHUNK`)."""
+        wos, ws, wis = [], [], []
         one = len(self.c.st) == 1
-        for s in range(0, len(rho), step):
-            sl = slice(s, s + step)
-            wo, w = directions(self.frame, self.c, case[sl], cpsi[sl], spsi[sl],
-                               tuple(x[sl] for x in params), rmax[sl], rho[sl], d[sl])
-            wo = wo.reshape(-1, 3)
-            if one:
-                wi = np.broadcast_to(self.wi[0], wo.shape)
-            else:
-                wi = np.repeat(self.wi[case[sl]], rho.shape[1], axis=0)
-            fv = np.asarray(self.f(wi, wo), dtype=float)
-            fv = fv.reshape(w.shape + fv.shape[1:])
-            out.append(fv * (w if fv.ndim == 2 else w[..., None]))
-        self.count += np.bincount(case, minlength=len(self.count)) * rho.shape[1]
-        return np.concatenate(out)
+        for case, cpsi, spsi, params, rmax, rho, d in groups:
+            wo, w = directions(self.frame, self.c, case, cpsi, spsi, params, rmax, rho, d)
+            wos.append(wo.reshape(-1, 3))
+            ws.append(w)
+            if not one:
+                wis.append(np.repeat(self.wi[case], rho.shape[1], axis=0))
+            self.count += np.bincount(case, minlength=len(self.count)) * rho.shape[1]
+        wo = wos[0] if len(wos) == 1 else np.concatenate(wos)
+        wi = np.broadcast_to(self.wi[0], wo.shape) if one else np.concatenate(wis)
+        parts = [np.asarray(self.f(wi[s:s + CHUNK], wo[s:s + CHUNK]), dtype=float)
+                 for s in range(0, len(wo), CHUNK)]
+        fv = parts[0] if len(parts) == 1 else np.concatenate(parts)
+        out, at = [], 0
+        for w in ws:
+            v = fv[at:at + w.size].reshape(w.shape + fv.shape[1:])
+            at += w.size
+            out.append(v * (w if v.ndim == 2 else w[..., None]))
+        return out
 
 
 #: Graded cuts toward a panel's end (horizon or break) in the inner refinement (_divide).
@@ -313,12 +344,13 @@ QUARTER_ABOVE = 1e3
 
 
 def _divide(lo: np.ndarray, hi: np.ndarray, owner: np.ndarray, excess: np.ndarray,
-            end: np.ndarray | None = None):
+            end: np.ndarray | None = None, small: np.ndarray | None = None):
     """Children ``(lo, hi, owner, end)`` of panels ``[lo, hi]``: halves, or quarters where
     ``excess`` (error over its share) is above :data:`QUARTER_ABOVE`; a panel flagged ``end``
     (it ends at the horizon or at a radial break, where a nearly singular integrand sits at
     grazing incidence) is cut graded toward that end instead, :data:`END_LEVELS` pieces of
-    ratio 4 after a half (only its last child keeps the flag)."""
+    ratio 4 after a half (only its last child keeps the flag).  ``small`` (the K7 rule) is
+    inherited; returned only when given."""
     if end is None:
         end = np.zeros(len(lo), dtype=bool)
     parts = np.where(end, END_LEVELS + 1, np.where(excess > QUARTER_ABOVE, 4, 2))
@@ -334,7 +366,8 @@ def _divide(lo: np.ndarray, hi: np.ndarray, owner: np.ndarray, excess: np.ndarra
                                         a + j * (w / k)))
     # the last child ends exactly at hi (no rounding gap before ρmax)
     last = j == k - 1
-    return left, np.where(last, b, right), np.repeat(owner, parts), graded & last
+    out = left, np.where(last, b, right), np.repeat(owner, parts), graded & last
+    return out if small is None else (*out, np.repeat(small, parts))
 
 
 def _initial_panels(edges: list[tuple[np.ndarray, np.ndarray]], rmax: np.ndarray):
@@ -356,7 +389,8 @@ def _initial_panels(edges: list[tuple[np.ndarray, np.ndarray]], rmax: np.ndarray
 
 def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
            edges: Callable[..., list[np.ndarray]], tol: np.ndarray | None,
-           rtol: float, atol: float, budget: np.ndarray, span: float = 2.0 * np.pi):
+           rtol: float, atol: float, budget: np.ndarray, span: float = 2.0 * np.pi,
+           small_width: float = 0.0):
     """Inner integrals ``∫₀^ρmax g dρ`` for the outer nodes ``ψⱼ`` (incidence ``case[j]``,
     outer weight ``wpsi[j]``): ``(value, error, tol)``.
 
@@ -374,18 +408,34 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
     new_lo, new_hi, new_node, new_end = _initial_panels(edges(case, cpsi, rmax), rmax)
     if len(new_lo) == 0:  # every node has ρmax = 0 (the far side at θi = 90°)
         return np.zeros(n), np.zeros(n), tol if tol is not None else np.full(ncase, atol)
-    lo = hi = node = end = k_all = e_all = None
+    # panels that start narrower than small_width (and their children) use K7
+    new_small = new_hi - new_lo < small_width
+    lo = hi = node = end = small = k_all = e_all = None
     while len(new_lo):
         mid, half = 0.5 * (new_lo + new_hi), 0.5 * (new_hi - new_lo)
-        rho = mid[:, None] + half[:, None] * X15
-        # distance to the horizon from the panel's end: exact in the last panel
-        d = (rmax[new_node] - new_hi)[:, None] + half[:, None] * (1.0 - X15)
-        j = new_node
-        g = fn(case[j], cpsi[j], spsi[j], tuple(x[j] for x in params), rmax[j], rho, d)
-        budget -= 15 * np.bincount(case[j], minlength=ncase)
-        k, e = _rule(g, half)
-        lo, hi, node, end, k_all, e_all = _grow((lo, hi, node, end, k_all, e_all),
-                                                (new_lo, new_hi, new_node, new_end, k, e))
+        groups, rules = [], []
+        for sel, (x, wk, wg) in ((~new_small, (X15, WK15, WG15)), (new_small, (X7, WK7, WG7))):
+            if not sel.any():
+                continue
+            h, j = half[sel], new_node[sel]
+            rho = mid[sel][:, None] + h[:, None] * x
+            # distance to the horizon from the panel's end: exact in the last panel
+            d = (rmax[j] - new_hi[sel])[:, None] + h[:, None] * (1.0 - x)
+            groups.append((case[j], cpsi[j], spsi[j], tuple(p[j] for p in params), rmax[j],
+                           rho, d))
+            rules.append((sel, h, wk, wg))
+            budget -= len(x) * np.bincount(case[j], minlength=ncase)
+        values = fn(groups)
+        k = e = None
+        for g, (sel, h, wk, wg) in zip(values, rules, strict=True):
+            kk, ee = _rule(g, h, wk, wg)
+            if k is None:
+                k, e = np.empty((len(new_lo),) + kk.shape[1:]), np.empty((len(new_lo),)
+                                                                          + kk.shape[1:])
+            k[sel], e[sel] = kk, ee
+        lo, hi, node, end, small, k_all, e_all = _grow(
+            (lo, hi, node, end, small, k_all, e_all),
+            (new_lo, new_hi, new_node, new_end, new_small, k, e))
         tot_v, tot_e = _sum_by(node, k_all, n), _sum_by(node, e_all, n)
         if tol is None:
             tol = rtol * np.abs(_sum_by(case, _times(wpsi, tot_v), ncase)) + atol
@@ -396,10 +446,10 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
                  & (hi - lo > 2 * MIN_WIDTH) & (budget[case[node]] > 0))
         if not split.any():
             break
-        new_lo, new_hi, new_node, new_end = _divide(lo[split], hi[split], node[split],
-                                                    excess[split], end[split])
+        new_lo, new_hi, new_node, new_end, new_small = _divide(
+            lo[split], hi[split], node[split], excess[split], end[split], small[split])
         keep = ~split
-        lo, hi, node, end = lo[keep], hi[keep], node[keep], end[keep]
+        lo, hi, node, end, small = lo[keep], hi[keep], node[keep], end[keep], small[keep]
         k_all, e_all = k_all[keep], e_all[keep]
     return _sum_by(node, k_all, n), _sum_by(node, e_all, n), tol
 
@@ -494,7 +544,7 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
         case = np.repeat(new_pc, 15)
         wpsi = (half[:, None] * WK15).ravel()
         iv, ie, tol = _inner(fn, case, psi, wpsi, edges, tol, rtol, atol, budget,
-                             np.pi if symmetric else 2.0 * np.pi)
+                             np.pi if symmetric else 2.0 * np.pi, SMALL_PANEL * scale)
         k, e = _rule(iv.reshape(len(new_lo), 15, *iv.shape[1:]), half)
         # the inner errors, integrated with the outer weights
         e = e + _sum_by(np.repeat(np.arange(len(new_lo)), 15), _times(wpsi, ie), len(new_lo))
