@@ -2,6 +2,7 @@
 
     PYTHONPATH=. python scripts/bench_accuracy.py                 # ~2-3 minutes
     PYTHONPATH=. python scripts/bench_accuracy.py --before REV    # and the code of git REV
+    (--before may be repeated; --quick: the albedo tables only)
 
 For every model's defaults and for the hard cases (sharp lobes down to α = m = 0.001,
 n = 10⁴, roughness 0) at θi from 0° to 90°, it prints the default albedo
@@ -156,8 +157,12 @@ def _evaluations(model, values, th):
                         polar.cases(st, ct, sp, cp), scale=hint.scale,
                         radial_breaks=hint.breaks, symmetric=hint.symmetric, rtol=q.DEFAULT_RTOL,
                         atol=q.ATOL,
-                        max_evals=min(q.MAX_EVALS, hint.max_evals or q.MAX_EVALS))
+                        max_evals=min(q.MAX_EVALS, hint.max_evals or q.MAX_EVALS),
+                        azimuth_breaks=hint.azimuths)
     return int(r.evaluations[0])
+
+
+FITTED = ("abc", "sgd")  # RGB fits of measured data, ~1-1.5 µs per evaluation
 
 
 def summary(rows, label):
@@ -168,6 +173,15 @@ def summary(rows, label):
     print(f"{label}: max error {errs.max():.1e}, max estimate {ests.max():.1e}, estimate below "
           f"the error in {under} of {len(rows)}; time median {np.median(times) * 1e3:.2f} ms, "
           f"max {times.max() * 1e3:.2f} ms")
+    for name, sel in (("analytic models", [r for r in rows if r[0] not in FITTED]),
+                      ("abc, sgd", [r for r in rows if r[0] in FITTED])):
+        if sel:
+            t = np.array([r[6] for r in sel]) * 1e3
+            slow = sorted({f"{r[0]} {r[2]:g}°" for r in sel if r[6] > 2e-3})
+            print(f"  {name}: ≤ 2 ms in {int((t <= 2.0).sum())} of {len(sel)}, median "
+                  f"{np.median(t):.2f} ms, max {t.max():.2f} ms, evaluations median "
+                  f"{int(np.median([r[5] for r in sel]))} max {max(r[5] for r in sel)}"
+                  + (f"; above 2 ms: {', '.join(slow)}" if slow else ""))
 
 
 def ref_check(refs):
@@ -175,8 +189,9 @@ def ref_check(refs):
           " (orders 20 and 28)")
     print(f"{'model':<14} {'params':<30} {'θi':>5} {'reference':>12} {'|Δ| rel':>9} "
           f"{'tensor conv':>11}")
-    for name, params, th in [("ggx", {}, 89.0), ("cook-torrance", {}, 75.0),
-                             ("oren-nayar", {}, 89.9), ("gltf", {}, 60.0),
+    for name, params, th in [("ggx", {}, 89.0), ("ggx", {}, 89.9), ("cook-torrance", {}, 75.0),
+                             ("oren-nayar", {}, 89.9), ("gltf", {}, 60.0), ("gltf", {}, 89.9),
+                             ("abc", {}, 60.0), ("sgd", {}, 89.9),
                              ("ggx", HARD[0][1], 89.0), ("phong", HARD[4][1], 89.0)]:
         model = get_model(name)
         values = model.resolve(params)
@@ -297,7 +312,12 @@ from tuibrdf.core.models import get_model
 from tuibrdf.core.quadrature import albedo_resolved
 out = []
 for name, params, th in json.loads(sys.stdin.read()):
-    m = get_model(name); v = m.resolve(params)
+    try:
+        m = get_model(name)
+    except Exception:  # not in that revision
+        out.append(None)
+        continue
+    v = m.resolve(params)
     best = float("inf")
     for _ in range(2 if th < 85 else 1):
         t = time.perf_counter(); a = albedo_resolved(m, v, th)
@@ -324,16 +344,27 @@ def before_table(rev, refs, after_rows):
     print(f"{'model':<14} {'params':<30} {'θi':>5} {'before err':>10} {'ms':>8} "
           f"{'after err':>10} {'ms':>8}")
     above = 0
-    for (name, params, th), (a, t) in zip(cases, got, strict=True):
+    times = []
+    for (name, params, th), res in zip(cases, got, strict=True):
+        r = after[(name, ptext(params), th)]
+        if res is None:
+            print(f"{name:<14} {ptext(params):<30} {th:5.1f} {'-':>10} {'-':>8} "
+                  f"{r[3]:10.1e} {r[6] * 1e3:8.2f}")
+            continue
+        a, t = res
+        times.append((name, params, th, t))
         ref = refs[(name, ptext(params), th)]
         ev = np.asarray(ref.value, dtype=float)
         a = np.asarray(a, dtype=float).reshape(ev.shape)
         if np.any(a > 1.0 + 1e-9) and np.all(ev <= 1.0 + 1e-9):  # truth 1 to rounding
             above += 1
-        r = after[(name, ptext(params), th)]
         print(f"{name:<14} {ptext(params):<30} {th:5.1f} {rel(a, ev):10.1e} {t * 1e3:8.2f} "
               f"{r[3]:10.1e} {r[6] * 1e3:8.2f}")
     print(f"before: {above} cases above 1 (by > 1e-9) where the reference is ≤ 1")
+    dflt = [t * 1e3 for name, params, th, t in times if not params and name not in FITTED]
+    if dflt:
+        print(f"before, analytic models' defaults: ≤ 2 ms in {sum(x <= 2.0 for x in dflt)} of "
+              f"{len(dflt)}, median {np.median(dflt):.2f} ms, max {max(dflt):.2f} ms")
 
 
 def _case_list():
@@ -343,7 +374,8 @@ def _case_list():
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--before", metavar="REV", help="also run the albedo of git revision REV")
+    ap.add_argument("--before", metavar="REV", action="append", default=[],
+                    help="also run the albedo of git revision REV (may be repeated)")
     ap.add_argument("--quick", action="store_true", help="albedo tables only")
     args = ap.parse_args(argv)
     t0 = time.perf_counter()
@@ -354,8 +386,8 @@ def main(argv=None) -> int:
     summary(rows, "defaults")
     hard = albedo_table("Default albedo on the hard cases", HARD, HARD_THETAS, refs)
     summary(hard, "hard cases")
-    if args.before:
-        before_table(args.before, refs, rows + hard)
+    for rev in args.before:
+        before_table(rev, refs, rows + hard)
     if not args.quick:
         ref_check(refs)
         methods_table(refs)
