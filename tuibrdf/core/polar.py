@@ -284,7 +284,9 @@ def _rule(g: np.ndarray, half: np.ndarray, wk: np.ndarray = WK15,
 def _ratio(e: np.ndarray, tol: np.ndarray) -> np.ndarray:
     """Per row: error over tolerance, ``(p,)``; for RGB rows the worst channel (each channel
     has its own tolerance: a dim channel is as accurate, relatively, as a bright one)."""
-    r = e / tol
+    e, tol = np.broadcast_arrays(e, tol)
+    # tol = 0 only for an incidence with no node in this pass (then e = 0 too): ratio 0
+    r = np.divide(e, tol, out=np.zeros(e.shape), where=tol > 0.0)
     return r.max(axis=1) if r.ndim == 2 else r
 
 
@@ -395,13 +397,14 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
     outer weight ``wpsi[j]``): ``(value, error, tol)``.
 
     ``tol (c,)`` or ``(c, k)`` is each incidence's absolute tolerance (per channel) for the
-    whole albedo; a node may use ``INNER_SHARE·tol/span`` (the outer weights sum to ``span``:
-    2π, or π for a symmetric integrand).
-    When None (the first pass), it is set from the first round's own total.  ``budget (c,)``
-    evaluations left per incidence, decremented here; a spent incidence is not refined
-    further.  Every panel stays in the pool with its K15 value and error; each round cuts
-    (:func:`_divide`), per node still above its tolerance, the panels whose error is above the
-    node's tolerance divided by its number of panels (at least the worst one)."""
+    whole albedo; these nodes' inner errors, weighted by ``wpsi``, may add up to
+    ``INNER_SHARE·tol·Σwpsi/span`` (the outer weights of all nodes sum to ``span``: 2π, or π
+    for a symmetric integrand).  When None (the first pass), it is set from the first
+    round's own total.  ``budget (c,)`` evaluations left per incidence, decremented here; a
+    spent incidence is not refined further.  Every panel stays in the pool with its value and
+    error (K15/G7, or K7/G3 for panels narrower than ``small_width``); each round cuts
+    (:func:`_divide`), per incidence still above its allowance, the panels whose weighted
+    error is above the allowance divided by its number of panels (at least the worst one)."""
     n, ncase = len(case), len(budget)
     cpsi, spsi = np.cos(psi), np.sin(psi)
     rmax, params = _rho_max(fn.frame, fn.c, case, cpsi)
@@ -436,14 +439,20 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
         lo, hi, node, end, small, k_all, e_all = _grow(
             (lo, hi, node, end, small, k_all, e_all),
             (new_lo, new_hi, new_node, new_end, new_small, k, e))
-        tot_v, tot_e = _sum_by(node, k_all, n), _sum_by(node, e_all, n)
         if tol is None:
+            tot_v = _sum_by(node, k_all, n)
             tol = rtol * np.abs(_sum_by(case, _times(wpsi, tot_v), ncase)) + atol
-        tol_node = INNER_SHARE * tol[case] / span
-        npan = np.bincount(node, minlength=n).clip(1)
-        excess = _ratio(e_all, _times(1.0 / npan, tol_node)[node])
-        split = ((_ratio(tot_e, tol_node) > 1.0)[node] & (excess > 1.0)
-                 & (hi - lo > 2 * MIN_WIDTH) & (budget[case[node]] > 0))
+        pcase = case[node]
+        # the inner errors enter the albedo's error weighted by the outer weights: these nodes
+        # may add INNER_SHARE·tol in proportion to their share of the outer span, shared among
+        # the incidence's panels (nodes of tiny weight, as near ψ = ±π/2 at grazing incidence,
+        # may be coarser than heavy ones)
+        allow = _times(INNER_SHARE * _sum_by(case, wpsi, ncase) / span, tol)
+        we = _times(wpsi[node], e_all)
+        npan = np.bincount(pcase, minlength=ncase).clip(1)
+        excess = _ratio(we, _times(1.0 / npan, allow)[pcase])
+        over = (_ratio(_sum_by(pcase, we, ncase), allow) > 1.0)[pcase]
+        split = over & (excess > 1.0) & (hi - lo > 2 * MIN_WIDTH) & (budget[pcase] > 0)
         if not split.any():
             break
         new_lo, new_hi, new_node, new_end, new_small = _divide(
