@@ -36,12 +36,27 @@ The distance to the horizon ``d = ρmax − ρ`` is carried separately (from the
 Rule: the outer integral over ψ and, for every outer node ψⱼ, the inner integral over ρ are
 both adaptive Gauss–Kronrod (7, 15) (the QUADPACK QK15 pair: Piessens et al. 1983).  Each
 panel's error estimate is ``|K15 − G7|`` (the 7 Gauss nodes are among the 15 Kronrod ones, so
-it is free); a panel is bisected while its error is above its share of the tolerance.  The
+it is free); a panel is cut while its error is above its share of the tolerance.  The
 inner integral starts from panels graded geometrically (ratio 4) from the lobe width ``scale``
-out to ρmax, so a lobe at the axis cannot fall between nodes.  The reported error is the sum of
-the outer ``|K15 − G7|`` and the inner errors integrated over ψ: for analytic panels K15 is
-far more accurate than that estimate, so the estimate is pessimistic (an upper bound in
-practice, measured in docs/accuracy.md).
+out to ρmax, so a lobe at the axis cannot fall between nodes, with the model's known kinks
+(``radial_breaks``) as panel ends; the outer one from ψ = 0, ±π/2, ±π, the model's
+``azimuth_breaks`` (where kink curves cross) and, at grazing incidence, a grading toward
+ψ = ±π/2.  Refinement:
+
+- an inner panel that ends at the horizon or at a radial break is cut graded toward that end
+  (``END_LEVELS`` pieces of ratio 4 after a half): at grazing incidence the integrand is nearly
+  singular just beyond such ends (a pole at a distance ~cos θi: GGX's Λ(θo), Oren-Nayar's
+  tan((θi + θo)/2)), and halving reached it one round (one kernel call) per halving;
+- inner panels that start narrower than ``SMALL_PANEL`` lobe widths (the far side at grazing
+  incidence, gaps between close kinks) use the K7/G3 pair: 7 evaluations for 15;
+- the inner errors enter the albedo's error weighted by the outer weights, so an incidence's
+  allowance is shared among its nodes by weight (nodes of tiny weight may be coarser);
+- the tolerance holds per channel for RGB models.
+
+All panels of a round, inner or outer, of every incidence go to the model in one call.  The
+reported error is the sum of the outer ``|K15 − G7|`` and the inner errors integrated over
+ψ: for analytic panels the Kronrod value is far more accurate than that estimate, so the
+estimate is pessimistic (an upper bound in practice, measured in docs/accuracy.md).
 
 Several incidences are integrated in one batch (one kernel call per refinement round for the
 whole albedo curve); evaluations are capped (``max_evals`` per incidence) so that a
