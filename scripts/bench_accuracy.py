@@ -246,6 +246,83 @@ def _evaluations_rtol(model, values, th, rtol):
         q.DEFAULT_RTOL = old
 
 
+ABLATIONS = [
+    ("as is", {}),
+    ("halves at the horizon and breaks (END_LEVELS 0)", {"END_LEVELS": 0}),
+    ("K15 on small panels too (SMALL_PANEL 0)", {"SMALL_PANEL": 0.0}),
+    ("INNER_SHARE 0.5", {"INNER_SHARE": 0.5}),
+    ("radial grading ratio 3 (GRADING 3)", {"GRADING": 3.0}),
+    ("outer grading ratio 16 (OUTER_GRADING 16)", {"OUTER_GRADING": 16.0}),
+    ("rtol 1e-6", {"rtol": 1e-6}),
+    ("rtol 3e-5", {"rtol": 3e-5}),
+    ("rtol 1e-4", {"rtol": 1e-4}),
+]
+
+
+def _run_counted(model, values, th, rtol):
+    """``(estimate, evaluations, kernel calls)`` of the default rule at ``rtol``."""
+    from tuibrdf.core import polar
+    from tuibrdf.core.frame import sincos_deg
+
+    hint = q.lobe(model, values)
+    calls = [0]
+
+    def f(wi, wo):
+        calls[0] += 1
+        return evaluate_resolved(model, values, wi, wo)
+
+    st, ct = sincos_deg(np.atleast_1d(th))
+    sp, cp = sincos_deg(np.atleast_1d(180.0))
+    r = polar.integrate(f, hint.frame, polar.cases(st, ct, sp, cp), scale=hint.scale,
+                        radial_breaks=hint.breaks, symmetric=hint.symmetric, rtol=rtol,
+                        atol=q.ATOL, max_evals=min(q.MAX_EVALS, hint.max_evals or q.MAX_EVALS),
+                        azimuth_breaks=hint.azimuths)
+    return r, int(r.evaluations[0]), calls[0]
+
+
+def ablation_table(refs):
+    """Each refinement choice undone (or a constant changed) in turn, on the analytic models'
+    defaults (80 cases) and the hard cases (48): evaluations and kernel calls (the same on
+    every machine), worst error and estimate, and the summed time (best of 3 each)."""
+    from tuibrdf.core import polar
+
+    print("\nRefinement choices, one changed at a time: analytic models' defaults (80 cases) | "
+          "hard cases (48)")
+    print(f"{'variant':<48} {'evals':>7} {'calls':>5} {'max':>3} {'>1':>3} {'max err':>8} "
+          f"{'under':>5} {'sum ms':>7} | {'evals':>7} {'calls':>5} {'max err':>8} {'under':>5}")
+    cases = [(n, p, th) for n, p, th in _case_list() if n not in FITTED]
+    for name, params, th in cases:  # warm-up
+        model = get_model(name)
+        _run_counted(model, model.resolve(params), th, q.DEFAULT_RTOL)
+    for label, change in ABLATIONS:
+        rtol = change.get("rtol", q.DEFAULT_RTOL)
+        old = {k: getattr(polar, k) for k in change if k != "rtol"}
+        for k in old:
+            setattr(polar, k, change[k])
+        try:
+            stats = {True: [], False: []}
+            for name, params, th in cases:
+                model = get_model(name)
+                values = model.resolve(params)
+                (r, n, c), t = timed(_run_counted, model, values, th, rtol, repeat=3)
+                ref = refs[(name, ptext(params), th)]
+                e = rel(r.value[0], ref.value)
+                est = float(np.max(np.asarray(r.error[0]) / np.abs(ref.value).clip(1e-300)))
+                stats[not params].append((n, c, e, est, t))
+        finally:
+            for k, v in old.items():
+                setattr(polar, k, v)
+        d, h = stats[True], stats[False]
+        print(f"{label:<48} {sum(x[0] for x in d):7d} {sum(x[1] for x in d):5d} "
+              f"{max(x[1] for x in d):3d} {sum(x[1] > 1 for x in d):3d} "
+              f"{max(x[2] for x in d):8.1e} {sum(x[2] > x[3] for x in d):5d} "
+              f"{sum(x[4] for x in d) * 1e3:7.1f} | {sum(x[0] for x in h):7d} "
+              f"{sum(x[1] for x in h):5d} {max(x[2] for x in h):8.1e} "
+              f"{sum(x[2] > x[3] for x in h):5d}")
+    print("(evals, calls: totals; max: most calls for one albedo; >1: albedos needing more than "
+          "one call; under: estimate below the error)")
+
+
 def curve_table():
     print("\n91-point albedo curve (θi = 0…90° by 1°, one batch)")
     print(f"{'model':<14} {'params':<30} {'ms':>8} {'max est rel':>11}")
@@ -389,6 +466,7 @@ def main(argv=None) -> int:
     for rev in args.before:
         before_table(rev, refs, rows + hard)
     if not args.quick:
+        ablation_table(refs)
         ref_check(refs)
         methods_table(refs)
         curve_table()

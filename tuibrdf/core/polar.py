@@ -368,7 +368,7 @@ def _divide(lo: np.ndarray, hi: np.ndarray, owner: np.ndarray, excess: np.ndarra
     grazing incidence) is cut graded toward that end instead, :data:`END_LEVELS` pieces of
     ratio 4 after a half (only its last child keeps the flag).  ``small`` (the K7 rule) is
     inherited; returned only when given."""
-    if end is None:
+    if end is None or END_LEVELS < 1:  # END_LEVELS = 0: no graded cuts (for comparison)
         end = np.zeros(len(lo), dtype=bool)
     parts = np.where(end, END_LEVELS + 1, np.where(excess > QUARTER_ABOVE, 4, 2))
     k = np.repeat(parts, parts)
