@@ -328,27 +328,49 @@ class _Integrand:
 
     def __call__(self, groups: list[tuple]) -> list[np.ndarray]:
         """Values ``(p, n)`` or ``(p, n, k)`` for each group of panels ``(case, cos ψ, sin ψ,
-        params, ρmax, ρ (p, n), d (p, n))``; the directions of all groups go to the model in
-        one call (in chunks of :data:`CHUNK`)."""
-        wos, ws, wis = [], [], []
+        params, ρmax, ρ (p, n), d (p, n))``.  The directions of all groups go to the model
+        together, in batches of at most :data:`CHUNK` points (one call while they fit): the
+        directions are made batch by batch, so memory stays bounded."""
         one = len(self.c.st) == 1
-        for case, cpsi, spsi, params, rmax, rho, d in groups:
-            wo, w = directions(self.frame, self.c, case, cpsi, spsi, params, rmax, rho, d)
-            wos.append(wo.reshape(-1, 3))
-            ws.append(w)
-            if not one:
-                wis.append(np.repeat(self.wi[case], rho.shape[1], axis=0))
-            self.count += np.bincount(case, minlength=len(self.count)) * rho.shape[1]
-        wo = wos[0] if len(wos) == 1 else np.concatenate(wos)
-        wi = np.broadcast_to(self.wi[0], wo.shape) if one else np.concatenate(wis)
-        parts = [np.asarray(self.f(wi[s:s + CHUNK], wo[s:s + CHUNK]), dtype=float)
-                 for s in range(0, len(wo), CHUNK)]
-        fv = parts[0] if len(parts) == 1 else np.concatenate(parts)
-        out, at = [], 0
-        for w in ws:
-            v = fv[at:at + w.size].reshape(w.shape + fv.shape[1:])
-            at += w.size
-            out.append(v * (w if v.ndim == 2 else w[..., None]))
+        # pieces (group, first panel, last panel) of at most CHUNK points, packed into batches
+        pieces, batches, size = [], [[]], 0
+        for gi, grp in enumerate(groups):
+            n = grp[5].shape[1]
+            step = max(CHUNK // n, 1)
+            self.count += np.bincount(grp[0], minlength=len(self.count)) * n
+            for s0 in range(0, len(grp[5]), step):
+                s1 = min(s0 + step, len(grp[5]))
+                if size + (s1 - s0) * n > CHUNK and batches[-1]:
+                    batches.append([])
+                    size = 0
+                batches[-1].append(len(pieces))
+                pieces.append((gi, s0, s1))
+                size += (s1 - s0) * n
+        values: list = [None] * len(pieces)
+        for batch in batches:
+            wos, ws, wis = [], [], []
+            for pi in batch:
+                gi, s0, s1 = pieces[pi]
+                case, cpsi, spsi, params, rmax, rho, d = groups[gi]
+                sl = slice(s0, s1)
+                wo, w = directions(self.frame, self.c, case[sl], cpsi[sl], spsi[sl],
+                                   tuple(x[sl] for x in params), rmax[sl], rho[sl], d[sl])
+                wos.append(wo.reshape(-1, 3))
+                ws.append(w)
+                if not one:
+                    wis.append(np.repeat(self.wi[case[sl]], rho.shape[1], axis=0))
+            wo = wos[0] if len(wos) == 1 else np.concatenate(wos)
+            wi = np.broadcast_to(self.wi[0], wo.shape) if one else np.concatenate(wis)
+            fv = np.asarray(self.f(wi, wo), dtype=float)
+            at = 0
+            for pi, w in zip(batch, ws, strict=True):
+                v = fv[at:at + w.size].reshape(w.shape + fv.shape[1:])
+                at += w.size
+                values[pi] = v * (w if v.ndim == 2 else w[..., None])
+        out = []
+        for gi in range(len(groups)):
+            mine = [values[pi] for pi, p in enumerate(pieces) if p[0] == gi]
+            out.append(mine[0] if len(mine) == 1 else np.concatenate(mine))
         return out
 
 
