@@ -127,7 +127,7 @@ def tensor_reference(model, values, th, n=20):
 def albedo_table(title, cases, thetas, refs):
     print(f"\n{title}")
     print(f"{'model':<14} {'params':<30} {'θi':>5} {'albedo':>10} {'est rel':>8} "
-          f"{'err rel':>8} {'evals':>7} {'ms':>7}")
+          f"{'err rel':>8} {'evals':>7} {'calls':>5} {'ms':>7}")
     rows = []
     for name, params in cases:
         model = get_model(name)
@@ -136,30 +136,21 @@ def albedo_table(title, cases, thetas, refs):
             ref = reference(model, values, th)
             refs[(name, ptext(params), th)] = ref
             est, t = timed(q.albedo_estimate_resolved, model, values, th, repeat=7)
-            n = _evaluations(model, values, th)
+            n, calls = _evaluations(model, values, th)
             e_est = float(np.max(np.asarray(est.error) / np.abs(ref.value).clip(1e-300)))
             e = rel(est.value, ref.value)
             a = float(np.ravel(est.value)[-1 if np.ndim(est.value) == 0 else 1])
             print(f"{name:<14} {ptext(params):<30} {th:5.1f} {a:10.7f} {e_est:8.1e} {e:8.1e} "
-                  f"{n:7d} {t * 1e3:7.2f}")
+                  f"{n:7d} {calls:5d} {t * 1e3:7.2f}")
             rows.append((name, ptext(params), th, e, e_est, n, t))
     return rows
 
 
 def _evaluations(model, values, th):
-    from tuibrdf.core import polar
-    from tuibrdf.core.frame import sincos_deg
-
-    hint = q.lobe(model, values)
-    st, ct = sincos_deg(np.atleast_1d(th))
-    sp, cp = sincos_deg(np.atleast_1d(180.0))
-    r = polar.integrate(lambda wi, wo: evaluate_resolved(model, values, wi, wo), hint.frame,
-                        polar.cases(st, ct, sp, cp), scale=hint.scale,
-                        radial_breaks=hint.breaks, symmetric=hint.symmetric, rtol=q.DEFAULT_RTOL,
-                        atol=q.ATOL,
-                        max_evals=min(q.MAX_EVALS, hint.max_evals or q.MAX_EVALS),
-                        azimuth_breaks=hint.azimuths)
-    return int(r.evaluations[0])
+    """Evaluations and kernel calls of the default albedo (they do not depend on the
+    machine)."""
+    _, n, calls = _run_counted(model, values, th, q.DEFAULT_RTOL)
+    return n, calls
 
 
 FITTED = ("abc", "sgd")  # RGB fits of measured data, ~1-1.5 µs per evaluation
@@ -222,7 +213,7 @@ def methods_table(refs):
 
         for rt in (1e-3, 1e-4, 1e-6, 1e-8, 1e-10):
             est, t = timed(q.albedo_estimate_resolved, model, values, th, rtol=rt, repeat=3)
-            n = _evaluations_rtol(model, values, th, rt)
+            n, _ = _evaluations_rtol(model, values, th, rt)
             print(f"{name:<14} {ptext(params):<30} {th:5.1f} {'rtol ' + format(rt, 'g'):<12} "
                   f"{n:8d} {t * 1e3:8.2f} {rel(est.value, ref.value):8.1e}")
         for level in (5, 6, 7, 8):
