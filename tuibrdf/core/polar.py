@@ -68,7 +68,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 
@@ -123,8 +122,10 @@ def _kronrod7() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 X7, WK7, WG7 = _kronrod7()
 for _a in (X7, WK7, WG7):
     _a.setflags(write=False)
-#: Inner panels narrower than this many lobe widths (nearly polynomial there) use K7 for K15.
+#: Inner panels narrower than this many lobe widths (nearly polynomial there) use K7 for K15,
+#: when at least SMALL_MIN_COUNT of them start in one pass (8 evaluations saved per panel).
 SMALL_PANEL = 0.5
+SMALL_MIN_COUNT = 48
 
 FRAMES = ("normal", "mirror", "half")
 #: Ratio of the geometric radial grading from the lobe width out to the horizon.
@@ -159,10 +160,9 @@ class Cases:
     #: half frame: the polar axis is tilted by this angle away from the light (0: the normal)
     tilt: np.ndarray | None = None
 
-    @cached_property
-    def canonical(self) -> bool:
-        """Every ``u = (1, 0, 0)`` and ``v = (0, 1, 0)`` (φi = 0)."""
-        return bool(np.all(self.u == (1.0, 0.0, 0.0)) and np.all(self.v == (0.0, 1.0, 0.0)))
+    #: every ``u = (1, 0, 0)`` and ``v = (0, 1, 0)`` (φi = 0; set by :func:`integrate` for
+    #: an isotropic model)
+    canonical: bool = False
 
     @property
     def wi(self) -> np.ndarray:
@@ -297,11 +297,10 @@ def _rule(g: np.ndarray, half: np.ndarray, wk: np.ndarray = WK15,
 
 
 def _ratio(e: np.ndarray, tol: np.ndarray) -> np.ndarray:
-    """Per row: error over tolerance, ``(p,)``; for RGB rows the worst channel (each channel
-    has its own tolerance: a dim channel is as accurate, relatively, as a bright one)."""
-    e, tol = np.broadcast_arrays(e, tol)
-    # tol = 0 only for an incidence with no node in this pass (then e = 0 too): ratio 0
-    r = np.divide(e, tol, out=np.zeros(e.shape), where=tol > 0.0)
+    """Per row: error over tolerance (same shapes, tol > 0), ``(p,)``; for RGB rows the worst
+    channel (each channel has its own tolerance: a dim channel is as accurate, relatively,
+    as a bright one)."""
+    r = e / tol
     return r.max(axis=1) if r.ndim == 2 else r
 
 
@@ -332,6 +331,16 @@ class _Integrand:
         together, in batches of at most :data:`CHUNK` points (one call while they fit): the
         directions are made batch by batch, so memory stays bounded."""
         one = len(self.c.st) == 1
+        if len(groups) == 1 and groups[0][5].size <= CHUNK:  # the common case: one batch
+            case, cpsi, spsi, params, rmax, rho, d = groups[0]
+            self.count += np.bincount(case, minlength=len(self.count)) * rho.shape[1]
+            wo, w = directions(self.frame, self.c, case, cpsi, spsi, params, rmax, rho, d)
+            wo = wo.reshape(-1, 3)
+            wi = (np.broadcast_to(self.wi[0], wo.shape) if one
+                  else np.repeat(self.wi[case], rho.shape[1], axis=0))
+            fv = np.asarray(self.f(wi, wo), dtype=float)
+            fv = fv.reshape(w.shape + fv.shape[1:])
+            return [fv * (w if fv.ndim == 2 else w[..., None])]
         # pieces (group, first panel, last panel) of at most CHUNK points, packed into batches
         pieces, batches, size = [], [[]], 0
         for gi, grp in enumerate(groups):
@@ -448,31 +457,37 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
     new_lo, new_hi, new_node, new_end = _initial_panels(edges(case, cpsi, rmax), rmax)
     if len(new_lo) == 0:  # every node has ρmax = 0 (the far side at θi = 90°)
         return np.zeros(n), np.zeros(n), tol if tol is not None else np.full(ncase, atol)
-    # panels that start narrower than small_width (and their children) use K7
+    # panels that start narrower than small_width (and their children) use K7, when there
+    # are enough of them to pay for a second group (its directions and rule: ~0.1 ms)
     new_small = new_hi - new_lo < small_width
+    if np.count_nonzero(new_small) < SMALL_MIN_COUNT:
+        new_small[:] = False
     lo = hi = node = end = small = k_all = e_all = None
     while len(new_lo):
         mid, half = 0.5 * (new_lo + new_hi), 0.5 * (new_hi - new_lo)
-        groups, rules = [], []
-        for sel, (x, wk, wg) in ((~new_small, (X15, WK15, WG15)), (new_small, (X7, WK7, WG7))):
-            if not sel.any():
-                continue
+        k15, k7 = (X15, WK15, WG15), (X7, WK7, WG7)
+        if not new_small.any():
+            parts = [(slice(None), k15)]
+        elif new_small.all():
+            parts = [(slice(None), k7)]
+        else:
+            parts = [(~new_small, k15), (new_small, k7)]
+        groups = []
+        for sel, (x, _, _) in parts:
             h, j = half[sel], new_node[sel]
             rho = mid[sel][:, None] + h[:, None] * x
             # distance to the horizon from the panel's end: exact in the last panel
             d = (rmax[j] - new_hi[sel])[:, None] + h[:, None] * (1.0 - x)
             groups.append((case[j], cpsi[j], spsi[j], tuple(p[j] for p in params), rmax[j],
                            rho, d))
-            rules.append((sel, h, wk, wg))
             budget -= len(x) * np.bincount(case[j], minlength=ncase)
         values = fn(groups)
-        k = e = None
-        for g, (sel, h, wk, wg) in zip(values, rules, strict=True):
-            kk, ee = _rule(g, h, wk, wg)
-            if k is None:
-                k, e = np.empty((len(new_lo),) + kk.shape[1:]), np.empty((len(new_lo),)
-                                                                          + kk.shape[1:])
-            k[sel], e[sel] = kk, ee
+        if len(parts) == 1:
+            k, e = _rule(values[0], half, *parts[0][1][1:])
+        else:
+            k, e = (np.empty((len(new_lo),) + values[0].shape[2:]) for _ in range(2))
+            for g, (sel, (_, wk, wg)) in zip(values, parts, strict=True):
+                k[sel], e[sel] = _rule(g, half[sel], wk, wg)
         lo, hi, node, end, small, k_all, e_all = _grow(
             (lo, hi, node, end, small, k_all, e_all),
             (new_lo, new_hi, new_node, new_end, new_small, k, e))
@@ -484,7 +499,9 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
         # may add INNER_SHARE·tol in proportion to their share of the outer span, shared among
         # the incidence's panels (nodes of tiny weight, as near ψ = ±π/2 at grazing incidence,
         # may be coarser than heavy ones)
-        allow = _times(INNER_SHARE * _sum_by(case, wpsi, ncase) / span, tol)
+        # > 0: an incidence with no node here has no panel either (its allowance is unused)
+        allow = np.maximum(_times(INNER_SHARE * _sum_by(case, wpsi, ncase) / span, tol),
+                           np.finfo(float).tiny)
         we = _times(wpsi[node], e_all)
         npan = np.bincount(pcase, minlength=ncase).clip(1)
         excess = _ratio(we, _times(1.0 / npan, allow)[pcase])
@@ -553,9 +570,9 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
     if symmetric:
         # isotropic: f is unchanged by a rotation about N, so every incidence is turned to
         # φi = 0 (wo's components along u and v are then its x and y)
-        one = np.ones(ncase)
-        c = Cases(c.st, c.ct, np.stack([one, 0 * one, 0 * one], -1),
-                  np.stack([0 * one, one, 0 * one], -1), c.tilt)
+        u, v = np.zeros((ncase, 3)), np.zeros((ncase, 3))
+        u[:, 0] = v[:, 1] = 1.0
+        c = Cases(c.st, c.ct, u, v, c.tilt, canonical=True)
     fn = _Integrand(f, frame, c)
     budget = np.full(ncase, int(max_evals), dtype=np.int64)
     scale = float(min(max(scale, 1e-6), np.pi / 2))
