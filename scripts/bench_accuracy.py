@@ -2,6 +2,7 @@
 
     PYTHONPATH=. python scripts/bench_accuracy.py                 # ~2-3 minutes
     PYTHONPATH=. python scripts/bench_accuracy.py --before REV    # and the code of git REV
+    (--before may be repeated; --quick: the albedo tables only)
 
 For every model's defaults and for the hard cases (sharp lobes down to α = m = 0.001,
 n = 10⁴, roughness 0) at θi from 0° to 90°, it prints the default albedo
@@ -126,7 +127,7 @@ def tensor_reference(model, values, th, n=20):
 def albedo_table(title, cases, thetas, refs):
     print(f"\n{title}")
     print(f"{'model':<14} {'params':<30} {'θi':>5} {'albedo':>10} {'est rel':>8} "
-          f"{'err rel':>8} {'evals':>7} {'ms':>7}")
+          f"{'err rel':>8} {'evals':>7} {'calls':>5} {'ms':>7}")
     rows = []
     for name, params in cases:
         model = get_model(name)
@@ -134,30 +135,25 @@ def albedo_table(title, cases, thetas, refs):
         for th in thetas:
             ref = reference(model, values, th)
             refs[(name, ptext(params), th)] = ref
-            est, t = timed(q.albedo_estimate_resolved, model, values, th)
-            n = _evaluations(model, values, th)
+            est, t = timed(q.albedo_estimate_resolved, model, values, th, repeat=7)
+            n, calls = _evaluations(model, values, th)
             e_est = float(np.max(np.asarray(est.error) / np.abs(ref.value).clip(1e-300)))
             e = rel(est.value, ref.value)
             a = float(np.ravel(est.value)[-1 if np.ndim(est.value) == 0 else 1])
             print(f"{name:<14} {ptext(params):<30} {th:5.1f} {a:10.7f} {e_est:8.1e} {e:8.1e} "
-                  f"{n:7d} {t * 1e3:7.2f}")
+                  f"{n:7d} {calls:5d} {t * 1e3:7.2f}")
             rows.append((name, ptext(params), th, e, e_est, n, t))
     return rows
 
 
 def _evaluations(model, values, th):
-    from tuibrdf.core import polar
-    from tuibrdf.core.frame import sincos_deg
+    """Evaluations and kernel calls of the default albedo (they do not depend on the
+    machine)."""
+    _, n, calls = _run_counted(model, values, th, q.DEFAULT_RTOL)
+    return n, calls
 
-    hint = q.lobe(model, values)
-    st, ct = sincos_deg(np.atleast_1d(th))
-    sp, cp = sincos_deg(np.atleast_1d(180.0))
-    r = polar.integrate(lambda wi, wo: evaluate_resolved(model, values, wi, wo), hint.frame,
-                        polar.cases(st, ct, sp, cp), scale=hint.scale,
-                        radial_breaks=hint.breaks, symmetric=hint.symmetric, rtol=q.DEFAULT_RTOL,
-                        atol=q.ATOL,
-                        max_evals=min(q.MAX_EVALS, hint.max_evals or q.MAX_EVALS))
-    return int(r.evaluations[0])
+
+FITTED = ("abc", "sgd")  # RGB fits of measured data, ~1-1.5 µs per evaluation
 
 
 def summary(rows, label):
@@ -168,6 +164,15 @@ def summary(rows, label):
     print(f"{label}: max error {errs.max():.1e}, max estimate {ests.max():.1e}, estimate below "
           f"the error in {under} of {len(rows)}; time median {np.median(times) * 1e3:.2f} ms, "
           f"max {times.max() * 1e3:.2f} ms")
+    for name, sel in (("analytic models", [r for r in rows if r[0] not in FITTED]),
+                      ("abc, sgd", [r for r in rows if r[0] in FITTED])):
+        if sel:
+            t = np.array([r[6] for r in sel]) * 1e3
+            slow = sorted({f"{r[0]} {r[2]:g}°" for r in sel if r[6] > 2e-3})
+            print(f"  {name}: ≤ 2 ms in {int((t <= 2.0).sum())} of {len(sel)}, median "
+                  f"{np.median(t):.2f} ms, max {t.max():.2f} ms, evaluations median "
+                  f"{int(np.median([r[5] for r in sel]))} max {max(r[5] for r in sel)}"
+                  + (f"; above 2 ms: {', '.join(slow)}" if slow else ""))
 
 
 def ref_check(refs):
@@ -175,8 +180,9 @@ def ref_check(refs):
           " (orders 20 and 28)")
     print(f"{'model':<14} {'params':<30} {'θi':>5} {'reference':>12} {'|Δ| rel':>9} "
           f"{'tensor conv':>11}")
-    for name, params, th in [("ggx", {}, 89.0), ("cook-torrance", {}, 75.0),
-                             ("oren-nayar", {}, 89.9), ("gltf", {}, 60.0),
+    for name, params, th in [("ggx", {}, 89.0), ("ggx", {}, 89.9), ("cook-torrance", {}, 75.0),
+                             ("oren-nayar", {}, 89.9), ("gltf", {}, 60.0), ("gltf", {}, 89.9),
+                             ("abc", {}, 60.0), ("sgd", {}, 89.9),
                              ("ggx", HARD[0][1], 89.0), ("phong", HARD[4][1], 89.0)]:
         model = get_model(name)
         values = model.resolve(params)
@@ -207,7 +213,7 @@ def methods_table(refs):
 
         for rt in (1e-3, 1e-4, 1e-6, 1e-8, 1e-10):
             est, t = timed(q.albedo_estimate_resolved, model, values, th, rtol=rt, repeat=3)
-            n = _evaluations_rtol(model, values, th, rt)
+            n, _ = _evaluations_rtol(model, values, th, rt)
             print(f"{name:<14} {ptext(params):<30} {th:5.1f} {'rtol ' + format(rt, 'g'):<12} "
                   f"{n:8d} {t * 1e3:8.2f} {rel(est.value, ref.value):8.1e}")
         for level in (5, 6, 7, 8):
@@ -229,6 +235,83 @@ def _evaluations_rtol(model, values, th, rtol):
         return _evaluations(model, values, th)
     finally:
         q.DEFAULT_RTOL = old
+
+
+ABLATIONS = [
+    ("as is", {}),
+    ("halves at the horizon and breaks (END_LEVELS 0)", {"END_LEVELS": 0}),
+    ("K15 on small panels too (SMALL_PANEL 0)", {"SMALL_PANEL": 0.0}),
+    ("INNER_SHARE 0.5", {"INNER_SHARE": 0.5}),
+    ("radial grading ratio 3 (GRADING 3)", {"GRADING": 3.0}),
+    ("outer grading ratio 16 (OUTER_GRADING 16)", {"OUTER_GRADING": 16.0}),
+    ("rtol 1e-6", {"rtol": 1e-6}),
+    ("rtol 3e-5", {"rtol": 3e-5}),
+    ("rtol 1e-4", {"rtol": 1e-4}),
+]
+
+
+def _run_counted(model, values, th, rtol):
+    """``(estimate, evaluations, kernel calls)`` of the default rule at ``rtol``."""
+    from tuibrdf.core import polar
+    from tuibrdf.core.frame import sincos_deg
+
+    hint = q.lobe(model, values)
+    calls = [0]
+
+    def f(wi, wo):
+        calls[0] += 1
+        return evaluate_resolved(model, values, wi, wo)
+
+    st, ct = sincos_deg(np.atleast_1d(th))
+    sp, cp = sincos_deg(np.atleast_1d(180.0))
+    r = polar.integrate(f, hint.frame, polar.cases(st, ct, sp, cp), scale=hint.scale,
+                        radial_breaks=hint.breaks, symmetric=hint.symmetric, rtol=rtol,
+                        atol=q.ATOL, max_evals=min(q.MAX_EVALS, hint.max_evals or q.MAX_EVALS),
+                        azimuth_breaks=hint.azimuths)
+    return r, int(r.evaluations[0]), calls[0]
+
+
+def ablation_table(refs):
+    """Each refinement choice undone (or a constant changed) in turn, on the analytic models'
+    defaults (80 cases) and the hard cases (48): evaluations and kernel calls (the same on
+    every machine), worst error and estimate, and the summed time (best of 3 each)."""
+    from tuibrdf.core import polar
+
+    print("\nRefinement choices, one changed at a time: analytic models' defaults (80 cases) | "
+          "hard cases (48)")
+    print(f"{'variant':<48} {'evals':>7} {'calls':>5} {'max':>3} {'>1':>3} {'max err':>8} "
+          f"{'under':>5} {'sum ms':>7} | {'evals':>7} {'calls':>5} {'max err':>8} {'under':>5}")
+    cases = [(n, p, th) for n, p, th in _case_list() if n not in FITTED]
+    for name, params, th in cases:  # warm-up
+        model = get_model(name)
+        _run_counted(model, model.resolve(params), th, q.DEFAULT_RTOL)
+    for label, change in ABLATIONS:
+        rtol = change.get("rtol", q.DEFAULT_RTOL)
+        old = {k: getattr(polar, k) for k in change if k != "rtol"}
+        for k in old:
+            setattr(polar, k, change[k])
+        try:
+            stats = {True: [], False: []}
+            for name, params, th in cases:
+                model = get_model(name)
+                values = model.resolve(params)
+                (r, n, c), t = timed(_run_counted, model, values, th, rtol, repeat=3)
+                ref = refs[(name, ptext(params), th)]
+                e = rel(r.value[0], ref.value)
+                est = float(np.max(np.asarray(r.error[0]) / np.abs(ref.value).clip(1e-300)))
+                stats[not params].append((n, c, e, est, t))
+        finally:
+            for k, v in old.items():
+                setattr(polar, k, v)
+        d, h = stats[True], stats[False]
+        print(f"{label:<48} {sum(x[0] for x in d):7d} {sum(x[1] for x in d):5d} "
+              f"{max(x[1] for x in d):3d} {sum(x[1] > 1 for x in d):3d} "
+              f"{max(x[2] for x in d):8.1e} {sum(x[2] > x[3] for x in d):5d} "
+              f"{sum(x[4] for x in d) * 1e3:7.1f} | {sum(x[0] for x in h):7d} "
+              f"{sum(x[1] for x in h):5d} {max(x[2] for x in h):8.1e} "
+              f"{sum(x[2] > x[3] for x in h):5d}")
+    print("(evals, calls: totals; max: most calls for one albedo; >1: albedos needing more than "
+          "one call; under: estimate below the error)")
 
 
 def curve_table():
@@ -297,11 +380,19 @@ from tuibrdf.core.models import get_model
 from tuibrdf.core.quadrature import albedo_resolved
 out = []
 for name, params, th in json.loads(sys.stdin.read()):
-    m = get_model(name); v = m.resolve(params)
-    best = float("inf")
-    for _ in range(2 if th < 85 else 1):
+    try:
+        m = get_model(name)
+    except Exception:  # not in that revision
+        out.append(None)
+        continue
+    v = m.resolve(params)
+    best, spent = float("inf"), 0.0
+    for _ in range(7):  # best of 7, or of as many as fit in 0.5 s
         t = time.perf_counter(); a = albedo_resolved(m, v, th)
         best = min(best, time.perf_counter() - t)
+        spent += time.perf_counter() - t
+        if spent > 0.5:
+            break
     out.append([np.atleast_1d(a).tolist(), best])
 print(json.dumps(out))
 """
@@ -324,16 +415,27 @@ def before_table(rev, refs, after_rows):
     print(f"{'model':<14} {'params':<30} {'θi':>5} {'before err':>10} {'ms':>8} "
           f"{'after err':>10} {'ms':>8}")
     above = 0
-    for (name, params, th), (a, t) in zip(cases, got, strict=True):
+    times = []
+    for (name, params, th), res in zip(cases, got, strict=True):
+        r = after[(name, ptext(params), th)]
+        if res is None:
+            print(f"{name:<14} {ptext(params):<30} {th:5.1f} {'-':>10} {'-':>8} "
+                  f"{r[3]:10.1e} {r[6] * 1e3:8.2f}")
+            continue
+        a, t = res
+        times.append((name, params, th, t))
         ref = refs[(name, ptext(params), th)]
         ev = np.asarray(ref.value, dtype=float)
         a = np.asarray(a, dtype=float).reshape(ev.shape)
         if np.any(a > 1.0 + 1e-9) and np.all(ev <= 1.0 + 1e-9):  # truth 1 to rounding
             above += 1
-        r = after[(name, ptext(params), th)]
         print(f"{name:<14} {ptext(params):<30} {th:5.1f} {rel(a, ev):10.1e} {t * 1e3:8.2f} "
               f"{r[3]:10.1e} {r[6] * 1e3:8.2f}")
     print(f"before: {above} cases above 1 (by > 1e-9) where the reference is ≤ 1")
+    dflt = [t * 1e3 for name, params, th, t in times if not params and name not in FITTED]
+    if dflt:
+        print(f"before, analytic models' defaults: ≤ 2 ms in {sum(x <= 2.0 for x in dflt)} of "
+              f"{len(dflt)}, median {np.median(dflt):.2f} ms, max {max(dflt):.2f} ms")
 
 
 def _case_list():
@@ -343,7 +445,8 @@ def _case_list():
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--before", metavar="REV", help="also run the albedo of git revision REV")
+    ap.add_argument("--before", metavar="REV", action="append", default=[],
+                    help="also run the albedo of git revision REV (may be repeated)")
     ap.add_argument("--quick", action="store_true", help="albedo tables only")
     args = ap.parse_args(argv)
     t0 = time.perf_counter()
@@ -354,9 +457,10 @@ def main(argv=None) -> int:
     summary(rows, "defaults")
     hard = albedo_table("Default albedo on the hard cases", HARD, HARD_THETAS, refs)
     summary(hard, "hard cases")
-    if args.before:
-        before_table(args.before, refs, rows + hard)
+    for rev in args.before:
+        before_table(rev, refs, rows + hard)
     if not args.quick:
+        ablation_table(refs)
         ref_check(refs)
         methods_table(refs)
         curve_table()

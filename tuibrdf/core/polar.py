@@ -36,12 +36,27 @@ The distance to the horizon ``d = ρmax − ρ`` is carried separately (from the
 Rule: the outer integral over ψ and, for every outer node ψⱼ, the inner integral over ρ are
 both adaptive Gauss–Kronrod (7, 15) (the QUADPACK QK15 pair: Piessens et al. 1983).  Each
 panel's error estimate is ``|K15 − G7|`` (the 7 Gauss nodes are among the 15 Kronrod ones, so
-it is free); a panel is bisected while its error is above its share of the tolerance.  The
+it is free); a panel is cut while its error is above its share of the tolerance.  The
 inner integral starts from panels graded geometrically (ratio 4) from the lobe width ``scale``
-out to ρmax, so a lobe at the axis cannot fall between nodes.  The reported error is the sum of
-the outer ``|K15 − G7|`` and the inner errors integrated over ψ: for analytic panels K15 is
-far more accurate than that estimate, so the estimate is pessimistic (an upper bound in
-practice, measured in docs/accuracy.md).
+out to ρmax, so a lobe at the axis cannot fall between nodes, with the model's known kinks
+(``radial_breaks``) as panel ends; the outer one from ψ = 0, ±π/2, ±π, the model's
+``azimuth_breaks`` (where kink curves cross) and, at grazing incidence, a grading toward
+ψ = ±π/2.  Refinement:
+
+- an inner panel that ends at the horizon or at a radial break is cut graded toward that end
+  (``END_LEVELS`` pieces of ratio 4 after a half): at grazing incidence the integrand is nearly
+  singular just beyond such ends (a pole at a distance ~cos θi: GGX's Λ(θo), Oren-Nayar's
+  tan((θi + θo)/2)), and halving reached it one round (one kernel call) per halving;
+- inner panels that start narrower than ``SMALL_PANEL`` lobe widths (the far side at grazing
+  incidence, gaps between close kinks) use the K7/G3 pair: 7 evaluations for 15;
+- the inner errors enter the albedo's error weighted by the outer weights, so an incidence's
+  allowance is shared among its nodes by weight (nodes of tiny weight may be coarser);
+- the tolerance holds per channel for RGB models.
+
+All panels of a round, inner or outer, of every incidence go to the model in one call.  The
+reported error is the sum of the outer ``|K15 − G7|`` and the inner errors integrated over
+ψ: for analytic panels the Kronrod value is far more accurate than that estimate, so the
+estimate is pessimistic (an upper bound in practice, measured in docs/accuracy.md).
 
 Several incidences are integrated in one batch (one kernel call per refinement round for the
 whole albedo curve); evaluations are capped (``max_evals`` per incidence) so that a
@@ -86,6 +101,32 @@ X15, WK15, WG15 = _kronrod15()
 for _a in (X15, WK15, WG15):
     _a.setflags(write=False)
 
+# The 7-point Kronrod extension of the 3-point Gauss rule (Kronrod 1965; the values of
+# QUADPACK's documentation and of scipy's tables): nodes (positive half, descending), Kronrod
+# weights, Gauss weights 5/9 and 8/9 on ±√(3/5) and 0.  Checked in tests/test_polar.py.
+_XGK7 = (0.960491268708020283423507092629080, 0.774596669241483377035853079956480,
+         0.434243749346802558002071502844628, 0.0)
+_WGK7 = (0.104656226026467265193823857192073, 0.268488089868333440728569280666710,
+         0.401397414775962222905051818618432, 0.450916538658474142345110087045571)
+
+
+def _kronrod7() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    x, wk = np.array(_XGK7), np.array(_WGK7)
+    wg = np.array([0.0, 5.0 / 9.0, 0.0, 8.0 / 9.0])
+    return (np.concatenate([-x[:-1], x[::-1]]), np.concatenate([wk[:-1], wk[::-1]]),
+            np.concatenate([wg[:-1], wg[::-1]]))
+
+
+#: K7 nodes on [-1, 1] (ascending), Kronrod weights, Gauss weights (0 off the G3 nodes): the
+#: inner rule of panels narrower than :data:`SMALL_PANEL` lobe widths.
+X7, WK7, WG7 = _kronrod7()
+for _a in (X7, WK7, WG7):
+    _a.setflags(write=False)
+#: Inner panels narrower than this many lobe widths (nearly polynomial there) use K7 for K15,
+#: when at least SMALL_MIN_COUNT of them start in one pass (8 evaluations saved per panel).
+SMALL_PANEL = 0.5
+SMALL_MIN_COUNT = 48
+
 FRAMES = ("normal", "mirror", "half")
 #: Ratio of the geometric radial grading from the lobe width out to the horizon.
 GRADING = 4.0
@@ -102,7 +143,7 @@ OUTER_START, OUTER_GRADING, OUTER_LIMIT = 2.0, 8.0, np.pi / 8
 #: would differ by a few ulps of π.
 MIN_WIDTH = 1e-12
 #: Fraction of the tolerance given to the inner integrals (the rest is for the outer one).
-INNER_SHARE = 0.5
+INNER_SHARE = 0.7
 #: Largest batch of directions handed to a kernel at once (bounds the temporaries' memory).
 CHUNK = 1 << 15
 
@@ -118,6 +159,10 @@ class Cases:
     v: np.ndarray
     #: half frame: the polar axis is tilted by this angle away from the light (0: the normal)
     tilt: np.ndarray | None = None
+
+    #: every ``u = (1, 0, 0)`` and ``v = (0, 1, 0)`` (φi = 0; set by :func:`integrate` for
+    #: an isotropic model)
+    canonical: bool = False
 
     @property
     def wi(self) -> np.ndarray:
@@ -169,41 +214,56 @@ def directions(frame: str, c: Cases, case: np.ndarray, cpsi: np.ndarray, spsi: n
     """``(wo (p, n, 3), weight (p, n))`` at polar points ``rho (p, n)`` of panels whose outer
     node has incidence ``case (p,)``, ``cos ψ``, ``sin ψ``, :func:`_rho_max`'s ``params`` and
     ``rmax`` ``(p,)``; ``d = ρmax − ρ`` (accurate near the horizon).  weight = cos θo · J
-    (module docstring)."""
-    st, ct = c.st[case][:, None], c.ct[case][:, None]
-    u, v = c.u[case], c.v[case]
+    (module docstring).  wo is built from its components ``(x, y)`` along ``u`` and ``v``;
+    when every incidence has ``u = (1, 0, 0)``, ``v = (0, 1, 0)`` (φi = 0, which
+    :func:`integrate` uses for an isotropic model) they are wo's own."""
+    st = c.st[case][:, None]
     cp, sp = cpsi[:, None], spsi[:, None]
     sr = np.sin(rho)
-    wo = np.empty(rho.shape + (3,))
     if frame == "normal":
-        a = -cp[..., None] * u[:, None, :] + sp[..., None] * v[:, None, :]
-        wo[..., :2] = sr[..., None] * a[..., :2]
+        x, y = -cp * sr, sp * sr
         cz = np.sin(d)  # cos θo = sin(π/2 − ρ), exact to the last bit near the horizon
-        wo[..., 2] = cz
-        return wo, cz * sr
-    cr = np.cos(rho)
-    if frame == "mirror":
+        w = cz * sr
+    elif frame == "mirror":
         r, _ = params
+        cr = np.cos(rho)
         # S = −sin θi u + cos θi N,  e1 = −(cos θi u + sin θi N)
-        a = cp[..., None] * (-ct[..., None] * u[:, None, :]) + sp[..., None] * v[:, None, :]
-        wo[..., :2] = -cr[..., None] * st[..., None] * u[:, None, :2] + sr[..., None] * a[..., :2]
+        x = -(st * cr + (c.ct[case][:, None] * cp) * sr)
+        y = sp * sr
         cz = r[:, None] * np.sin(d)
-        wo[..., 2] = cz
-        return wo, cz * sr
-    a0, a1, k, phi0 = params
-    t = np.zeros(len(case)) if c.tilt is None else c.tilt[case]
-    c0, s0 = np.cos(t)[:, None], np.sin(t)[:, None]
-    # h = cos ρ A + sin ρ (cos ψ E1 + sin ψ E2), A = cos t N − sin t u, E1 = sin t N + cos t u
-    hu = -cr * s0 + sr * cp * c0  # component along u
-    hv = sr * sp
-    wih = a0[:, None] * cr + a1[:, None] * sr  # wi·h ≥ 0 on the domain
-    two = 2.0 * wih
-    wo[..., :2] = ((two * hu - st)[..., None] * u[:, None, :2]
-                   + (two * hv)[..., None] * v[:, None, :2])
-    # cos θo = (K/2)(cos(2ρ − φ0) − cos(2ρmax − φ0)) = K sin(ρmax + ρ − φ0) sin(ρmax − ρ)
-    cz = np.maximum(k[:, None] * np.sin(rmax[:, None] + rho - phi0[:, None]), 0.0) * np.sin(d)
+        w = cz * sr
+    elif c.tilt is None or not np.any(c.tilt[case]):
+        a0, a1, k, _ = params
+        cr = np.cos(rho)
+        # h = cos ρ N + sin ρ (cos ψ u + sin ψ v); wo = 2(wi·h)h − wi
+        two_s = 2.0 * (a0[:, None] * cr + a1[:, None] * sr) * sr  # 2(wi·h) sin ρ ≥ 0
+        x, y = two_s * cp - st, two_s * sp
+        # cos θo = R cos(2ρ − β) = R sin(2(ρmax − ρ)), K = 2R (module docstring)
+        cz = (0.5 * k)[:, None] * np.sin(2.0 * d)
+        w = cz * 2.0 * two_s
+    else:
+        a0, a1, k, phi0 = params
+        cr = np.cos(rho)
+        t = c.tilt[case]
+        c0, s0 = np.cos(t)[:, None], np.sin(t)[:, None]
+        # h = cos ρ A + sin ρ (cos ψ E1 + sin ψ E2), A = cos t N − sin t u, E1 = sin t N + cos t u
+        wih = a0[:, None] * cr + a1[:, None] * sr  # wi·h ≥ 0 on the domain
+        x = 2.0 * wih * (-cr * s0 + sr * cp * c0) - st
+        y = 2.0 * wih * sr * sp
+        # cos θo = (K/2)(cos(2ρ − φ0) − cos(2ρmax − φ0)) = K sin(ρmax + ρ − φ0) sin(ρmax − ρ)
+        cz = (np.maximum(k[:, None] * np.sin(rmax[:, None] + rho - phi0[:, None]), 0.0)
+              * np.sin(d))
+        w = cz * 4.0 * wih * sr
+    wo = np.empty(rho.shape + (3,))
+    if c.canonical:
+        wo[..., 0] = x
+        wo[..., 1] = y
+    else:
+        u, v = c.u[case], c.v[case]
+        wo[..., 0] = x * u[:, None, 0] + y * v[:, None, 0]
+        wo[..., 1] = x * u[:, None, 1] + y * v[:, None, 1]
     wo[..., 2] = cz
-    return wo, cz * 4.0 * wih * sr
+    return wo, w
 
 
 @dataclass
@@ -223,20 +283,25 @@ def _grow(kept: tuple, new: tuple) -> tuple:
     return tuple(np.concatenate([a, b]) for a, b in zip(kept, new, strict=True))
 
 
-def _rule(g: np.ndarray, half: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """K15 value and |K15 − G7| of panels from their 15 values ``g (p, 15[, k])``."""
+def _rule(g: np.ndarray, half: np.ndarray, wk: np.ndarray = WK15,
+          wg: np.ndarray = WG15) -> tuple[np.ndarray, np.ndarray]:
+    """Kronrod value and |Kronrod − Gauss| of panels from their values ``g (p, n[, k])`` at
+    the rule's nodes (K15/G7 by default, or K7/G3)."""
     if g.ndim == 2:
-        k = np.einsum("pn,n->p", g, WK15) * half
-        gg = np.einsum("pn,n->p", g, WG15) * half
+        k = np.einsum("pn,n->p", g, wk) * half
+        gg = np.einsum("pn,n->p", g, wg) * half
     else:
-        k = np.einsum("pnc,n->pc", g, WK15) * half[:, None]
-        gg = np.einsum("pnc,n->pc", g, WG15) * half[:, None]
+        k = np.einsum("pnc,n->pc", g, wk) * half[:, None]
+        gg = np.einsum("pnc,n->pc", g, wg) * half[:, None]
     return k, np.abs(k - gg)
 
 
-def _size(x: np.ndarray) -> np.ndarray:
-    """Per row: |x|, or the largest channel of an RGB row."""
-    return np.abs(x).max(axis=1) if x.ndim == 2 else np.abs(x)
+def _ratio(e: np.ndarray, tol: np.ndarray) -> np.ndarray:
+    """Per row: error over tolerance (same shapes, tol > 0), ``(p,)``; for RGB rows the worst
+    channel (each channel has its own tolerance: a dim channel is as accurate, relatively,
+    as a bright one)."""
+    r = e / tol
+    return r.max(axis=1) if r.ndim == 2 else r
 
 
 def _sum_by(idx: np.ndarray, x: np.ndarray, n: int) -> np.ndarray:
@@ -260,116 +325,211 @@ class _Integrand:
         self.wi = c.wi
         self.count = np.zeros(len(c.st), dtype=np.int64)
 
-    def __call__(self, case, cpsi, spsi, params, rmax, rho, d) -> np.ndarray:
-        """Values ``(p, 15)`` or ``(p, 15, k)`` for panels ``(p,)``."""
-        out = []
-        step = max(CHUNK // rho.shape[1], 1)
+    def __call__(self, groups: list[tuple]) -> list[np.ndarray]:
+        """Values ``(p, n)`` or ``(p, n, k)`` for each group of panels ``(case, cos ψ, sin ψ,
+        params, ρmax, ρ (p, n), d (p, n))``.  The directions of all groups go to the model
+        together, in batches of at most :data:`CHUNK` points (one call while they fit): the
+        directions are made batch by batch, so memory stays bounded."""
         one = len(self.c.st) == 1
-        for s in range(0, len(rho), step):
-            sl = slice(s, s + step)
-            wo, w = directions(self.frame, self.c, case[sl], cpsi[sl], spsi[sl],
-                               tuple(x[sl] for x in params), rmax[sl], rho[sl], d[sl])
+        if len(groups) == 1 and groups[0][5].size <= CHUNK:  # the common case: one batch
+            case, cpsi, spsi, params, rmax, rho, d = groups[0]
+            self.count += np.bincount(case, minlength=len(self.count)) * rho.shape[1]
+            wo, w = directions(self.frame, self.c, case, cpsi, spsi, params, rmax, rho, d)
             wo = wo.reshape(-1, 3)
-            if one:
-                wi = np.broadcast_to(self.wi[0], wo.shape)
-            else:
-                wi = np.repeat(self.wi[case[sl]], rho.shape[1], axis=0)
+            wi = (np.broadcast_to(self.wi[0], wo.shape) if one
+                  else np.repeat(self.wi[case], rho.shape[1], axis=0))
             fv = np.asarray(self.f(wi, wo), dtype=float)
             fv = fv.reshape(w.shape + fv.shape[1:])
-            out.append(fv * (w if fv.ndim == 2 else w[..., None]))
-        self.count += np.bincount(case, minlength=len(self.count)) * rho.shape[1]
-        return np.concatenate(out)
+            return [fv * (w if fv.ndim == 2 else w[..., None])]
+        # pieces (group, first panel, last panel) of at most CHUNK points, packed into batches
+        pieces, batches, size = [], [[]], 0
+        for gi, grp in enumerate(groups):
+            n = grp[5].shape[1]
+            step = max(CHUNK // n, 1)
+            self.count += np.bincount(grp[0], minlength=len(self.count)) * n
+            for s0 in range(0, len(grp[5]), step):
+                s1 = min(s0 + step, len(grp[5]))
+                if size + (s1 - s0) * n > CHUNK and batches[-1]:
+                    batches.append([])
+                    size = 0
+                batches[-1].append(len(pieces))
+                pieces.append((gi, s0, s1))
+                size += (s1 - s0) * n
+        values: list = [None] * len(pieces)
+        for batch in batches:
+            wos, ws, wis = [], [], []
+            for pi in batch:
+                gi, s0, s1 = pieces[pi]
+                case, cpsi, spsi, params, rmax, rho, d = groups[gi]
+                sl = slice(s0, s1)
+                wo, w = directions(self.frame, self.c, case[sl], cpsi[sl], spsi[sl],
+                                   tuple(x[sl] for x in params), rmax[sl], rho[sl], d[sl])
+                wos.append(wo.reshape(-1, 3))
+                ws.append(w)
+                if not one:
+                    wis.append(np.repeat(self.wi[case[sl]], rho.shape[1], axis=0))
+            wo = wos[0] if len(wos) == 1 else np.concatenate(wos)
+            wi = np.broadcast_to(self.wi[0], wo.shape) if one else np.concatenate(wis)
+            fv = np.asarray(self.f(wi, wo), dtype=float)
+            at = 0
+            for pi, w in zip(batch, ws, strict=True):
+                v = fv[at:at + w.size].reshape(w.shape + fv.shape[1:])
+                at += w.size
+                values[pi] = v * (w if v.ndim == 2 else w[..., None])
+        out = []
+        for gi in range(len(groups)):
+            mine = [values[pi] for pi, p in enumerate(pieces) if p[0] == gi]
+            out.append(mine[0] if len(mine) == 1 else np.concatenate(mine))
+        return out
 
+
+#: Graded cuts toward a panel's end (horizon or break) in the inner refinement (_divide).
+END_LEVELS = 3
 
 #: A panel whose error is this many times its share is cut in four rather than two: fewer
 #: refinement rounds (each a kernel call with its fixed cost) for a few more evaluations.
 QUARTER_ABOVE = 1e3
 
 
-def _divide(lo: np.ndarray, hi: np.ndarray, owner: np.ndarray, excess: np.ndarray):
-    """Children of panels ``[lo, hi]``: halves, or quarters where ``excess`` (error over its
-    share) is above :data:`QUARTER_ABOVE`."""
-    parts = np.where(excess > QUARTER_ABOVE, 4, 2)
+def _divide(lo: np.ndarray, hi: np.ndarray, owner: np.ndarray, excess: np.ndarray,
+            end: np.ndarray | None = None, small: np.ndarray | None = None):
+    """Children ``(lo, hi, owner, end)`` of panels ``[lo, hi]``: halves, or quarters where
+    ``excess`` (error over its share) is above :data:`QUARTER_ABOVE`; a panel flagged ``end``
+    (it ends at the horizon or at a radial break, where a nearly singular integrand sits at
+    grazing incidence) is cut graded toward that end instead, :data:`END_LEVELS` pieces of
+    ratio 4 after a half (only its last child keeps the flag).  ``small`` (the K7 rule) is
+    inherited; returned only when given."""
+    if end is None or END_LEVELS < 1:  # END_LEVELS = 0: no graded cuts (for comparison)
+        end = np.zeros(len(lo), dtype=bool)
+    parts = np.where(end, END_LEVELS + 1, np.where(excess > QUARTER_ABOVE, 4, 2))
     k = np.repeat(parts, parts)
     j = np.arange(len(k)) - np.repeat(np.cumsum(parts) - parts, parts)
     a, b = np.repeat(lo, parts), np.repeat(hi, parts)
-    w = (b - a) / k
+    w = b - a
+    graded = np.repeat(end, parts)
+    # graded: ends at b − w/2, b − w/8, b − w/32, ...; else uniform
+    off = 0.5 * 0.25 ** np.minimum(j, k - 1)
+    right = np.where(graded, b - w * off, a + (j + 1) * (w / k))
+    left = np.where(j == 0, a, np.where(graded, b - w * 0.5 * 0.25 ** np.maximum(j - 1, 0),
+                                        a + j * (w / k)))
     # the last child ends exactly at hi (no rounding gap before ρmax)
-    return a + j * w, np.where(j == k - 1, b, a + (j + 1) * w), np.repeat(owner, parts)
+    last = j == k - 1
+    out = left, np.where(last, b, right), np.repeat(owner, parts), graded & last
+    return out if small is None else (*out, np.repeat(small, parts))
 
 
-def _initial_panels(edges: list[np.ndarray], rmax: np.ndarray):
-    """Panels ``(lo, hi, node)`` from increasing breakpoints per node, cut at ρmax."""
+def _initial_panels(edges: list[tuple[np.ndarray, np.ndarray]], rmax: np.ndarray):
+    """Panels ``(lo, hi, node, end)`` from increasing breakpoints per node ``(value, is a
+    radial break)``, cut at ρmax; ``end``: the panel ends at a break or at ρmax."""
     n = len(rmax)
-    lo_l, hi_l, node_l = [], [], []
+    lo_l, hi_l, node_l, end_l = [], [], [], []
     prev = np.zeros(n)
-    for e in [*edges, rmax]:
+    for e, brk in [*edges, (rmax, np.ones(n, dtype=bool))]:
         e = np.minimum(e, rmax)
         keep = e > prev
         lo_l.append(prev[keep])
         hi_l.append(e[keep])
         node_l.append(np.flatnonzero(keep))
+        end_l.append((brk | (e >= rmax))[keep])
         prev = np.where(keep, e, prev)
-    return np.concatenate(lo_l), np.concatenate(hi_l), np.concatenate(node_l)
+    return tuple(np.concatenate(x) for x in (lo_l, hi_l, node_l, end_l))
 
 
 def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
            edges: Callable[..., list[np.ndarray]], tol: np.ndarray | None,
-           rtol: float, atol: float, budget: np.ndarray):
+           rtol: float, atol: float, budget: np.ndarray, span: float = 2.0 * np.pi,
+           small_width: float = 0.0):
     """Inner integrals ``∫₀^ρmax g dρ`` for the outer nodes ``ψⱼ`` (incidence ``case[j]``,
     outer weight ``wpsi[j]``): ``(value, error, tol)``.
 
-    ``tol (c,)`` is each incidence's absolute tolerance for the whole albedo; a node may use
-    ``INNER_SHARE·tol/(2π)`` (the outer weights sum to 2π).  When None (the first pass), it is
-    set from the first round's own total.  ``budget (c,)`` evaluations left per incidence,
-    decremented here; a spent incidence is not refined further.  Every panel stays in the pool
-    with its K15 value and error; each round bisects, per node still above its tolerance, the
-    panels whose error is above the node's tolerance divided by its number of panels (at least
-    the worst one)."""
+    ``tol (c,)`` or ``(c, k)`` is each incidence's absolute tolerance (per channel) for the
+    whole albedo; these nodes' inner errors, weighted by ``wpsi``, may add up to
+    ``INNER_SHARE·tol·Σwpsi/span`` (the outer weights of all nodes sum to ``span``: 2π, or π
+    for a symmetric integrand).  When None (the first pass), it is set from the first
+    round's own total.  ``budget (c,)`` evaluations left per incidence, decremented here; a
+    spent incidence is not refined further.  Every panel stays in the pool with its value and
+    error (K15/G7, or K7/G3 for panels narrower than ``small_width``); each round cuts
+    (:func:`_divide`), per incidence still above its allowance, the panels whose weighted
+    error is above the allowance divided by its number of panels (at least the worst one)."""
     n, ncase = len(case), len(budget)
     cpsi, spsi = np.cos(psi), np.sin(psi)
     rmax, params = _rho_max(fn.frame, fn.c, case, cpsi)
-    new_lo, new_hi, new_node = _initial_panels(edges(case, cpsi, rmax), rmax)
+    new_lo, new_hi, new_node, new_end = _initial_panels(edges(case, cpsi, rmax), rmax)
     if len(new_lo) == 0:  # every node has ρmax = 0 (the far side at θi = 90°)
         return np.zeros(n), np.zeros(n), tol if tol is not None else np.full(ncase, atol)
-    lo = hi = node = k_all = e_all = None
+    # panels that start narrower than small_width (and their children) use K7, when there
+    # are enough of them to pay for a second group (its directions and rule: ~0.1 ms)
+    new_small = new_hi - new_lo < small_width
+    if np.count_nonzero(new_small) < SMALL_MIN_COUNT:
+        new_small[:] = False
+    lo = hi = node = end = small = k_all = e_all = None
     while len(new_lo):
         mid, half = 0.5 * (new_lo + new_hi), 0.5 * (new_hi - new_lo)
-        rho = mid[:, None] + half[:, None] * X15
-        # distance to the horizon from the panel's end: exact in the last panel
-        d = (rmax[new_node] - new_hi)[:, None] + half[:, None] * (1.0 - X15)
-        j = new_node
-        g = fn(case[j], cpsi[j], spsi[j], tuple(x[j] for x in params), rmax[j], rho, d)
-        budget -= 15 * np.bincount(case[j], minlength=ncase)
-        k, e = _rule(g, half)
-        lo, hi, node, k_all, e_all = _grow((lo, hi, node, k_all, e_all),
-                                           (new_lo, new_hi, new_node, k, e))
-        tot_v, tot_e = _sum_by(node, k_all, n), _sum_by(node, e_all, n)
+        k15, k7 = (X15, WK15, WG15), (X7, WK7, WG7)
+        if not new_small.any():
+            parts = [(slice(None), k15)]
+        elif new_small.all():
+            parts = [(slice(None), k7)]
+        else:
+            parts = [(~new_small, k15), (new_small, k7)]
+        groups = []
+        for sel, (x, _, _) in parts:
+            h, j = half[sel], new_node[sel]
+            rho = mid[sel][:, None] + h[:, None] * x
+            # distance to the horizon from the panel's end: exact in the last panel
+            d = (rmax[j] - new_hi[sel])[:, None] + h[:, None] * (1.0 - x)
+            groups.append((case[j], cpsi[j], spsi[j], tuple(p[j] for p in params), rmax[j],
+                           rho, d))
+            budget -= len(x) * np.bincount(case[j], minlength=ncase)
+        values = fn(groups)
+        if len(parts) == 1:
+            k, e = _rule(values[0], half, *parts[0][1][1:])
+        else:
+            k, e = (np.empty((len(new_lo),) + values[0].shape[2:]) for _ in range(2))
+            for g, (sel, (_, wk, wg)) in zip(values, parts, strict=True):
+                k[sel], e[sel] = _rule(g, half[sel], wk, wg)
+        lo, hi, node, end, small, k_all, e_all = _grow(
+            (lo, hi, node, end, small, k_all, e_all),
+            (new_lo, new_hi, new_node, new_end, new_small, k, e))
         if tol is None:
-            tol = rtol * _size(_sum_by(case, _times(wpsi, tot_v), ncase)) + atol
-        tol_node = INNER_SHARE * tol[case] / (2.0 * np.pi)
-        npan = np.bincount(node, minlength=n)
-        esize = _size(e_all)
-        split = ((_size(tot_e) > tol_node)[node] & (esize > (tol_node / npan.clip(1))[node])
-                 & (hi - lo > 2 * MIN_WIDTH) & (budget[case[node]] > 0))
+            tot_v = _sum_by(node, k_all, n)
+            tol = rtol * np.abs(_sum_by(case, _times(wpsi, tot_v), ncase)) + atol
+        pcase = case[node]
+        # the inner errors enter the albedo's error weighted by the outer weights: these nodes
+        # may add INNER_SHARE·tol in proportion to their share of the outer span, shared among
+        # the incidence's panels (nodes of tiny weight, as near ψ = ±π/2 at grazing incidence,
+        # may be coarser than heavy ones)
+        # > 0: an incidence with no node here has no panel either (its allowance is unused)
+        allow = np.maximum(_times(INNER_SHARE * _sum_by(case, wpsi, ncase) / span, tol),
+                           np.finfo(float).tiny)
+        we = _times(wpsi[node], e_all)
+        npan = np.bincount(pcase, minlength=ncase).clip(1)
+        excess = _ratio(we, _times(1.0 / npan, allow)[pcase])
+        over = (_ratio(_sum_by(pcase, we, ncase), allow) > 1.0)[pcase]
+        split = over & (excess > 1.0) & (hi - lo > 2 * MIN_WIDTH) & (budget[pcase] > 0)
         if not split.any():
             break
-        new_lo, new_hi, new_node = _divide(lo[split], hi[split], node[split],
-                                           esize[split] / (tol_node / npan.clip(1))[node[split]])
+        new_lo, new_hi, new_node, new_end, new_small = _divide(
+            lo[split], hi[split], node[split], excess[split], end[split], small[split])
         keep = ~split
-        lo, hi, node, k_all, e_all = lo[keep], hi[keep], node[keep], k_all[keep], e_all[keep]
+        lo, hi, node, end, small = lo[keep], hi[keep], node[keep], end[keep], small[keep]
+        k_all, e_all = k_all[keep], e_all[keep]
     return _sum_by(node, k_all, n), _sum_by(node, e_all, n), tol
 
 
-def _outer_breaks(frame: str, c: Cases, symmetric: bool):
-    """Initial ψ panels ``(lo, hi, case)``: breakpoints at 0, ±π/2, ±π, and at grazing
-    incidence (half and mirror frames) a geometric grading toward ±π/2, where ρmax(ψ) turns
-    over within ~cot θi.  ``symmetric``: only ψ ∈ [0, π]."""
+def _outer_breaks(frame: str, c: Cases, symmetric: bool,
+                  azimuth_breaks: Callable[[float, float], list[float]] | None = None):
+    """Initial ψ panels ``(lo, hi, case)``: breakpoints at 0, ±π/2, ±π, ``±azimuth_breaks(sin
+    θi, cos θi)`` (ψ in [0, π]), and at grazing incidence (half and mirror frames) a geometric
+    grading toward ±π/2, where ρmax(ψ) turns over within ~cot θi.  ``symmetric``: only
+    ψ ∈ [0, π]."""
     plo, phi_, pcase = [], [], []
     for i in range(len(c.st)):
         br = {-np.pi, -np.pi / 2, 0.0, np.pi / 2, np.pi}
         st, ct = float(c.st[i]), float(c.ct[i])
         tilted = c.tilt is not None and c.tilt[i] > 0.0
+        if azimuth_breaks is not None:
+            br.update(x for a in azimuth_breaks(st, ct) if 0.0 < a < np.pi for x in (a, -a))
         if frame != "normal" and not tilted and ct > 0.0 and ct < 0.5 * st:
             w = OUTER_START * ct / st
             while w < OUTER_LIMIT:
@@ -385,7 +545,9 @@ def _outer_breaks(frame: str, c: Cases, symmetric: bool):
 def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: Cases, *,
               scale: float, radial_breaks: Callable[..., list[np.ndarray]] | None = None,
               symmetric: bool = False, rtol: float = 1e-6, atol: float = 1e-13,
-              max_evals: int = 400_000) -> PolarResult:
+              max_evals: int = 400_000,
+              azimuth_breaks: Callable[[float, float], list[float]] | None = None
+              ) -> PolarResult:
     """``∫ f(wi, wo) cos θo dωo`` for every incidence of ``c`` (see the module docstring).
 
     ``f(wi (n, 3), wo (n, 3))`` returns ``(n,)`` or ``(n, k)``.  ``scale`` is the lobe's
@@ -405,6 +567,12 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
         # tangent to ψ = ±π/2, instead of a near-step of ρmax(ψ) at ψ = ±π/2)
         rho0 = 0.5 * np.arctan2(c.ct, c.st)
         c = Cases(c.st, c.ct, c.u, c.v, np.where(rho0 < TILT_WITHIN * scale, rho0, 0.0))
+    if symmetric:
+        # isotropic: f is unchanged by a rotation about N, so every incidence is turned to
+        # φi = 0 (wo's components along u and v are then its x and y)
+        u, v = np.zeros((ncase, 3)), np.zeros((ncase, 3))
+        u[:, 0] = v[:, 1] = 1.0
+        c = Cases(c.st, c.ct, u, v, c.tilt, canonical=True)
     fn = _Integrand(f, frame, c)
     budget = np.full(ncase, int(max_evals), dtype=np.int64)
     scale = float(min(max(scale, 1e-6), np.pi / 2))
@@ -415,38 +583,45 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
         grading.append(g)
         g *= GRADING
 
-    def edges(case: np.ndarray, cpsi: np.ndarray, rmax: np.ndarray) -> list[np.ndarray]:
-        out = [np.full(len(case), x) for x in grading]
+    def edges(case: np.ndarray, cpsi: np.ndarray, rmax: np.ndarray):
+        n = len(case)
+        out = [(np.full(n, x), np.zeros(n, dtype=bool)) for x in grading]
         extra = [] if radial_breaks is None else list(
             radial_breaks(c.st[case], c.ct[case], cpsi, rmax))
         if not extra:
             return out
         extra = [np.where((x > 0.0) & (x < rmax), x, rmax) for x in extra]
-        full = np.sort(np.stack([*out, *extra], axis=1), axis=1)
-        return [full[:, i] for i in range(full.shape[1])]
+        vals = np.stack([*(e for e, _ in out), *extra], axis=1)
+        brk = np.zeros(vals.shape, dtype=bool)
+        brk[:, len(out):] = True
+        order = np.argsort(vals, axis=1, kind="stable")
+        vals = np.take_along_axis(vals, order, axis=1)
+        brk = np.take_along_axis(brk, order, axis=1)
+        return [(vals[:, i], brk[:, i]) for i in range(vals.shape[1])]
 
-    new_lo, new_hi, new_pc = _outer_breaks(frame, c, symmetric)
+    new_lo, new_hi, new_pc = _outer_breaks(frame, c, symmetric, azimuth_breaks)
     lo = hi = pc = k_all = e_all = tol = None
     while len(new_lo):
         mid, half = 0.5 * (new_lo + new_hi), 0.5 * (new_hi - new_lo)
         psi = (mid[:, None] + half[:, None] * X15).ravel()
         case = np.repeat(new_pc, 15)
         wpsi = (half[:, None] * WK15).ravel()
-        iv, ie, tol = _inner(fn, case, psi, wpsi, edges, tol, rtol, atol, budget)
+        iv, ie, tol = _inner(fn, case, psi, wpsi, edges, tol, rtol, atol, budget,
+                             np.pi if symmetric else 2.0 * np.pi, SMALL_PANEL * scale)
         k, e = _rule(iv.reshape(len(new_lo), 15, *iv.shape[1:]), half)
         # the inner errors, integrated with the outer weights
         e = e + _sum_by(np.repeat(np.arange(len(new_lo)), 15), _times(wpsi, ie), len(new_lo))
         lo, hi, pc, k_all, e_all = _grow((lo, hi, pc, k_all, e_all),
                                          (new_lo, new_hi, new_pc, k, e))
         tot_v, tot_e = _sum_by(pc, k_all, ncase), _sum_by(pc, e_all, ncase)
-        tol = rtol * _size(tot_v) + atol
-        npan = np.bincount(pc, minlength=ncase)
-        split = ((_size(tot_e) > tol)[pc] & (_size(e_all) > (tol / npan.clip(1))[pc])
+        tol = rtol * np.abs(tot_v) + atol
+        npan = np.bincount(pc, minlength=ncase).clip(1)
+        excess = _ratio(e_all, _times(1.0 / npan, tol)[pc])
+        split = ((_ratio(tot_e, tol) > 1.0)[pc] & (excess > 1.0)
                  & (hi - lo > 2 * MIN_WIDTH) & (budget[pc] > 0))
         if not split.any():
             break
-        new_lo, new_hi, new_pc = _divide(lo[split], hi[split], pc[split],
-                                         _size(e_all[split]) / (tol / npan.clip(1))[pc[split]])
+        new_lo, new_hi, new_pc, _ = _divide(lo[split], hi[split], pc[split], excess[split])
         keep = ~split
         lo, hi, pc, k_all, e_all = lo[keep], hi[keep], pc[keep], k_all[keep], e_all[keep]
     k = 2.0 if symmetric else 1.0

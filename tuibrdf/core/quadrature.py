@@ -32,6 +32,7 @@ import numpy as np
 from . import polar
 from .evaluate import evaluate_resolved
 from .frame import incident, mirror, sincos_deg
+from .materials import table
 from .mesh import hemisphere, refine_adaptive
 from .microfacet import alpha_from_roughness
 from .models import MODELS, get_model
@@ -41,11 +42,11 @@ from .params import Model
 DEFAULT_LEVEL = 6
 #: Adaptive-mesh tolerance of ``method="adaptive"`` (relative integral error per triangle).
 DEFAULT_TOL = 1e-5
-#: Relative tolerance of the default albedo: its error estimate is at most this (or the
-#: evaluation budget ran out, and the estimate says so).  The estimate (|K15 − G7| summed) is
-#: pessimistic: measured errors are ≤ 5e-9 at every model's defaults and ≤ 1e-7 on the hard
-#: cases (docs/accuracy.md); 1e-6 would cost 15-100 % more evaluations for errors that are
-#: already below 1e-8.
+#: Relative tolerance of the default albedo, per channel: its error estimate is at most this
+#: (or the evaluation budget ran out, and the estimate says so).  The estimate (|K − G|
+#: summed) is pessimistic: measured errors are ≤ 2.2e-8 at every model's defaults and
+#: ≤ 3.4e-7 on the hard cases (docs/accuracy.md).  1e-6 costs 28 % more evaluations for
+#: errors already below 1e-7; 1e-4 lets gltf at 89.9° reach 2.8e-6 (above the 1e-6 target).
 DEFAULT_RTOL = 1e-5
 #: Absolute floor of the tolerance (an albedo of 0 needs no relative accuracy).
 ATOL = 1e-13
@@ -91,6 +92,9 @@ class Lobe(NamedTuple):
     symmetric: bool = True
     #: evaluation budget per incidence, if lower than the caller's
     max_evals: int | None = None
+    #: azimuths ψ ∈ (0, π) where the inner integral is less smooth (``(sin θi, cos θi) →
+    #: list``): outer panel ends
+    azimuths: Callable[[float, float], list[float]] | None = None
 
 
 def _theta_i_break(st, ct, cpsi, rmax):
@@ -103,9 +107,22 @@ def _vcavity_breaks(st, ct, cpsi, rmax):
     has kinks where the terms cross.  In the half frame (β = atan2(sin θi cos ψ, cos θi)):
     2 cos ρ cos(2ρ − β) = cos(ρ − β) ⇔ cos(3ρ − β) = 0 ⇔ ρ = (π/2 + β)/3 (masking), and
     2 cos ρ cos θi = R cos(ρ − β) ⇔ tan ρ = cos θi / (sin θi cos ψ) ⇔ ρ = π/2 − β
-    (shadowing)."""
+    (shadowing), and where the two crossed terms meet, cos θo = cos θi: R cos(2ρ − β) =
+    R cos β ⇔ ρ = β (β > 0; ρ = 0 is the mirror direction itself)."""
     b = np.arctan2(st * cpsi, ct)
-    return [(np.pi / 2 + b) / 3.0, np.pi / 2 - b]
+    return [(np.pi / 2 + b) / 3.0, np.pi / 2 - b, np.where(b > 0.0, b, rmax)]
+
+
+def _vcavity_azimuths(st: float, ct: float) -> list[float]:
+    """Where :func:`_vcavity_breaks`' kink curves meet each other or the horizon, the inner
+    integral is less smooth in ψ: the three meet at β = π/4 (ρ = π/4), and the shadowing one
+    leaves the domain at β = π/6 (π/2 − β = ρmax); tan β = tan θi cos ψ."""
+    out = []
+    for t in (1.0, 1.0 / math.sqrt(3.0)):
+        c = t * ct / st if st > 0.0 else 2.0
+        if c < 1.0:
+            out.append(math.acos(c))
+    return out
 
 
 def _mirror_kink(st, ct, cpsi, rmax):
@@ -118,6 +135,60 @@ def _power_width(n: float) -> float:
     return min(np.pi / 2, 1.0 / math.sqrt(max(n, 0.4)))
 
 
+def _abc_lobe(v: Mapping[str, Any]) -> Lobe:
+    """abc: D = A/(1 + B(1 − cos θh))^C ≈ A/(1 + B θh²/2)^C is halved within θh ~ √(2/B)
+    (B = 11…8e6 over the 100 materials); the V-cavity G is cook-torrance's (same kinks)."""
+    b = float(table("abc").row(v["material"])["b"])
+    return Lobe("half", math.sqrt(2.0 / b) if b > 0.0 else np.pi / 2, _vcavity_breaks,
+                azimuths=_vcavity_azimuths)
+
+
+def _cook_torrance_lobe(v: Mapping[str, Any]) -> Lobe:
+    """Beckmann lobe of width m; the V-cavity kinks as radial breaks, and where they cross
+    (:func:`_vcavity_azimuths`) as outer ones once the lobe reaches them (m ≥ 0.3: below it
+    exp(−tan²ρ/m²) is ≤ 2.5e-2 of the peak at ρ = π/6 and they cost evaluations for nothing;
+    measured in docs/accuracy.md)."""
+    m = float(v["m"])
+    # beyond tan²ρ = 45 m², D/D(0) = exp(−tan²ρ/m²)/cos⁴ρ < exp(−45)(1 + 45 m²)² ≤ 6e-17
+    # (m ≤ 1): the specular term, and its kinks, are nil there; only the smooth diffuse
+    # term is left, and a break would cost a panel at every outer node for nothing
+    cut = math.atan(math.sqrt(45.0) * m)
+
+    def breaks(st, ct, cpsi, rmax):
+        return [np.where(b < cut, b, rmax) for b in _vcavity_breaks(st, ct, cpsi, rmax)]
+
+    return Lobe("half", m, breaks, azimuths=_vcavity_azimuths if m >= 0.3 else None)
+
+
+def _sgd_lobe(v: Mapping[str, Any]) -> Lobe:
+    """sgd: D ∝ exp(−a)/a^p, a = α + tan²θh/α: a core of width ~α (a doubles there) in an
+    envelope of width ~√α; the finest channel's α grades.  G1(wo) has kinks where θo reaches
+    θ0 (the shift starts) and θ* (the clamp at 0), per channel: radial breaks."""
+    t = table("sgd").row(v["material"])
+    alpha = float(np.min(t["alpha"]))
+    # G1 = 1 − Λ·expm1(c_g (θ − θ0)^k) reaches 0 at c_g (θ* − θ0)^k = log(1 + 1/Λ): solved in
+    # logarithms (c_g up to 1e38, k up to 856 overflow otherwise); Λ, c_g, k > 0 (the table)
+    lt = (np.log(np.log1p(1.0 / t["lambda"])) - np.log(t["c_g"])) / t["k"]
+    kinks = np.concatenate([t["theta0"], t["theta0"] + np.exp(np.minimum(lt, 5.0))])
+    kinks = np.unique(kinks[(kinks > 0.0) & (kinks < np.pi / 2)])
+
+    def breaks(st, ct, cpsi, rmax):
+        # θo = θk in the half frame: cos θo = R cos(2ρ − β) = cos θk (module polar), so
+        # 2ρ = β ± acos(cos θk / R); no solution where cos θk > R (then ρmax is returned:
+        # ignored)
+        b = np.arctan2(st * cpsi, ct)
+        r = np.hypot(st * cpsi, ct)
+        out = []
+        for k in kinks:
+            ok = r >= math.cos(k)
+            c = np.arccos(np.clip(np.divide(math.cos(k), r, out=np.ones_like(r), where=ok),
+                                  -1.0, 1.0))
+            out += [np.where(ok, 0.5 * (b - c), rmax), np.where(ok, 0.5 * (b + c), rmax)]
+        return out
+
+    return Lobe("half", alpha, breaks if len(kinks) else None)
+
+
 #: Registry name → values → :class:`Lobe`, for the built-in models (used only when the model
 #: is the registered one: same kernel).
 LOBE_HINTS: dict[str, Callable[[Mapping[str, Any]], Lobe]] = {
@@ -127,13 +198,15 @@ LOBE_HINTS: dict[str, Callable[[Mapping[str, Any]], Lobe]] = {
     "disney-diffuse": lambda v: Lobe("normal", np.pi / 2),
     "phong": lambda v: Lobe("mirror", _power_width(float(v["n"])), _mirror_kink),
     "blinn-phong": lambda v: Lobe("half", _power_width(float(v["n"]))),
-    "cook-torrance": lambda v: Lobe("half", float(v["m"]), _vcavity_breaks),
+    "cook-torrance": _cook_torrance_lobe,
     "ggx": lambda v: Lobe("half", float(v["alpha"])),
     "gltf": lambda v: Lobe("half", alpha_from_roughness(v["roughness"])),
     "ue4": lambda v: Lobe("half", alpha_from_roughness(v["roughness"])),
     # measured, isotropic; the specular peak of shiny materials is ~0.5° wide.  The lookups
     # are piecewise constant or linear over 1.46 million bins, so refinement never reaches
     # 1e-6: a smaller budget (the error estimate stays honest: 1e-5…1e-3 measured)
+    "abc": _abc_lobe,
+    "sgd": _sgd_lobe,
     "merl": lambda v: Lobe("half", 0.004, max_evals=MERL_MAX_EVALS),
 }
 #: Any other model: the half-vector frame (a specular lobe at the pole for every θi), graded
@@ -210,7 +283,8 @@ def albedo_curve_estimate_resolved(model: Model, values: Mapping[str, Any],
 
     r = polar.integrate(f, hint.frame, polar.cases(st, ct, sp, cp), scale=hint.scale,
                         radial_breaks=hint.breaks, symmetric=hint.symmetric, rtol=rtol,
-                        atol=ATOL, max_evals=min(max_evals, hint.max_evals or max_evals))
+                        atol=ATOL, max_evals=min(max_evals, hint.max_evals or max_evals),
+                        azimuth_breaks=hint.azimuths)
     return AlbedoEstimate(r.value, r.error)
 
 
