@@ -274,22 +274,67 @@ async def test_the_lit_plane_is_evaluated_once_per_frame_and_exposure_evaluates_
         assert all(c == [] for c in calls.values())
 
 
-def test_changed_span_is_what_differs_between_two_strips():
+def test_changed_span_is_what_differs_between_two_rows():
     # by hand: "ab|cd|ef" against "ab|XY|ef" (| = segment boundaries) differ in cells 2–3
-    # only; equal strips differ nowhere; a different first segment starts the span at 0
+    # only; equal rows differ nowhere; "aB" differs in cell 1 only; one segment "abcdef"
+    # against "abcdeF" in cell 5 only; a style change counts as a change of every cell it
+    # covers ("cd" bold)
     from rich.segment import Segment
-    from textual.strip import Strip
+    from rich.style import Style
 
     from tuibrdf.app.widgets import changed_span
 
-    def strip(*texts):
-        return Strip([Segment(t) for t in texts], sum(len(t) for t in texts))
+    def row(*texts, bold=()):
+        return [Segment(t, Style(bold=t in bold)) for t in texts]
 
-    assert changed_span(strip("ab", "cd", "ef"), strip("ab", "XY", "ef")) == (2, 4)
-    x0, x1 = changed_span(strip("ab", "cd", "ef"), strip("ab", "cd", "ef"))
+    assert changed_span(row("ab", "cd", "ef"), row("ab", "XY", "ef"), 6) == (2, 4)
+    x0, x1 = changed_span(row("ab", "cd", "ef"), row("ab", "cd", "ef"), 6)
     assert x1 <= x0
-    assert changed_span(strip("ab", "cd", "ef"), strip("aB", "cd", "ef")) == (0, 2)
-    assert changed_span(strip("abcdef"), strip("abcdeF")) == (0, 6)
+    assert changed_span(row("ab", "cd", "ef"), row("aB", "cd", "ef"), 6) == (1, 2)
+    assert changed_span(row("abcdef"), row("abcdeF"), 6) == (5, 6)
+    assert changed_span(row("ab", "cd", "ef"), row("ab", "cd", "ef", bold=("cd",)), 6) == (2, 4)
+    # segments cut differently: "abc|def" against "ab|cdXf": only cell 4 differs; the span
+    # starts after the common start "ab" of the first segments and ends before the common
+    # end "f" of the last ones (cell 2 is equal too, but not seen as such: conservative)
+    assert changed_span(row("abc", "def"), row("ab", "cdXf"), 6) == (2, 5)
+
+
+def test_changed_span_covers_every_changed_cell():
+    # property: every cell outside [x0, x1) is the same in both rows (random rows of random
+    # segments, styles from a small set, texts from a small alphabet)
+    import random
+
+    from rich.segment import Segment
+    from rich.style import Style
+
+    from tuibrdf.app.widgets import changed_span
+
+    rng = random.Random(5)
+    styles = [Style(), Style(bold=True), Style(color="red")]
+
+    for _ in range(2000):
+        w = rng.randint(1, 12)
+        a = [(rng.choice("ab "), rng.choice(styles)) for _ in range(w)]
+        b = [c if rng.random() < 0.7 else (rng.choice("ab "), rng.choice(styles)) for c in a]
+        ra = [Segment(c, s) for c, s in a]  # one segment per cell, then merged at random
+        rb = [Segment(c, s) for c, s in b]
+        ra = merge_random(ra, rng)
+        rb = merge_random(rb, rng)
+        x0, x1 = changed_span(ra, rb, w)
+        for x in range(w):
+            if not x0 <= x < x1:
+                assert a[x] == b[x], (a, b, x0, x1)
+
+
+def merge_random(row, rng):
+    """Join neighbouring one-cell segments of the same style at random."""
+    out = [row[0]]
+    for seg in row[1:]:
+        if seg.style == out[-1].style and rng.random() < 0.6:
+            out[-1] = type(seg)(out[-1].text + seg.text, seg.style)
+        else:
+            out.append(seg)
+    return out
 
 
 async def test_status_line_grows_and_shrinks_with_its_text():

@@ -163,3 +163,37 @@ def test_every_model_lit_is_finite_and_non_negative(name, theta_i):
     # the light on the horizon gives cos θi = 0 on the plane: black
     if theta_i == 90.0:
         assert np.all(lit_plane(m, v, theta_i, 16, 16)[0] == 0.0)
+
+
+def test_truecolor_picture_is_drawn_on_64_levels_per_channel():
+    # quantise_rgb: every value one of round(k·255/63), k = 0…63, and within half a step
+    # (255/126 ≈ 2.02) of the 8-bit input; 0 and 255 kept
+    from tuibrdf.render.lit_view import quantise_rgb
+
+    img = np.arange(256, dtype=np.uint8).reshape(16, 16, 1).repeat(3, axis=2)
+    q = quantise_rgb(img)
+    allowed = {round(k * 255 / 63) for k in range(64)}
+    assert set(np.unique(q).tolist()) <= allowed
+    assert np.max(np.abs(q.astype(int) - img.astype(int))) <= 255 / 126
+    assert q[0, 0, 0] == 0 and q[-1, -1, 0] == 255
+
+
+def test_lit_sphere_local_frames_match_the_definition():
+    # the cached per-pixel frames give, for every pixel inside the disc, the light and the
+    # view in (T, B, N) written out here: T = normalise(e_x − (e_x·N) N), B = N × T
+    from tuibrdf.core.frame import incident
+    from tuibrdf.core.lit import _sphere, sphere_geometry
+
+    n, inside = sphere_geometry(23, 17)
+    frames, inside2, view = _sphere(23, 17)
+    assert np.array_equal(inside, inside2)
+    w = incident(40.0, 130.0)
+    for (r, c) in [(8, 11), (3, 11), (8, 2), (14, 18)]:
+        if not inside[r, c]:
+            continue
+        nn = n[r, c]
+        t = np.array([1.0, 0.0, 0.0]) - nn[0] * nn
+        t /= np.linalg.norm(t)
+        b = np.cross(nn, t)
+        assert np.allclose(frames[r, c] @ w, [w @ t, w @ b, w @ nn], atol=1e-15)
+        assert np.allclose(view[r, c], [t[2], b[2], nn[2]], atol=1e-15)

@@ -1,57 +1,46 @@
 """The Textual viewer: wiring only.  A key calls one :class:`ViewerState` transition (plain
 Python, :mod:`.state`); the panes show one :class:`~tuibrdf.core.scene.FrameResult` through
-:mod:`tuibrdf.render.panes`.
-
-Data flow: every change builds the current :class:`~tuibrdf.core.scene.FrameRequest`
-(materials, θi, cosine, view, pane sizes).  A request computed before is shown at once (the
-core caches results by request); otherwise :meth:`BrdfApp.compute` runs in an exclusive
-thread worker (``@work(exclusive=True, thread=True)``): the newest request cancels the older
-ones, and a result that is no longer the current request is dropped, so the latest state
-always wins and its frame always arrives.  The worker posts the fast part (maps, sections,
-peak) at once and the slow part (albedo, albedo curve) when done.  A frame waits while
-Textual's output writer still has frames queued (a slow terminal), and each pane is redrawn
-only when what it shows changed.
+:mod:`tuibrdf.render.panes`, delivered by :class:`.frames.FrameDelivery` (the data flow is
+described there).
 """
 
 from __future__ import annotations
 
+import gc
 import threading
 from functools import partial
 
 import numpy as np
-from rich.text import Text
-from textual import work
 from textual.app import App, ComposeResult, SystemCommand
 from textual.containers import Container, Horizontal, Vertical
 from textual.css.query import NoMatches
 from textual.widgets import Footer, Static
-from textual.worker import Worker, get_current_worker
+from textual.worker import Worker
 
 from ..core import scene
 from ..core.hemimap import dir_to_uv, geometry
 from ..core.params import _fmt
 from ..core.scene import FrameRequest, FrameResult, section_directions
 from ..core.sections import great_circle
-from ..render import EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, panes
+from ..render import panes
 from ..render.polar_braille import angle_at
-from ..render.views import extra_pixels, map_pixels
 from . import keys
+from .frames import FrameDelivery
 from .layout import CSS, arrange
 from .loading import MeasuredData
 from .presets import PresetError, apply_loaded, list_presets, load_preset, preset_dir, save_preset
 from .screens import HelpScreen, SafeCommandPalette, SaveScreen, ValueScreen
 from .state import ViewerState
-from .text import PANES, legend_text, status_text, visible_panes
-from .widgets import ParamPanel, Picture, StatusLine
+from .text import PANES
+from .widgets import ParamPanel, Picture, QuietStatic, StatusLine
 
-RETRY_S = 0.02  # re-check a busy writer after this long
+#: after start-up (Textual, numpy, the models: ≈ 10⁵ objects kept for the whole session) the
+#: collector stops scanning what exists then: a full collection took 23–48 ms here, a stall
+#: of any key it fell on; later ones scan only the objects made since (docs/app.md)
+FREEZE_S = 1.0
 FILE_POLL_S = 1.0  # how often a model file's mtime is checked (an edit redraws)
 #: colour levels of the maps: 32 keeps a full 160×48 map update near 50 KiB (docs/app.md)
 LEVELS = 32
-#: what a pane or a worker shows as a message instead of stopping the viewer: bad data
-#: (ValueError, OSError) and a floating-point exception from a kernel (the kernels raise on
-#: one, core/numerics.py; a picture is not worth losing the session over)
-DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
 #: the actions of the viewer itself (not of a modal screen)
 VIEWER_ACTIONS = frozenset({"state", "save", "load_next", "help", "type_value", "type_theta"})
 
@@ -71,7 +60,7 @@ def _read_preset(name: str):
         return str(e)
 
 
-class BrdfApp(MeasuredData, App):
+class BrdfApp(FrameDelivery, MeasuredData, App):
     """``BrdfApp(state, color=None)``; ``color`` ∈ truecolor/256/none overrides detection.
     ``sync=True`` (tests) computes every frame on the event loop, deterministically."""
 
@@ -96,6 +85,7 @@ class BrdfApp(MeasuredData, App):
         self._changes = 0  # changes so far; only the last one queued updates the screen
         self._relayout = False  # a change since the last update may show other panes
         self._preset_names: list[str] = []  # the saved presets, for the command palette
+        self._widgets: dict[str, object] = {}  # id → widget (BrdfApp.one)
 
     # -- layout ------------------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -112,13 +102,15 @@ class BrdfApp(MeasuredData, App):
                     yield Picture("incidence", id="incidence")
                     yield Picture("perpendicular", id="perpendicular")
             yield StatusLine(id="status")
-        yield Static(id="toosmall")
+        yield QuietStatic(id="toosmall")
         yield Footer(compact=True, show_command_palette=False)
 
     def on_mount(self) -> None:
         self._changed(self.message, relayout=True)
         self.set_interval(FILE_POLL_S, self._check_files)
         self.background(_list_presets, self._listed)
+        if not self.sync:
+            self.set_timer(FREEZE_S, gc.freeze)
 
     def on_resize(self, event) -> None:
         self._changed(self.message, relayout=True)
@@ -149,6 +141,16 @@ class BrdfApp(MeasuredData, App):
         cs = self.console.color_system
         return "truecolor" if cs == "truecolor" else ("none" if cs is None else "256")
 
+    def one(self, wid: str):
+        """The viewer's widget ``#wid``, looked up once (a query walks the whole DOM: 6 % of
+        a key's time when every draw asked again)."""
+        w = self._widgets.get(wid)
+        if w is None:
+            if not self.screen_stack:  # closing: no screen left
+                raise NoMatches(f"#{wid}: the viewer has closed")
+            w = self._widgets[wid] = self.screen_stack[0].query_one(f"#{wid}")
+        return w
+
     # -- one frame ---------------------------------------------------------------------------
     def _changed(self, message: str | None = None, relayout: bool = False) -> None:
         """After any change: the screen follows once the events already queued are handled
@@ -159,16 +161,14 @@ class BrdfApp(MeasuredData, App):
         self.call_later(self._update, self._changes)
 
     def _update(self, change: int) -> None:
-        """The panels and the status line now; the frame at once or from the worker."""
+        """The frame at once when computed before, else from the worker (the panels and the
+        status line go with it, so one key costs one paint)."""
         if change != self._changes:
             return  # a newer change is queued behind this one
         try:
             if self._relayout:
                 self._relayout = False
                 arrange(self)
-            for i, panel in enumerate(self.query(ParamPanel)):
-                if i < len(self.state.sides):
-                    panel.show(self.state, i)
             self.refresh_frame()
         except NoMatches:  # keys still queued while the app closes: no widgets left
             pass
@@ -176,158 +176,6 @@ class BrdfApp(MeasuredData, App):
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         """While a modal screen (help, save, palette) is open, the viewer's keys wait."""
         return not (action in VIEWER_ACTIONS and len(self.screen_stack) > 1)
-
-    def request_rebuild(self) -> None:
-        """A pane was resized: the request (pane sizes) changed."""
-        self._changed(self.message)
-
-    def _pane_size(self, pane: str) -> tuple[int, int]:
-        size = self.query_one(f"#{pane}", Picture).size
-        return size.width, size.height
-
-    def frame_request(self) -> FrameRequest:
-        """What the visible panes show, from the state and the pane sizes."""
-        s = self.state
-        map_px = None
-        if s.view == "map":
-            sizes = [self._pane_size(p) for p in visible_panes(self.state) if PANES[p][0] in
-                     ("map", "diff")]
-            if all(w >= MIN_WIDTH and h >= MIN_HEIGHT for w, h in sizes):
-                map_px = map_pixels(min(w for w, _ in sizes), min(h for _, h in sizes))
-        extra = s.view if s.view in EXTRA_VIEWS else None
-        extra_px = None
-        if extra is not None:
-            sizes = [self._pane_size(p) for p in visible_panes(self.state) if
-                     PANES[p][0] == "extra"]
-            w, h = min(w for w, _ in sizes), min(h for _, h in sizes)
-            if w >= MIN_WIDTH and h >= MIN_HEIGHT:
-                extra_px = extra_pixels(extra, w, h)
-            elif extra in ("sphere", "plane", "slice"):
-                extra = None  # too small: the pane says so
-        return FrameRequest(tuple(x.material for x in s.sides), s.theta_i, cosine=s.cosine,
-                            map_px=map_px, solid=s.view == "solid", curve=s.view == "albedo",
-                            section_azimuth=s.section_azimuth, extra=extra, extra_px=extra_px,
-                            theta_d=s.theta_d, theta_h=s.theta_h, phi_d=s.phi_d,
-                            sqrt_h=s.sqrt_h, probe=s.probe, phi_i=s.phi_i)
-
-    def refresh_frame(self) -> None:
-        """Show the current state's frame: at once when computed before, else when the worker
-        has computed it."""
-        if self.screen.has_class("small"):
-            self._status()
-            return
-        if not self._files_ready():  # measured data still loading: its panes say so
-            for pane in visible_panes(self.state):
-                self.query_one(f"#{pane}", Picture).show(
-                    Text("loading measured data …", justify="center"), None)
-            self._status()
-            return
-        req = self.request = self.frame_request()
-        self._status()
-        if self.sync:
-            try:
-                self.show_frame(scene.compute_frame(req))
-            except DRAW_ERRORS as e:
-                self._failed(req, e)
-            return
-        done = scene.cached_frame(req)
-        if done is not None:
-            self.show_frame(done)
-        busy = self._worker is not None and self._worker.is_running
-        if (done is None or not done.complete) and not (busy and self._worker_for == req):
-            self._worker, self._worker_for = self.compute(req), req
-
-    @work(exclusive=True, thread=True, group="frame")
-    def compute(self, req: FrameRequest) -> None:
-        """The frame of ``req`` off the event loop: the fast part, then the albedo (and the
-        albedo curve); each posted unless a newer request cancelled this worker."""
-        worker = get_current_worker()
-
-        def post(callback, *args) -> None:
-            if not worker.is_cancelled:
-                try:
-                    self.call_from_thread(callback, *args)
-                except RuntimeError:  # the app has closed meanwhile
-                    pass
-
-        if worker.is_cancelled:
-            return
-        try:
-            res = scene.compute_frame(req, slow=False)
-            post(self.show_frame, res)
-            if not res.complete and not worker.is_cancelled:
-                res = scene.compute_frame(req, check=lambda: not worker.is_cancelled)
-                if res is not None:
-                    post(self.show_frame, res)
-        except DRAW_ERRORS as e:  # a data file that vanished or changed on disk
-            post(self._failed, req, e)
-
-    def _failed(self, req: FrameRequest, error: Exception) -> None:
-        if req == self.request:
-            for pane in visible_panes(self.state):
-                self.query_one(f"#{pane}", Picture).show(Text(f"cannot draw: {error}"), None)
-            self.message = f"cannot compute this frame: {error}"
-            self._status()
-
-    def _writer_busy(self) -> bool:
-        """Frames still queued for the terminal (Textual's private writer; guarded)."""
-        try:
-            return self._driver._writer_thread._queue.qsize() > 0  # type: ignore[union-attr]
-        except AttributeError:
-            return False
-
-    def show_frame(self, res: FrameResult) -> None:
-        """Draw ``res`` if it is still the current request: the main view now, the two
-        cross-sections one frame later (plotext, ≈ 8 ms each at 160×48)."""
-        if res.request != self.request or not self.is_running:
-            return  # a newer request is on its way, or the app is closing
-        if self._writer_busy():  # trailing edge: try again when the terminal has caught up
-            self.set_timer(RETRY_S, partial(self.show_frame, res))
-            return
-        self.frame = res
-        self.frames += 1
-        shown = visible_panes(self.state)
-        for pane in shown[:-2]:
-            self._draw(pane, res)
-        if self.state.compare and self.state.view == "map":
-            self.query_one("#legend", Static).update(legend_text(self.state))
-        self._status()
-        self.call_after_refresh(self._draw_later, res, shown[-2:])
-
-    def _draw_later(self, res: FrameResult, shown: list[str]) -> None:
-        if res is self.frame and not self.screen.has_class("small"):
-            for pane in shown:
-                self._draw(pane, res)
-
-    def _draw(self, pane: str, res: FrameResult) -> None:
-        pic = self.query_one(f"#{pane}", Picture)
-        w, h = pic.size.width, pic.size.height
-        view, k = PANES[pane]
-        look, req = self.look, res.request
-        if w < MIN_WIDTH or h < MIN_HEIGHT or (view in ("map", "diff") and not req.map_px) or (
-                view == "extra" and req.extra is None):
-            pic.show(Text(f"{w}×{h}: too small for this pane"), None)
-            return
-        if view in ("map", "diff"):  # every map of a compare grid on the same pixel grid
-            w, h = req.map_px[0], req.map_px[1] // 2 + 3
-        what = (req.materials, req.theta_i, req.cosine, req.phi_i)
-        key = {"map": (what, req.map_px, req.probe, look),
-               "diff": (what, req.map_px, look.color),
-               "solid": (what, look), "albedo": (req.materials, req.theta_i, req.phi_i,
-                                                 look.color, res.complete, look.channel),
-               "extra": (req.materials, req.extra_key, look)}.get(view)
-        key = (pane, w, h, key or (what, req.section_azimuth, look.color, look.log,
-                                   look.channel))
-        if pic.shown_for == key:
-            return
-        try:
-            pic.show(panes.pane(view, res, k, w, h, look), key)
-        except DRAW_ERRORS as e:
-            pic.show(Text(f"cannot draw {pane}: {e}"), None)
-
-    def _status(self) -> None:
-        self.query_one("#status", StatusLine).show_text(
-            status_text(self.state, self.frame, self.look, self._loading, self.message))
 
     def picture_clicked(self, pane: str, x: int, y: int) -> None:
         """A click at cell ``(x, y)`` of ``pane``: on a map or a section the probe goes to
@@ -341,7 +189,7 @@ class BrdfApp(MeasuredData, App):
             g = geometry(*res.request.map_px)
             uv = g.to_uv(np.array(x + 0.5), np.array(2.0 * (y - 1) + 1.0))  # cell centre
         elif view in ("incidence", "perpendicular") and y >= 1:
-            pic = self.query_one(f"#{pane}", Picture)
+            pic = self.one(pane)
             t = angle_at(x, y - 1, pic.size.width, pic.size.height - 1)
             if t is not None:
                 if view == "incidence":

@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-from textual.widgets import Static
+from rich.text import Text
 
 from ..core.models import MODELS
 from .state import panel_rows
 from .text import PANES, visible_panes
-from .widgets import ParamPanel, Picture
 
 MIN_W, MIN_H = 60, 18
 #: compare mode draws three maps, two panels and two sections: below this it says so
@@ -50,27 +49,27 @@ def arrange(app) -> None:
         msg = (f"The terminal is {w}×{h}: compare mode needs at least "
                f"{COMPARE_MIN_W}×{COMPARE_MIN_H}.\nEnlarge the window, or press c for one side "
                "(q quits).")
-    app.query_one("#toosmall", Static).update(msg)
+    app.one("toosmall").show_text(Text(msg))
     visible = set(visible_panes(s))
-    main = app.query_one("#main")
+    main = app.one("main")
     main.set_class(s.compare and s.view == "map", "compare-map")
     main.set_class(s.compare and s.view == "solid", "compare-solid")
     main.set_class(s.compare and s.view not in ("map", "solid", "albedo"), "compare-extra")
-    for pic in app.query(Picture):
+    for pic in (app.one(p) for p in PANES):
         pic.display = pic.pane in visible and (pic.pane != "perpendicular"
                                                or h >= BOTH_SECTIONS_H)
-    app.query_one("#legend").display = s.compare and s.view == "map"
+    app.one("legend").display = s.compare and s.view == "map"
     # both panels when there is room; otherwise only the side the keys act on
     both = s.compare and h >= BOTH_PANELS_H
-    app.query_one("#panel-a").display = not s.compare or both or s.active == 0
-    app.query_one("#panel-b").display = both or (s.compare and s.active == 1)
+    app.one("panel-a").display = not s.compare or both or s.active == 0
+    app.one("panel-b").display = both or (s.compare and s.active == 1)
     # tall terminals: panels as tall as the longest model's, so cycling models never
     # resizes the plots below; short ones keep every row for the plots
     steady = STEADY_PANEL_H if h >= BOTH_PANELS_H else None
-    for panel in app.query(ParamPanel):
+    for panel in (app.one("panel-a"), app.one("panel-b")):
         panel.styles.min_height = steady
     if s.compare:
         for pane in ("map-a", "map-b", "solid-a", "solid-b", "extra-a", "extra-b"):
             k = PANES[pane][1]
-            app.query_one(f"#{pane}").border_title = f"{'AB'[k]}: {s.sides[k].material.label}"
-        app.query_one("#diff").border_title = "A − B"
+            app.one(pane).border_title = f"{'AB'[k]}: {s.sides[k].material.label}"
+        app.one("diff").border_title = "A − B"

@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import os
+from os.path import commonprefix
 
+from rich.cells import cell_len
 from rich.console import RenderableType
 from rich.segment import Segment
-from rich.style import Style
 from rich.text import Text
+from textual.css.scalar import Unit
 from textual.filter import ANSIToTruecolor
 from textual.geometry import Region
 from textual.strip import Strip
@@ -15,61 +17,90 @@ from textual.widget import Widget
 from textual.widgets import Static
 
 from ..core.params import _fmt
+from ..render.lines import BLANK, pane_lines, render_rows
 from .state import Side, ViewerState
 
-BLANK = Style()  # never None: Textual's NO_COLOR filter crashes on a None style
 
-
-def changed_span(a: Strip, b: Strip) -> tuple[int, int]:
-    """Cells ``[x0, x1)`` of two equally wide strips outside their common first and last
-    segments (what must be redrawn to turn ``a`` into ``b``)."""
-    sa, sb = list(a), list(b)
+def changed_span(sa: list[Segment], sb: list[Segment], width: int) -> tuple[int, int]:
+    """Cells ``[x0, x1)`` of two rows of ``width`` cells outside what they share at both ends
+    (what must be redrawn to turn ``sa`` into ``sb``): the equal segments at each end, then
+    the common start (end) of the first (last) segments that differ when their styles are
+    equal.  Cells ``[0, x0)`` and ``[x1, width)`` are equal; ``x1 <= x0``: nothing changed."""
+    n = min(len(sa), len(sb))
     x0 = i = 0
-    while i < min(len(sa), len(sb)) and sa[i] == sb[i]:
-        x0 += sa[i].cell_length
+    while i < n and sa[i] == sb[i]:
+        x0 += cell_len(sa[i].text)
         i += 1
-    x1, j = b.cell_length, 0
-    while j < min(len(sa), len(sb)) - i and sa[-1 - j] == sb[-1 - j]:
-        x1 -= sb[-1 - j].cell_length
+    if i < n and sa[i].style == sb[i].style:  # both start at x0: a common start is equal
+        x0 += cell_len(commonprefix([sa[i].text, sb[i].text]))
+    x1, j = width, 0
+    while j < n - i and sa[-1 - j] == sb[-1 - j]:
+        x1 -= cell_len(sb[-1 - j].text)
         j += 1
+    if j < n and sa[-1 - j].style == sb[-1 - j].style:  # both end at x1: so does a common end
+        x1 -= cell_len(commonprefix([sa[-1 - j].text[::-1], sb[-1 - j].text[::-1]]))
     return x0, max(x0, x1)
 
 
-class Picture(Widget):
-    """Shows precomputed lines; ``render_line`` only returns a stored ``Strip``.
+class Rows(Widget):
+    """Shows stored rows of segments; ``render_line`` only returns a stored ``Strip``, and a
+    new set of rows marks only the cells that changed for repaint (:meth:`_set`)."""
 
-    The app renders a pane's renderable once per change (:meth:`show`), not once per refresh.
-    """
+    def __init__(self, **kw) -> None:
+        super().__init__(**kw)
+        self._strips: list[Strip] = []
+        self._lines: list[list[Segment]] = []  # the segments of each strip
+
+    def _set(self, lines: list[list[Segment]], w: int, h: int) -> None:
+        """Show ``h`` rows of ``w`` cells; only the cells that changed go to the terminal: per
+        changed row, the span between the first and the last segment that differ (an
+        unchanged row keeps its Strip)."""
+        old, old_lines = self._strips, self._lines
+        self._lines = lines
+        if len(old) != h or any(s.cell_length != w for s in old):
+            self._strips = [Strip(line, w) for line in lines]
+            self.refresh()
+            return
+        regions = []
+        strips = []
+        for y, (a, a_line, line) in enumerate(zip(old, old_lines, lines, strict=True)):
+            if a_line == line:
+                strips.append(a)
+                continue
+            strips.append(Strip(line, w))
+            x0, x1 = changed_span(a_line, line, w)
+            if x1 > x0:
+                regions.append(Region(x0, y, x1 - x0, 1))
+        self._strips = strips
+        if regions:
+            self.refresh(*regions)
+
+    def render_line(self, y: int) -> Strip:
+        if y < len(self._strips):
+            return self._strips[y]
+        return Strip([Segment(" " * self.size.width, BLANK)], self.size.width)
+
+    def get_line_filters(self):
+        # ANSIToTruecolor costs ≈ 10 ms per 160×48 frame and our colours are RGB already;
+        # keep the others (NO_COLOR relies on Monochrome)
+        return [f for f in super().get_line_filters() if not isinstance(f, ANSIToTruecolor)]
+
+
+class Picture(Rows):
+    """A pane: the app renders its renderable once per change (:meth:`show`), not once per
+    refresh."""
 
     DEFAULT_CSS = "Picture { width: 1fr; height: 1fr; }"
 
     def __init__(self, pane: str, **kw) -> None:
         super().__init__(**kw)
         self.pane = pane
-        self._strips: list[Strip] = []
         self.shown_for: object = None  # what the strips were made from (the app's key)
 
     def show(self, renderable: RenderableType, key: object = None) -> None:
         w, h = self.size.width, self.size.height
-        console = self.app.console
-        options = console.options.update(width=w, height=h)
-        lines = console.render_lines(renderable, options, style=BLANK, pad=True)
-        if self.app.no_color:  # Textual's Monochrome filter crashes on a None style
-            lines = [[s if s.style is not None else Segment(s.text, BLANK) for s in line]
-                     for line in lines]
-        old = self._strips
-        self._strips = [Strip(line, w).crop_extend(0, w, BLANK) for line in lines[:h]]
         self.shown_for = key
-        if len(old) != len(self._strips) or any(s.cell_length != w for s in old):
-            self.refresh()
-            return
-        # only the cells that changed go to the terminal: per changed line, the span between
-        # the first and the last segment that differ
-        pairs = enumerate(zip(old, self._strips, strict=True))
-        regions = [Region(x0, y, x1 - x0, 1) for y, (a, b) in pairs
-                   if a != b for x0, x1 in [changed_span(a, b)] if x1 > x0]
-        if regions:
-            self.refresh(*regions)
+        self._set(pane_lines(renderable, self.app.console, w, h), w, h)
 
     def on_resize(self, event) -> None:
         self.shown_for = None
@@ -84,21 +115,12 @@ class Picture(Widget):
         if offset is not None and clicked is not None:
             clicked(self.pane, offset.x, offset.y)
 
-    def render_line(self, y: int) -> Strip:
-        if y < len(self._strips):
-            return self._strips[y]
-        return Strip([Segment(" " * self.size.width, BLANK)], self.size.width)
-
-    def get_line_filters(self):
-        # ANSIToTruecolor costs ≈ 10 ms per 160×48 frame and our colours are RGB already;
-        # keep the others (NO_COLOR relies on Monochrome)
-        return [f for f in super().get_line_filters() if not isinstance(f, ANSIToTruecolor)]
-
 
 class QuietStatic(Static):
     """A ``Static`` updated only when its text changes, and re-laid out (which costs a layout
     and compositing of the whole screen) only when its height may change: a new number of
-    lines, or a line wrapping differently at the widget's width."""
+    lines, or a line wrapping differently at the widget's width, beyond its min-height (a
+    panel as tall as the longest model's keeps its height when the model changes)."""
 
     _shown: tuple | None = None
     _rows: tuple | None = None
@@ -106,8 +128,12 @@ class QuietStatic(Static):
     def _row_count(self, text: Text) -> tuple:
         width = max(1, self.content_region.width)
         if text.no_wrap or self.styles.text_wrap == "nowrap":
-            return text.plain.count("\n") + 1, width
-        return len(text.wrap(self.app.console, width)), width  # Rich's own word wrap
+            rows = text.plain.count("\n") + 1
+        else:
+            rows = len(text.wrap(self.app.console, width))  # Rich's own word wrap
+        floor = self.styles.min_height
+        floor = int(floor.value) if floor is not None and floor.unit == Unit.CELLS else 0
+        return max(rows + self.styles.gutter.height, floor), width
 
     def show_text(self, text: Text) -> None:
         key = (text.plain, tuple(text.spans), str(text.style))  # Text == ignores the style
@@ -166,18 +192,55 @@ class ParamPanel(QuietStatic):
         self.show_text(text)
 
 
-class StatusLine(QuietStatic):
-    """Two lines: θi and the frame's numbers; the view, scale, colour map and a message."""
+class StatusLine(Rows):
+    """Two lines: θi and the frame's numbers; the view, scale, colour map and a message.  The
+    numbers may wrap to a third line; the last line is cut with "…" at the width, so a long
+    message never adds one.  A picture, so a new number re-sends only the cells around it
+    (a ``Static`` re-sent both lines whole: ≈ 1.1 kB a key at 160 columns)."""
 
     DEFAULT_CSS = "StatusLine { height: auto; max-height: 3; padding: 0 1; }"
 
+    def __init__(self, **kw) -> None:
+        super().__init__(**kw)
+        self._source = Text()  # the text as given (re-cut at a new width)
+        self._text = Text()  # as shown
+        self._key: tuple | None = None
+
+    def render(self) -> Text:
+        """The text shown (tests read it)."""
+        return self._text
+
+    def _rows(self, width: int) -> list[list[Segment]]:
+        return render_rows(self._text, self.app.console, max(1, width))[:3]
+
+    def get_content_height(self, container, viewport, width: int) -> int:
+        return max(1, len(self._rows(width)))
+
     def show_text(self, text: Text) -> None:
-        """The numbers may wrap; the last line (view, scale, message) is cut with "…" at the
-        width, so a long message never pushes the status to a third row."""
-        width = self.size.width - 2  # the padding
+        key = (text.plain, tuple(text.spans), str(text.style))  # Text == ignores the style
+        if key == self._key:
+            return
+        self._key, self._source = key, text
+        width = self.size.width
         lines = text.split("\n")
         if width > 10 and len(lines) > 1:
             last = lines[-1]
             last.truncate(width, overflow="ellipsis")
             text = Text("\n").join([*lines[:-1], last])
-        super().show_text(text)
+        self._text = text
+        if width < 1:  # not laid out yet: drawn by on_resize
+            return
+        h = len(self._rows(width))
+        lines = pane_lines(text, self.app.console, width, h)
+        if h != self.size.height:  # a new height: laid out again, the rows drawn in the
+            self._strips = [Strip(line, width) for line in lines]  # same paint
+            self._lines = lines
+            self.refresh(layout=True)
+            return
+        self._set(lines, width, h)
+
+    def on_resize(self, event) -> None:
+        if self._strips and event.size.width == self._strips[0].cell_length:
+            return  # a new height for rows already drawn at this width
+        self._key = None
+        self.show_text(self._source)

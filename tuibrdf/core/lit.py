@@ -39,6 +39,8 @@ default; not the piecewise sRGB curve).
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from .evaluate import evaluate_resolved
@@ -80,11 +82,10 @@ def sphere_geometry(px_w: int, px_h: int) -> tuple[np.ndarray, np.ndarray]:
     return n, inside
 
 
-def to_local(w: np.ndarray, n: np.ndarray) -> np.ndarray:
-    """World direction(s) ``w`` in the local frame ``(T, B, N)`` of each normal ``n``, with
-    ``T = normalise(e_x − (e_x·N) N)`` and ``B = N × T``.  For ``N = ±e_x`` (never a pixel
-    centre: those lie strictly inside the disc, where ``N_y`` or ``N_z`` ≠ 0) T falls back to
-    ``e_y``."""
+def tangent_frames(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(T, B)`` of each normal ``n``: ``T = normalise(e_x − (e_x·N) N)`` and ``B = N × T``.
+    For ``N = ±e_x`` (never a pixel centre: those lie strictly inside the disc, where ``N_y``
+    or ``N_z`` ≠ 0) T falls back to ``e_y``."""
     n = np.asarray(n, dtype=float)
     t = np.zeros_like(n)
     t[..., 0] = 1.0
@@ -93,19 +94,39 @@ def to_local(w: np.ndarray, n: np.ndarray) -> np.ndarray:
     ok = tl > 1e-12
     t = np.where(ok[..., None], t / np.where(ok, tl, 1.0)[..., None],  # tl = 0 only at N = ±e_x
                  np.array([0.0, 1.0, 0.0]))
-    b = np.cross(n, t)
+    return t, np.cross(n, t)
+
+
+def to_local(w: np.ndarray, n: np.ndarray) -> np.ndarray:
+    """World direction(s) ``w`` in the local frame ``(T, B, N)`` of each normal ``n``
+    (:func:`tangent_frames`)."""
+    n = np.asarray(n, dtype=float)
+    t, b = tangent_frames(n)
     w = np.asarray(w, dtype=float)
     return np.stack([np.sum(w * t, axis=-1), np.sum(w * b, axis=-1), np.sum(w * n, axis=-1)],
                     axis=-1)
+
+
+@lru_cache(maxsize=8)
+def _sphere(px_w: int, px_h: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(frames, inside, view)`` of a sphere picture, the same for every frame of a pane
+    size: the per-pixel world → local matrices ``(H, W, 3, 3)`` (rows T, B, N), the disc, and
+    the view direction (0, 0, 1) in each local frame."""
+    n, inside = sphere_geometry(px_w, px_h)
+    t, b = tangent_frames(n)
+    frames = np.stack([t, b, n], axis=-2)
+    view = np.ascontiguousarray(frames[..., 2])  # the world z component of T, B and N
+    for arr in (frames, inside, view):
+        arr.setflags(write=False)
+    return frames, inside, view
 
 
 def lit_sphere(model: Model, values: dict, theta_i_deg: float, px_w: int,
                px_h: int, *, phi_i_deg: float = 180.0) -> tuple[np.ndarray, np.ndarray]:
     """``(radiance, inside)``: the sphere under the light at ``θi`` (and ``φi``; see the module
     docstring); radiance ``(px_h, px_w, 3)``, 0 outside the disc."""
-    n, inside = sphere_geometry(px_w, px_h)
-    wi = to_local(incident(theta_i_deg, phi_i_deg), n)
-    wo = to_local(np.array([0.0, 0.0, 1.0]), n)
+    frames, inside, wo = _sphere(int(px_w), int(px_h))
+    wi = frames @ incident(theta_i_deg, phi_i_deg)
     # the model returns 0 where either direction is below the local horizon
     rad = _radiance(model, values, wi, wo)
     return np.where(inside[..., None], rad, 0.0), inside

@@ -320,13 +320,20 @@ def colorbar(
     For RGB pictures in colour mode pass ``cmap="grey"``: the bar then shows one channel's
     ramp.  ``note`` follows the top value (compare mode: whose peak it is).
     """
-    width = max(int(width), 3)
-    t = (np.arange(width) + 0.5) / width
-    idx = quantise(t, levels)[None, :].repeat(2, axis=0)
-    bar = HalfBlockImage(idx, palette(cmap, levels), color_system=color_system)
+    bar = _bar(max(int(width), 3), cmap, levels, color_system)
+    width = bar.width
     lo, mid, hi = (fmt_value(x) for x in scale.ticks())
     right = hi + f" {unit}" + (f" {note}" if note else "") + (" (log)" if scale.log else "")
     return Group(bar, Text(tick_line(width, lo, mid, right)))
+
+
+@lru_cache(maxsize=64)
+def _bar(width: int, cmap: str, levels: int, color_system: str | None) -> HalfBlockImage:
+    """The ramp of a colour bar (the same for every frame of a view: its segments are built
+    once, not once a key)."""
+    t = (np.arange(width) + 0.5) / width
+    idx = quantise(t, levels)[None, :].repeat(2, axis=0)
+    return HalfBlockImage(idx, palette(cmap, levels), color_system=color_system)
 
 
 def tick_line(width: int, left: str, mid: str, right: str) -> str:

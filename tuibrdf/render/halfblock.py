@@ -37,7 +37,7 @@ from functools import lru_cache
 from typing import Literal
 
 import numpy as np
-from rich.color import Color
+from rich.color import Color, ColorTriplet, ColorType
 from rich.console import Console, ConsoleOptions, RenderResult
 from rich.measure import Measurement
 from rich.segment import Segment
@@ -118,15 +118,19 @@ def luma(rgb: np.ndarray) -> np.ndarray:
 @lru_cache(maxsize=1 << 16)
 def cell_style(fg: int | tuple[int, int, int] | None, bg: int | tuple[int, int, int] | None):
     """The ``Style`` for a foreground/background pair: an int is an xterm index, a tuple an RGB
-    colour, ``None`` the terminal default.  Never returns ``None`` (see module docstring)."""
-    return Style(color=_color(fg), bgcolor=_color(bg))
+    colour, ``None`` the terminal default.  Never returns ``None`` (see module docstring).
+    Built with ``Style.from_color`` (no parsing: 3 µs, not 13 µs, which counts for a lit
+    sphere's thousands of new colours a frame)."""
+    return Style.from_color(_color(fg), _color(bg))
 
 
 def _color(c: int | tuple[int, int, int] | None) -> Color | None:
+    """What ``Color.from_rgb`` / ``Color.from_ansi`` return, made directly."""
     if c is None:
         return None
     if isinstance(c, tuple):
-        return Color.from_rgb(*c)
+        r, g, b = (int(v) for v in c)
+        return Color(f"#{r:02x}{g:02x}{b:02x}", ColorType.TRUECOLOR, triplet=ColorTriplet(r, g, b))
     return Color.from_ansi(c)
 
 

@@ -50,19 +50,26 @@ class LeftLabelled:
     def __init__(self, body, labels: list[str], system: str | None = None) -> None:
         self.body, self.labels, self.system = body, labels, system
 
-    def _rows(self) -> list[list[Segment]]:
+    @property
+    def width(self) -> int:
+        return self.body.width + MARGIN
+
+    def rows(self) -> list[list[Segment]]:
+        """Per row its label and the body's segments, each exactly :attr:`width` cells."""
         if isinstance(self.body, HalfBlockImage):
-            return self.body.rows(self.system or "truecolor")
-        return self.body.rows()
+            body = self.body.rows(self.system or "truecolor")
+        else:
+            body = self.body.rows()
+        return [[Segment(self.labels[k].rjust(MARGIN - 1)[: MARGIN - 1] + " "), *row]
+                for k, row in enumerate(body)]
 
     def __rich_console__(self, console: Console, options: ConsoleOptions) -> RenderResult:
-        for k, row in enumerate(self._rows()):
-            yield Segment(self.labels[k].rjust(MARGIN - 1)[: MARGIN - 1] + " ")
+        for row in self.rows():
             yield from row
             yield Segment.line()
 
     def __rich_measure__(self, console: Console, options: ConsoleOptions) -> Measurement:
-        return Measurement(self.body.width + MARGIN, self.body.width + MARGIN)
+        return Measurement(self.width, self.width)
 
 
 def axis_line(width: int, positions: list[float], labels: list[str], name: str) -> Text:

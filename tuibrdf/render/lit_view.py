@@ -6,7 +6,10 @@ shows; above the plane's horizon a dim sky colour (nothing in plain text).  The 
 brightest radiance in the picture (in units of the white Lambert surface facing the light, see
 ``core/lit.py``), the exposure and gamma, and how much of the surface clips at white.
 
-Tone mapping: ``clamp(exposure · L, 0, 1) ^ (1/γ)`` (a pure power law, default γ = 2.2).
+Tone mapping: ``clamp(exposure · L, 0, 1) ^ (1/γ)`` (a pure power law, default γ = 2.2).  In
+truecolor the 8-bit result is drawn on :data:`LEVELS` levels per channel (≤ 2/255 off): a
+shaded sphere then has ~1,750 runs of equal cells instead of ~2,600, and a key's picture
+costs ~4 ms instead of ~15–20 ms (every new colour is a new terminal style).
 """
 
 from __future__ import annotations
@@ -24,6 +27,8 @@ from .halfblock import HalfBlockImage
 from .text import title
 
 KINDS = ("sphere", "plane")
+#: levels per channel of the drawn picture (see the module docstring)
+LEVELS = 64
 #: above the plane's horizon (colour modes only): dark enough never to read as lit surface
 SKY_RGB = (26, 32, 52)
 
@@ -72,12 +77,21 @@ def lit_view(
                        gamma=gamma, color=color, fov_deg=fov_deg)
 
 
+def quantise_rgb(img: np.ndarray, levels: int = LEVELS) -> np.ndarray:
+    """8-bit colours rounded to the nearest of ``levels`` evenly spaced values (0 and 255
+    kept)."""
+    step = 255.0 / (levels - 1)  # levels ≥ 2
+    return np.rint(np.rint(img / step) * step).astype(np.uint8)
+
+
 def lit_picture(kind: str, name: str, theta_i_deg: float, rad: np.ndarray, mask: np.ndarray,
                 width: int, *, exposure: float = DEFAULT_EXPOSURE, gamma: float = DEFAULT_GAMMA,
                 color: str = "truecolor", fov_deg: float = DEFAULT_FOV_DEG) -> Group:
     """Title + the half-block picture of radiance ``rad`` (``(px_h, px_w, 3)``, from
     :func:`lit_arrays` or the frame) tone-mapped with ``exposure`` and ``gamma``."""
     img = tone_map_core(rad, exposure, gamma)
+    if color == "truecolor":  # 256 colours and plain text quantise on their own
+        img = quantise_rgb(img)
     n_surface = int(np.count_nonzero(mask))
     if kind == "plane" and color != "none":
         img = np.where(mask[..., None], img, np.array(SKY_RGB, dtype=np.uint8))

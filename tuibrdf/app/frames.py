@@ -1,0 +1,221 @@
+"""How a frame reaches the screen: the viewer's state → a :class:`~tuibrdf.core.scene.FrameRequest`
+→ the core's :func:`~tuibrdf.core.scene.compute_frame` (in a thread worker) → every visible pane,
+the panels and the status line, drawn from that one result.
+
+A request computed before is shown at once (the core caches results by request); otherwise
+:meth:`FrameDelivery.compute` runs in an exclusive thread worker
+(``@work(exclusive=True, thread=True)``): the newest request cancels the older ones, and a
+result that is no longer the current request is dropped, so the latest state always wins and
+its frame always arrives.  The worker posts the fast part (maps, sections, peak) at once and
+the slow part (albedo, albedo curve) when done; the fast part waits up to :data:`HOLD_S` for
+the slow one, so a fast model's key costs one paint: every pane, the panels and the status
+line together (a slow frame lets the panels and status go ahead after :data:`PENDING_S`).  A
+frame waits while Textual's output writer still has frames queued (a slow terminal), and each
+pane is redrawn only when what it shows changed, through
+:func:`tuibrdf.render.lines.pane_lines` (rows of segments, not Rich's line splitting).
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+from rich.text import Text
+from textual import work
+from textual.worker import get_current_worker
+
+from ..core import scene
+from ..core.scene import FrameRequest, FrameResult
+from ..render import EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, panes
+from ..render.views import extra_pixels, map_pixels
+from .text import PANES, legend_text, status_text, visible_panes
+
+RETRY_S = 0.02  # re-check a busy writer after this long
+#: a frame not computed by then: the panels and status line go ahead of it (a key's new value
+#: shows at once on a slow model; a fast frame brings them itself, in the same paint)
+PENDING_S = 0.05
+#: how long maps and sections wait for their albedo (a fast model's albedo takes 1–2 ms:
+#: both then go out in one paint; a slow one does not hold the picture up)
+HOLD_S = 0.006
+#: what a pane or a worker shows as a message instead of stopping the viewer: bad data
+#: (ValueError, OSError) and a floating-point exception from a kernel (the kernels raise on
+#: one, core/numerics.py; a picture is not worth losing the session over)
+DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
+
+
+class FrameDelivery:
+    """The frame half of :class:`~tuibrdf.app.app.BrdfApp` (a mixin: it uses the app's
+    ``state``, ``look``, ``one``, ``sync``, ``frame``, ``request`` and ``message``)."""
+
+    def _panels(self) -> None:
+        for i in range(len(self.state.sides)):
+            self.one(f"panel-{'ab'[i]}").show(self.state, i)
+
+    def _pending(self, req: FrameRequest) -> None:
+        """The frame of ``req`` is slow to come: show the panels and the status line (its
+        numbers "…") now rather than with it."""
+        if req == self.request and (self.frame is None or self.frame.request != req):
+            self._panels()
+            self._status()
+
+    def request_rebuild(self) -> None:
+        """A pane was resized: the request (pane sizes) changed."""
+        self._changed(self.message)
+
+    def _pane_size(self, pane: str) -> tuple[int, int]:
+        size = self.one(pane).size
+        return size.width, size.height
+
+    def frame_request(self) -> FrameRequest:
+        """What the visible panes show, from the state and the pane sizes."""
+        s = self.state
+        map_px = None
+        if s.view == "map":
+            sizes = [self._pane_size(p) for p in visible_panes(self.state) if PANES[p][0] in
+                     ("map", "diff")]
+            if all(w >= MIN_WIDTH and h >= MIN_HEIGHT for w, h in sizes):
+                map_px = map_pixels(min(w for w, _ in sizes), min(h for _, h in sizes))
+        extra = s.view if s.view in EXTRA_VIEWS else None
+        extra_px = None
+        if extra is not None:
+            sizes = [self._pane_size(p) for p in visible_panes(self.state) if
+                     PANES[p][0] == "extra"]
+            w, h = min(w for w, _ in sizes), min(h for _, h in sizes)
+            if w >= MIN_WIDTH and h >= MIN_HEIGHT:
+                extra_px = extra_pixels(extra, w, h)
+            elif extra in ("sphere", "plane", "slice"):
+                extra = None  # too small: the pane says so
+        return FrameRequest(tuple(x.material for x in s.sides), s.theta_i, cosine=s.cosine,
+                            map_px=map_px, solid=s.view == "solid", curve=s.view == "albedo",
+                            section_azimuth=s.section_azimuth, extra=extra, extra_px=extra_px,
+                            theta_d=s.theta_d, theta_h=s.theta_h, phi_d=s.phi_d,
+                            sqrt_h=s.sqrt_h, probe=s.probe, phi_i=s.phi_i)
+
+    def refresh_frame(self) -> None:
+        """Show the current state's frame: at once when computed before, else when the worker
+        has computed it."""
+        if self.screen.has_class("small"):
+            self._panels()
+            self._status()
+            return
+        if not self._files_ready():  # measured data still loading: its panes say so
+            for pane in visible_panes(self.state):
+                self.one(pane).show(
+                    Text("loading measured data …", justify="center"), None)
+            self._panels()
+            self._status()
+            return
+        req = self.request = self.frame_request()
+        if self.sync:
+            try:
+                self.show_frame(scene.compute_frame(req))
+            except DRAW_ERRORS as e:
+                self._failed(req, e)
+            return
+        done = scene.cached_frame(req)
+        if done is not None:
+            self.frame_ready(done)
+        else:
+            self.set_timer(PENDING_S, partial(self._pending, req))
+        busy = self._worker is not None and self._worker.is_running
+        if (done is None or not done.complete) and not (busy and self._worker_for == req):
+            self._worker, self._worker_for = self.compute(req), req
+
+    @work(exclusive=True, thread=True, group="frame")
+    def compute(self, req: FrameRequest) -> None:
+        """The frame of ``req`` off the event loop: the fast part, then the albedo (and the
+        albedo curve); each posted unless a newer request cancelled this worker."""
+        worker = get_current_worker()
+
+        def post(callback, *args) -> None:
+            if not worker.is_cancelled:
+                try:
+                    self.call_from_thread(callback, *args)
+                except RuntimeError:  # the app has closed meanwhile
+                    pass
+
+        if worker.is_cancelled:
+            return
+        try:
+            res = scene.compute_frame(req, slow=False)
+            post(self.frame_ready, res)
+            if not res.complete and not worker.is_cancelled:
+                res = scene.compute_frame(req, check=lambda: not worker.is_cancelled)
+                if res is not None:
+                    post(self.show_frame, res)
+        except DRAW_ERRORS as e:  # a data file that vanished or changed on disk
+            post(self._failed, req, e)
+
+    def _failed(self, req: FrameRequest, error: Exception) -> None:
+        if req == self.request:
+            for pane in visible_panes(self.state):
+                self.one(pane).show(Text(f"cannot draw: {error}"), None)
+            self.message = f"cannot compute this frame: {error}"
+            self._panels()
+            self._status()
+
+    def _writer_busy(self) -> bool:
+        """Frames still queued for the terminal (Textual's private writer; guarded)."""
+        try:
+            return self._driver._writer_thread._queue.qsize() > 0  # type: ignore[union-attr]
+        except AttributeError:
+            return False
+
+    def frame_ready(self, res: FrameResult) -> None:
+        """A result for the screen: a complete one at once; one still waiting for its albedo
+        waits up to :data:`HOLD_S` for it, so that a fast model's key costs one paint."""
+        if res.complete or res.request != self.request:
+            self.show_frame(res)
+        else:
+            self.set_timer(HOLD_S, partial(self._show_partial, res))
+
+    def _show_partial(self, res: FrameResult) -> None:
+        if self.frame is None or self.frame.request != res.request:
+            self.show_frame(res)
+
+    def show_frame(self, res: FrameResult) -> None:
+        """Draw ``res`` if it is still the current request: every visible pane, the panels and
+        the status line in one go (one paint; each pane redrawn only if what it shows
+        changed)."""
+        if res.request != self.request or not self.is_running:
+            return  # a newer request is on its way, or the app is closing
+        if self._writer_busy():  # trailing edge: try again when the terminal has caught up
+            self.set_timer(RETRY_S, partial(self.show_frame, res))
+            return
+        self.frame = res
+        self.frames += 1
+        for pane in visible_panes(self.state):
+            self._draw(pane, res)
+        if self.state.compare and self.state.view == "map":
+            self.one("legend").update(legend_text(self.state))
+        self._panels()
+        self._status()
+
+    def _draw(self, pane: str, res: FrameResult) -> None:
+        pic = self.one(pane)
+        w, h = pic.size.width, pic.size.height
+        view, k = PANES[pane]
+        look, req = self.look, res.request
+        if w < MIN_WIDTH or h < MIN_HEIGHT or (view in ("map", "diff") and not req.map_px) or (
+                view == "extra" and req.extra is None):
+            pic.show(Text(f"{w}×{h}: too small for this pane"), None)
+            return
+        if view in ("map", "diff"):  # every map of a compare grid on the same pixel grid
+            w, h = req.map_px[0], req.map_px[1] // 2 + 3
+        what = (req.materials, req.theta_i, req.cosine, req.phi_i)
+        key = {"map": (what, req.map_px, req.probe, look),
+               "diff": (what, req.map_px, look.color),
+               "solid": (what, look), "albedo": (req.materials, req.theta_i, req.phi_i,
+                                                 look.color, res.complete, look.channel),
+               "extra": (req.materials, req.extra_key, look)}.get(view)
+        key = (pane, w, h, key or (what, req.section_azimuth, look.color, look.log,
+                                   look.channel))
+        if pic.shown_for == key:
+            return
+        try:
+            pic.show(panes.pane(view, res, k, w, h, look), key)
+        except DRAW_ERRORS as e:
+            pic.show(Text(f"cannot draw {pane}: {e}"), None)
+
+    def _status(self) -> None:
+        self.one("status").show_text(
+            status_text(self.state, self.frame, self.look, self._loading, self.message))

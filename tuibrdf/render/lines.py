@@ -1,0 +1,71 @@
+"""A pane's renderable as rows of segments, each exactly the pane's width: what
+``console.render_lines(renderable, width, height, pad=True)`` gives, without most of its cost.
+
+Rich renders a ``Group`` by flattening every part into one segment stream and splitting it
+again at each newline, measuring every segment's cells on the way: ≈ 5 ms for a half-block
+map at 160×48, most of a key's drawing time.  The pictures of this package already know their
+rows (:meth:`HalfBlockImage.rows`, :meth:`BrailleCanvas.rows`, each exactly their width), so
+:func:`pane_lines` takes those as they are and sends only the rest (one-line titles, colour
+bar ticks) through Rich.  tests/test_render_lines.py checks the two agree cell for cell on
+every pane.
+"""
+
+from __future__ import annotations
+
+from rich.cells import cell_len
+from rich.console import Console, Group, RenderableType
+from rich.segment import Segment
+from rich.style import Style
+from rich.text import Text
+
+from .braille import BrailleCanvas
+from .halfblock import HalfBlockImage, console_system
+from .halfdiff_view import LeftLabelled
+
+BLANK = Style()  # never None: Textual's NO_COLOR filter crashes on a None style
+
+
+def _plain_line(text: Text, width: int) -> bool:
+    """One row of one style that Rich would not wrap, justify or expand: its characters are
+    its cells."""
+    plain = text.plain
+    return (not text.spans and "\n" not in plain and "\t" not in plain
+            and text.justify in (None, "default", "left") and plain.isprintable()
+            and len(plain) == cell_len(plain)
+            and (len(plain) <= width or (text.no_wrap and text.overflow == "crop")))
+
+
+def _fit(row: list[Segment], own: int, width: int) -> list[Segment]:
+    """``row`` (``own`` cells) cropped or padded to ``width`` cells."""
+    if own == width:
+        return row
+    if own < width:
+        return [*row, Segment(" " * (width - own), BLANK)]
+    return Segment.adjust_line_length(row, width, BLANK)
+
+
+def render_rows(part: RenderableType, console: Console, width: int) -> list[list[Segment]]:
+    """Every row of ``part`` at ``width`` cells (its own height, not cropped or padded)."""
+    if isinstance(part, Group):
+        return [row for p in part.renderables for row in render_rows(p, console, width)]
+    if isinstance(part, HalfBlockImage):
+        rows = part.rows(part.color_system or console_system(console))
+        return [_fit(r, part.width, width) for r in rows]
+    if isinstance(part, BrailleCanvas | LeftLabelled):
+        return [_fit(r, part.width, width) for r in part.rows()]
+    if isinstance(part, Text) and _plain_line(part, width):  # a title: one style, one line
+        style = console.get_style(part.style) if part.style else BLANK
+        text = part.plain
+        return [_fit([Segment(text, style)] if text else [], len(text), width)]
+    return console.render_lines(part, console.options.update(width=width, height=None),
+                                style=BLANK, pad=True)
+
+
+def pane_lines(renderable: RenderableType, console: Console, width: int,
+               height: int) -> list[list[Segment]]:
+    """``height`` rows of ``width`` cells (cropped, or padded with blank rows), no segment
+    with a ``None`` style."""
+    rows = render_rows(renderable, console, width)[:height]
+    rows += [[Segment(" " * width, BLANK)] for _ in range(height - len(rows))]
+    return [[s if s.style is not None else Segment(s.text, BLANK) for s in row]
+            for row in rows]
