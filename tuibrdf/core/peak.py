@@ -38,6 +38,10 @@ and ~0.2 µs a point, so the finder spends points to save rounds.
    n = 10⁴ with f·cos θr), or after
    ``PEAK_ROUNDS`` rounds.  A search below its channel's best does not keep the rounds going.
 
+Not within 1e-10: a crease running across the grid's axes near the maximum (rough
+cook-torrance, m > 0.3, within ~3° of normal incidence: the V-cavity crease crosses the plane
+of incidence there) is crept along, up to 3e-5 below the maximum after ``PEAK_ROUNDS``.
+
 An RGB model gets four peaks, each with its own direction: the Rec.709 luminance ``Y`` and
 each channel ``R``, ``G``, ``B``; a scalar model one.  ``Peak.label`` says which.
 
