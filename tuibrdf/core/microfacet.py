@@ -47,12 +47,12 @@ def beckmann_d(cos2_h: np.ndarray, sin2_h: np.ndarray, m: float) -> np.ndarray:
     # tan²θh/m² = sin²/(m² cos²): infinite on the horizon, where D's limit is 0 (exp wins);
     # also where it would overflow (cos²θh ~ 1e-320 from a subnormal z): exp(-1e300) is 0 too
     ok = den > sin2_h * (1.0 / HUGE)
-    x = safe_div(sin2_h, den, ok, fill=np.inf)
+    e = np.exp(-safe_div(sin2_h, den, ok, fill=np.inf))
     # exp(-x) underflows harmlessly to 0 for a sharp lobe; 1/cos⁴ only where exp(-x) > 0,
     # because cos⁴ underflows to 0 (divide by zero) well before x = sin²/(m²cos²) is large
-    # enough to flush exp(-x): cos² < 1e-154 → x > 1e148 for m ≤ 1.
-    e = np.exp(-x)
-    return safe_div(e, np.pi * m2 * cos2_h * cos2_h, e > 0.0)
+    # enough to flush exp(-x): cos² < 1e-154 → x > 1e148 for m ≤ 1.  Elsewhere e = 0 is
+    # divided by 1 (one select instead of a masked division): D = 0 there
+    return e / np.where(e > 0.0, np.pi * m2 * cos2_h * cos2_h, 1.0)
 
 
 def ggx_d(cos2_h: np.ndarray, sin2_h: np.ndarray, alpha: float) -> np.ndarray:
@@ -102,15 +102,16 @@ def vcavity_g_over_cos(cos_h, cos_i, cos_o, cos_psi):
 
     ``G/(ci co) = min(1/(ci co), 2ch/(cψ co), 2ch/(cψ ci))``: where one cosine is 0 the other
     terms stay finite (the limit); where both are 0 every term is infinite and the value is 0.
+    For H in the upper hemisphere (ch ≥ 0, as wherever both directions are) the smaller of
+    the last two is ``2ch/(cψ·max(ci, co))``, one division instead of two (the same quotient
+    to the last bit); elsewhere the value is finite and of no use (the models return 0 there).
     """
     ci_co = cos_i * cos_o
     # each quotient only where it is below HUGE; at or above it counts as +inf, which min()
     # passes over: the horizon limit, now also for cosines like 1e-310 that overflow 1/x
     a = safe_div(1.0, ci_co, ci_co > 1.0 / HUGE, fill=np.inf)
     two_h = 2.0 * cos_h
-    po, pi = cos_psi * cos_o, cos_psi * cos_i
-    small = np.abs(two_h) * (1.0 / HUGE)  # |·|: below the horizon H can point down
-    b = safe_div(two_h, po, po > small, fill=np.inf)
-    c = safe_div(two_h, pi, pi > small, fill=np.inf)
-    g = np.minimum(np.minimum(a, b), c)
+    p = cos_psi * np.maximum(cos_i, cos_o)
+    b = safe_div(two_h, p, p > np.abs(two_h) * (1.0 / HUGE), fill=np.inf)  # |·|: H may point down
+    g = np.minimum(a, b)
     return np.where(np.isfinite(g), 0.25 * g, 0.0)

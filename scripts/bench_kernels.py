@@ -1,0 +1,205 @@
+"""Cost of one kernel call, fixed and per point, for every built-in model (issue 16;
+docs/numerics.md, "Kernel cost").
+
+    PYTHONPATH=$PWD python scripts/bench_kernels.py               # before (git main) and after
+    PYTHONPATH=$PWD python scripts/bench_kernels.py --rev REV     # before = git revision REV
+    PYTHONPATH=$PWD python scripts/bench_kernels.py --rev none    # this tree only
+
+Each model is called as the viewer calls it: ``evaluate_resolved(model, model.defaults(),
+incident(40, 180), wo)`` with ``wo`` random unit vectors of the upper hemisphere.  The *fixed*
+cost is the time of one call at n = 1, 10 and 100 points (printed as the range), the *per-point*
+cost ``(t(10⁴) − t(1)) / (10⁴ − 1)``.  Times are the best of several repeats (the machine is
+shared: noisy).  The revision REV runs in a subprocess from ``git archive`` with the same
+directions; its values are compared with this tree's on several parameter sets and direction
+layouts (one wi against many wo, many against many, both sides broadcast), including directions
+on and below the horizon: the largest relative difference per model is printed (``rel diff``:
+``|new − old| / |old|`` where old ≠ 0, and new must be exactly 0 where old is).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import timeit
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+NAMES = ["lambert", "phong", "blinn-phong", "cook-torrance", "oren-nayar", "oren-nayar-simple",
+         "ggx", "gltf", "disney-diffuse", "ue4", "abc", "sgd"]
+#: parameter sets for the value comparison (besides the defaults)
+EXTRA = {
+    "phong": [{"n": 0.0}, {"n": 10000.0, "kd": 0.0, "ks": 1.0}],
+    "blinn-phong": [{"n": 0.0}, {"n": 10000.0, "kd": 0.0, "ks": 1.0}],
+    "cook-torrance": [{"m": 0.001, "kd": 0.5}, {"m": 1.0, "fresnel": "schlick"}, {"f0": 0.0},
+                      {"f0": 1.0}],
+    "ggx": [{"alpha": 0.001, "kd": 0.5}, {"alpha": 1.0, "fresnel": "schlick"}, {"f0": 1e-40}],
+    "gltf": [{"roughness": 0.0, "metallic": 1.0}, {"roughness": 1.0, "metallic": 0.3,
+                                                   "base_color": (0.9, 0.2, 0.0)}],
+    "ue4": [{"roughness": 0.0, "metallic": 1.0}, {"roughness": 1.0, "metallic": 0.3,
+                                                  "base_color": (0.9, 0.2, 0.0)}],
+    "oren-nayar": [{"sigma": 0.0}, {"sigma": 90.0, "kd": 1.0}],
+    "oren-nayar-simple": [{"sigma": 0.0}, {"sigma": 90.0, "kd": 1.0}],
+    "disney-diffuse": [{"roughness": 0.0}, {"roughness": 1.0, "base_color": (1.0, 0.5, 0.0)}],
+    "abc": [{"material": "black-obsidian"}, {"material": "white-fabric2"}],
+    "sgd": [{"material": "black-obsidian"}, {"material": "white-fabric2"},
+            {"material": "chrome"}],
+}
+SIZES_FIXED = (1, 10, 100)
+N_BIG = 10_000
+
+CHILD = r"""
+import json, sys
+sys.path.insert(0, sys.argv[1])
+sys.path.insert(0, sys.argv[2])
+import bench_kernels as b
+res = b.measure(json.loads(sys.argv[3]), sys.argv[4])
+print(json.dumps(res))
+"""
+
+
+def _upper(rng: np.random.Generator, n: int) -> np.ndarray:
+    v = rng.normal(size=(n, 3))
+    v[:, 2] = np.abs(v[:, 2])
+    return v / np.linalg.norm(v, axis=1)[:, None]
+
+
+def _hard(rng: np.random.Generator, n: int) -> np.ndarray:
+    """Random directions of the whole sphere, plus the normal, horizon and near-horizon ones."""
+    v = rng.normal(size=(n, 3))
+    v /= np.linalg.norm(v, axis=1)[:, None]
+    s = [[0, 0, 1], [1, 0, 0], [-1, 0, 0], [0, 1, 0], [0.6, 0.8, 0.0],
+         [1, 0, 1e-9], [-1, 0, 1e-9], [1, 0, 1e-300], [1, 0, 1e-310], [0, 0, -1],
+         [np.sin(0.3), 0, np.cos(0.3)], [-np.sin(0.3), 0, np.cos(0.3)]]
+    s = np.array(s, dtype=float)
+    s /= np.linalg.norm(s, axis=1)[:, None]
+    return np.concatenate([s, v])
+
+
+def values(out: str) -> None:
+    """Evaluate every model on the comparison cases and save them to ``out`` (.npz)."""
+    from tuibrdf.core.evaluate import evaluate_resolved
+    from tuibrdf.core.frame import incident
+    from tuibrdf.core.models import MODELS
+
+    rng = np.random.default_rng(16)
+    wo = _hard(rng, 400)
+    wis = [incident(t, 180.0) for t in (0.0, 40.0, 85.0, 89.9, 90.0)]
+    wi_many = _hard(rng, 60)
+    saved = {}
+    for name in NAMES:
+        m = MODELS[name]
+        for k, params in enumerate([{}, *EXTRA.get(name, [])]):
+            v = m.resolve(params)
+            for j, wi in enumerate(wis):
+                saved[f"{name}|{k}|one{j}"] = evaluate_resolved(m, v, wi, wo)
+            a, b = np.broadcast_arrays(wi_many[:, None, :], wi_many[None, :, :])
+            saved[f"{name}|{k}|pairs"] = evaluate_resolved(m, v, a, b)
+            saved[f"{name}|{k}|bcast"] = evaluate_resolved(
+                m, v, np.broadcast_to(wis[1], wo.shape), wo)
+            saved[f"{name}|{k}|same"] = evaluate_resolved(m, v, wo[::-1].copy(), wo)
+    np.savez(out, **{k: np.asarray(x) for k, x in saved.items()})
+
+
+def measure(names: list[str], dump: str) -> dict[str, list[float]]:
+    """``{model: [t(1), t(10), t(100), t(10⁴)]}`` in seconds; values saved to ``dump``."""
+    from tuibrdf.core.evaluate import evaluate_resolved
+    from tuibrdf.core.frame import incident
+    from tuibrdf.core.models import MODELS
+
+    values(dump)
+    rng = np.random.default_rng(1)
+    wi = incident(40.0, 180.0)
+    res = {}
+    for name in names:
+        m = MODELS[name]
+        v = m.defaults()
+        times = []
+        for n in (*SIZES_FIXED, N_BIG):
+            wo = _upper(rng, n)
+            evaluate_resolved(m, v, wi, wo)
+            number = 300 if n <= 100 else 20
+            best = min(timeit.repeat(lambda m=m, v=v, wo=wo: evaluate_resolved(m, v, wi, wo),
+                                     number=number, repeat=7))
+            times.append(best / number)
+        res[name] = times
+    return res
+
+
+def run_rev(rev: str, names: list[str], dump: str) -> dict[str, list[float]]:
+    """:func:`measure` on the package of git revision ``rev``, in a subprocess."""
+    with tempfile.TemporaryDirectory() as d:
+        tar = subprocess.run(["git", "-C", str(ROOT), "archive", rev, "tuibrdf"],
+                             capture_output=True, check=True).stdout
+        subprocess.run(["tar", "-x", "-C", d], input=tar, check=True)
+        env = {**os.environ, "PYTHONPATH": d}
+        out = subprocess.run([sys.executable, "-c", CHILD, d, str(ROOT / "scripts"),
+                              json.dumps(names), dump],
+                             capture_output=True, text=True, check=True, env=env, cwd=d).stdout
+    return json.loads(out.strip().splitlines()[-1])
+
+
+def rel_diff(new: np.ndarray, old: np.ndarray) -> float:
+    """Largest ``|new − old| / |old|``; inf where old is 0 and new is not, or shapes differ."""
+    if new.shape != old.shape:
+        return float("inf")
+    nz = old != 0.0
+    if np.any(new[~nz] != 0.0):
+        return float("inf")
+    if not nz.any():
+        return 0.0
+    return float(np.max(np.abs(new[nz] - old[nz]) / np.abs(old[nz])))
+
+
+def _fixed(t: list[float]) -> str:
+    lo, hi = min(t[: len(SIZES_FIXED)]), max(t[: len(SIZES_FIXED)])
+    return f"{lo * 1e6:.0f}–{hi * 1e6:.0f}"
+
+
+def _per_point(t: list[float]) -> float:
+    return (t[-1] - t[0]) / (N_BIG - 1) * 1e9
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--rev", default="main",
+                    help="git revision to compare with ('none': this tree only)")
+    ap.add_argument("--models", default=",".join(NAMES), help="comma-separated model names")
+    args = ap.parse_args()
+    names = args.models.split(",")
+    with tempfile.TemporaryDirectory() as d:
+        after_dump = os.path.join(d, "after.npz")
+        after = measure(names, after_dump)
+        before = diffs = None
+        if args.rev != "none":
+            before_dump = os.path.join(d, "before.npz")
+            before = run_rev(args.rev, names, before_dump)
+            a, b = np.load(after_dump), np.load(before_dump)
+            diffs = {}
+            for key in b.files:
+                name = key.split("|")[0]
+                diffs[name] = max(diffs.get(name, 0.0), rel_diff(a[key], b[key]))
+    print(f"evaluate_resolved(model, defaults, incident(40°, 180°), wo): fixed µs per call "
+          f"(n = 1, 10, 100), per-point ns (n = {N_BIG})")
+    if before is None:
+        print(f"{'model':18s} {'fixed µs':>10s} {'ns/point':>9s}")
+        for n in names:
+            print(f"{n:18s} {_fixed(after[n]):>10s} {_per_point(after[n]):9.0f}")
+        return
+    print(f"before = git {args.rev}, after = this tree; rel diff = largest relative difference "
+          "of the values")
+    print(f"{'model':18s} {'fixed µs before':>16s} {'after':>9s} {'ns/pt before':>13s} "
+          f"{'after':>6s} {'change':>7s} {'rel diff':>9s}")
+    for n in names:
+        pb, pa = _per_point(before[n]), _per_point(after[n])
+        print(f"{n:18s} {_fixed(before[n]):>16s} {_fixed(after[n]):>9s} {pb:13.0f} {pa:6.0f} "
+              f"{(pa - pb) / pb:+7.0%} {diffs.get(n, 0.0):9.1e}")
+
+
+if __name__ == "__main__":
+    main()
