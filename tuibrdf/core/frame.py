@@ -85,6 +85,16 @@ def xyz(w) -> tuple:
     return w[..., 0], w[..., 1], w[..., 2]
 
 
+def above(zi, zo):
+    """Both directions in the closed upper hemisphere, from their z components (a scalar z of a
+    single direction decides without an array operation)."""
+    if not np.ndim(zi):
+        return zo >= 0.0 if zi >= 0.0 else np.zeros(np.shape(zo), dtype=bool)
+    if not np.ndim(zo):
+        return zi >= 0.0 if zo >= 0.0 else np.zeros(np.shape(zi), dtype=bool)
+    return (zi >= 0.0) & (zo >= 0.0)
+
+
 def cos_dphi(wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
     """``cos(φo - φi)``; 0 where either direction is the normal (Δφ undefined there, SPEC §2)."""
     xi, yi, _ = xyz(wi)
@@ -153,13 +163,14 @@ class Geometry:
         self._xi, self._yi, self._xo, self._yo = xi, yi, xo, yo
         self._sin2_i = self._sin2_o = None
         self.cos_i, self.cos_o = zi, zo
-        self.above = (zi >= 0.0) & (zo >= 0.0)
+        self.above = above(zi, zo)
         # |wi + wo|², summed in np.sum's order; two layouts, the same operations on the same
         # numbers: for a few points (…, 3) arrays (fewer numpy calls), for many the components
         # (numpy's inner loop over a last axis of 3 is several times slower per element)
-        packed = max(np.size(wi), np.size(wo)) <= PACKED_MAX * 3
+        wi, wo = np.asarray(wi, dtype=float), np.asarray(wo, dtype=float)
+        packed = max(wi.size, wo.size) <= PACKED_MAX * 3
         if packed:
-            s = np.asarray(wi, dtype=float) + np.asarray(wo, dtype=float)
+            s = wi + wo
             q = s * s
             n2 = q[..., 0] + q[..., 1] + q[..., 2]
         else:

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .numerics import safe_div, safe_sqrt
+from .numerics import safe_div
 
 #: A quotient at or above this counts as infinite.  Cosines a few hundred decades below 1 (a
 #: direction given as (1, 0, 1e-310): a valid unit vector, on the horizon to the last bit)
@@ -42,17 +42,18 @@ def alpha_from_roughness(roughness) -> float:
 
 
 def beckmann_d(cos2_h: np.ndarray, sin2_h: np.ndarray, m: float) -> np.ndarray:
+    """Beckmann D of a direction H given by ``cos²θh`` and ``sin²θh`` (summing to 1)."""
     m2 = m * m
-    den = m2 * cos2_h
-    # tan²θh/m² = sin²/(m² cos²): infinite on the horizon, where D's limit is 0 (exp wins);
-    # also where it would overflow (cos²θh ~ 1e-320 from a subnormal z): exp(-1e300) is 0 too
-    ok = den > sin2_h * (1.0 / HUGE)
-    e = np.exp(-safe_div(sin2_h, den, ok, fill=np.inf))
-    # exp(-x) underflows harmlessly to 0 for a sharp lobe; 1/cos⁴ only where exp(-x) > 0,
-    # because cos⁴ underflows to 0 (divide by zero) well before x = sin²/(m²cos²) is large
-    # enough to flush exp(-x): cos² < 1e-154 → x > 1e148 for m ≤ 1.  Elsewhere e = 0 is
-    # divided by 1 (one select instead of a masked division): D = 0 there
-    return e / np.where(e > 0.0, np.pi * m2 * cos2_h * cos2_h, 1.0)
+    # tan²θh/m² = sin²/(m² cos²): on the horizon (cos = 0) and wherever it would reach HUGE
+    # (cos²θh ~ 1e-320 from a subnormal z), the denominator is raised so the quotient is
+    # HUGE: exp(-HUGE) = 0, D's limit (exp wins); the quotient is unchanged wherever it is
+    # below HUGE.  sin² and cos² are not both 0 for a direction (no 0/0).
+    x = sin2_h / np.maximum(m2 * cos2_h, sin2_h * (1.0 / HUGE))
+    e = np.exp(-x)
+    # exp(-x) underflows harmlessly to 0 for a sharp lobe.  Where it is > 0, x < 746, so
+    # cos²θh > 1/(1 + 746 m²) ≥ 1.3e-3 (m ≤ 1) and cos⁴ is far from 0; where it is 0, cos⁴
+    # may underflow to 0 and the floor 1e-300 (never reached where e > 0) gives 0/1e-300 = 0
+    return e / np.maximum(np.pi * m2 * cos2_h * cos2_h, 1e-300)
 
 
 def ggx_d(cos2_h: np.ndarray, sin2_h: np.ndarray, alpha: float) -> np.ndarray:
@@ -68,7 +69,7 @@ def ggx_lambda_cos(cos_t: np.ndarray, sin2_t: np.ndarray, alpha: float) -> np.nd
     ``α² sin² / (2(cos + √(cos² + α² sin²)))``.  At the normal (sin = 0) it is exactly 0.
     """
     a2s2 = alpha * alpha * sin2_t
-    root = safe_sqrt(cos_t * cos_t + a2s2)
+    root = np.sqrt(cos_t * cos_t + a2s2)  # sin² ≥ 0 (module contract): a sum of squares
     den = 2.0 * (cos_t + root)
     return safe_div(a2s2, den, den > 0.0)  # den = 0 only if sin = cos = 0: not a direction
 

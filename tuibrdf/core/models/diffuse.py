@@ -50,6 +50,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..frame import Geometry, _cos_dphi, xyz
+from ..frame import above as both_above
 from ..fresnel import pow5
 from ..numerics import safe_div
 from ..params import Model, Param
@@ -64,7 +65,7 @@ ROUGHNESS = replace(_ROUGHNESS, doc="roughness: raises grazing retro-reflection"
 
 def above(wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
     """Both directions in the closed upper hemisphere (the BRDF is 0 below the horizon)."""
-    return (wi[..., 2] >= 0.0) & (wo[..., 2] >= 0.0)
+    return both_above(xyz(wi)[2], xyz(wo)[2])
 
 
 def lambert(wi: np.ndarray, wo: np.ndarray, kd: float) -> np.ndarray:
@@ -104,7 +105,7 @@ class _AlphaBeta:
         self.beta = np.minimum(ti, to)
         self.cos_dphi = _cos_dphi(xi, yi, xo, yo, s2i, s2o)
         # both on the horizon (β rounds to 90°): tan β and tan((α+β)/2) have no limit → value 0
-        self.ok = (zi >= 0.0) & (zo >= 0.0) & (self.beta < np.pi / 2)
+        self.ok = both_above(zi, zo) & (self.beta < np.pi / 2)
         self.tan_beta = np.where(self.ok, np.minimum(tan_i, tan_o), 0.0)
         self.sin_alpha = np.maximum(si, so)
         # ci + co > 0 wherever ``ok`` holds (at least one direction is above the horizon)

@@ -47,6 +47,7 @@ are 0 there is no limit and the specular term is 0.  All four are reciprocal.
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -107,15 +108,19 @@ def ggx(wi, wo, kd: float, f0: float, alpha: float, fresnel: str):
                        ggx_g2_over_cos(g.cos_i, g.sin2_i, g.cos_o, g.sin2_o, alpha))
 
 
-def _metal_rough(base, metallic: float):
-    base = np.asarray(base, dtype=float)
-    return base * (1.0 - metallic), 0.04 * (1.0 - metallic) + base * metallic
+@lru_cache(maxsize=64)
+def _metal_rough(base: tuple, metallic: float):
+    """``(F0, c_diff)`` as read-only ``(3,)`` arrays, computed once per parameter set."""
+    b = np.asarray(base, dtype=float)
+    f0, c_diff = 0.04 * (1.0 - metallic) + b * metallic, b * (1.0 - metallic)
+    f0.flags.writeable = c_diff.flags.writeable = False
+    return f0, c_diff
 
 
 def gltf(wi, wo, base_color, metallic: float, roughness: float):
     g = Geometry(wi, wo)
     alpha = alpha_from_roughness(roughness)
-    c_diff, spec_f0 = _metal_rough(base_color, metallic)
+    spec_f0, c_diff = _metal_rough(tuple(base_color), metallic)
     m = pow5(1.0 - g.cos_d)  # Schlick's weight; cos θd ∈ [0, 1] (Geometry)
     spec = _specular(g, ggx_d(g.cos_h * g.cos_h, g.sin2_h, alpha),
                      ggx_g2_over_cos(g.cos_i, g.sin2_i, g.cos_o, g.sin2_o, alpha))
@@ -132,7 +137,7 @@ def ue4(wi, wo, base_color, metallic: float, roughness: float):
     g = Geometry(wi, wo)
     alpha = alpha_from_roughness(roughness)
     k = (roughness + 1.0) ** 2 / 8.0
-    c_diff, spec_f0 = _metal_rough(base_color, metallic)
+    spec_f0, c_diff = _metal_rough(tuple(base_color), metallic)
     m = pow5(1.0 - g.cos_d)  # Schlick's weight; cos θd ∈ [0, 1] (Geometry)
     # G1(c)/c = 1/(c(1-k)+k): k ≥ 1/8, so the denominators are ≥ 1/8 even on the horizon
     g_over_cos = safe_div(

@@ -28,7 +28,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..frame import xyz
+from ..frame import above, xyz
 from ..params import Model, Param, sum_at_most_one
 from . import common_params
 
@@ -81,7 +81,7 @@ def phong(wi: np.ndarray, wo: np.ndarray, kd: float, ks: float, n: float) -> np.
     xo, yo, zo = xyz(wo)
     s_dot_wo = -xi * xo - yi * yo + zi * zo  # S·wo with S = (-wi_x, -wi_y, wi_z)
     f = kd / np.pi + ks * (n + 2.0) / (2.0 * np.pi) * lobe_power(s_dot_wo, n)
-    return np.where((zi >= 0.0) & (zo >= 0.0), f, 0.0)
+    return np.where(above(zi, zo), f, 0.0)
 
 
 def blinn_phong(wi: np.ndarray, wo: np.ndarray, kd: float, ks: float, n: float) -> np.ndarray:
@@ -94,7 +94,7 @@ def blinn_phong(wi: np.ndarray, wo: np.ndarray, kd: float, ks: float, n: float) 
     # is treated as outside the lobe; 1/1 there instead of 1/0
     n_dot_h = np.where(valid, sz * (1.0 / np.where(valid, np.sqrt(n2), 1.0)), 0.0)
     f = kd / np.pi + ks * (n + 8.0) / (8.0 * np.pi) * lobe_power(n_dot_h, n)
-    return np.where((zi >= 0.0) & (zo >= 0.0), f, 0.0)
+    return np.where(above(zi, zo), f, 0.0)
 
 
 PHONG = Model(
