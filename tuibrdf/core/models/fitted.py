@@ -104,9 +104,11 @@ def fresnel_dielectric(cos_d: np.ndarray, eta: float) -> np.ndarray:
         return 0.5 * a * (1.0 + num * num / (den * den))
     tir = g2 <= 0.0
     g = safe_sqrt(g2)
-    # g + c > 0 unless g = c = 0 (η = 1 at grazing: 0/0, F's limit there is 1); c(g − c) + 1 ≥
+    # (g + c)² > 0 unless g = c = 0 (η = 1 at grazing: 0/0, F's limit there is 1) or it
+    # underflows (c ≲ 1e-154 under total reflection, where F = 1 anyway); c(g − c) + 1 ≥
     # 1 − c² + cg > 0 unless c = 1 and g = 0 (only with total reflection, masked)
-    a = safe_div((g - c) ** 2, (g + c) ** 2, (g + c) > 0.0, fill=1.0)
+    gpc2 = (g + c) ** 2
+    a = safe_div((g - c) ** 2, gpc2, gpc2 > 0.0, fill=1.0)
     b = safe_div((c * (g + c) - 1.0) ** 2, (c * (g - c) + 1.0) ** 2, ~tir, fill=1.0)
     return np.where(tir, 1.0, 0.5 * a * (1.0 + b))
 
