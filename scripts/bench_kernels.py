@@ -9,11 +9,12 @@ Each model is called as the viewer calls it: ``evaluate_resolved(model, model.de
 incident(40, 180), wo)`` with ``wo`` random unit vectors of the upper hemisphere.  The *fixed*
 cost is the time of one call at n = 1, 10 and 100 points (printed as the range), the *per-point*
 cost ``(t(10⁴) − t(1)) / (10⁴ − 1)``.  Times are the best of several repeats (the machine is
-shared: noisy).  The revision REV runs in a subprocess from ``git archive`` with the same
-directions; its values are compared with this tree's on several parameter sets and direction
-layouts (one wi against many wo, many against many, both sides broadcast), including directions
-on and below the horizon: the largest relative difference per model is printed (``rel diff``:
-``|new − old| / |old|`` where old ≠ 0, and new must be exactly 0 where old is).
+shared: noisy).  This tree and the revision REV (from ``git archive``) run in subprocesses, in
+turns (``--rounds``, the best of each kept), with the same directions; their values are
+compared on several parameter sets and direction layouts (one wi against many wo, many against
+many, both sides broadcast), including directions on and below the horizon: the largest
+relative difference per model is printed (``rel diff``: ``|new − old| / |old|`` where old ≠ 0,
+and new must be exactly 0 where old is).
 """
 
 from __future__ import annotations
@@ -107,12 +108,14 @@ def values(out: str) -> None:
 
 
 def measure(names: list[str], dump: str) -> dict[str, list[float]]:
-    """``{model: [t(1), t(10), t(100), t(10⁴)]}`` in seconds; values saved to ``dump``."""
+    """``{model: [t(1), t(10), t(100), t(10⁴)]}`` in seconds; values saved to ``dump`` (if
+    not empty)."""
     from tuibrdf.core.evaluate import evaluate_resolved
     from tuibrdf.core.frame import incident
     from tuibrdf.core.models import MODELS
 
-    values(dump)
+    if dump:
+        values(dump)
     rng = np.random.default_rng(1)
     wi = incident(40.0, 180.0)
     res = {}
@@ -123,25 +126,25 @@ def measure(names: list[str], dump: str) -> dict[str, list[float]]:
         for n in (*SIZES_FIXED, N_BIG):
             wo = _upper(rng, n)
             evaluate_resolved(m, v, wi, wo)
-            number = 300 if n <= 100 else 20
+            number = 200 if n <= 100 else 10
             best = min(timeit.repeat(lambda m=m, v=v, wo=wo: evaluate_resolved(m, v, wi, wo),
-                                     number=number, repeat=7))
+                                     number=number, repeat=5))
             times.append(best / number)
         res[name] = times
     return res
 
 
-def run_rev(rev: str, names: list[str], dump: str) -> dict[str, list[float]]:
-    """:func:`measure` on the package of git revision ``rev``, in a subprocess."""
-    with tempfile.TemporaryDirectory() as d:
-        tar = subprocess.run(["git", "-C", str(ROOT), "archive", rev, "tuibrdf"],
-                             capture_output=True, check=True).stdout
-        subprocess.run(["tar", "-x", "-C", d], input=tar, check=True)
-        env = {**os.environ, "PYTHONPATH": d}
-        out = subprocess.run([sys.executable, "-c", CHILD, d, str(ROOT / "scripts"),
-                              json.dumps(names), dump],
-                             capture_output=True, text=True, check=True, env=env, cwd=d).stdout
+def run_tree(tree: str, names: list[str], dump: str) -> dict[str, list[float]]:
+    """:func:`measure` on the package in directory ``tree``, in a subprocess."""
+    env = {**os.environ, "PYTHONPATH": tree}
+    out = subprocess.run([sys.executable, "-c", CHILD, tree, str(ROOT / "scripts"),
+                          json.dumps(names), dump],
+                         capture_output=True, text=True, check=True, env=env, cwd=tree).stdout
     return json.loads(out.strip().splitlines()[-1])
+
+
+def best_of(runs: list[dict[str, list[float]]]) -> dict[str, list[float]]:
+    return {k: [min(r[k][i] for r in runs) for i in range(len(runs[0][k]))] for k in runs[0]}
 
 
 def rel_diff(new: np.ndarray, old: np.ndarray) -> float:
@@ -170,15 +173,29 @@ def main() -> None:
     ap.add_argument("--rev", default="main",
                     help="git revision to compare with ('none': this tree only)")
     ap.add_argument("--models", default=",".join(NAMES), help="comma-separated model names")
+    ap.add_argument("--rounds", type=int, default=3, help="runs of each tree, best kept")
     args = ap.parse_args()
     names = args.models.split(",")
     with tempfile.TemporaryDirectory() as d:
         after_dump = os.path.join(d, "after.npz")
-        after = measure(names, after_dump)
+        before_dump = os.path.join(d, "before.npz")
+        old_tree = os.path.join(d, "old")
+        if args.rev != "none":
+            os.mkdir(old_tree)
+            tar = subprocess.run(["git", "-C", str(ROOT), "archive", args.rev, "tuibrdf"],
+                                 capture_output=True, check=True).stdout
+            subprocess.run(["tar", "-x", "-C", old_tree], input=tar, check=True)
+        # the two trees in turns, best of the rounds: a busy spell of the shared machine
+        # then weighs on both rather than on one
+        after_runs, before_runs = [], []
+        for r in range(args.rounds):
+            after_runs.append(run_tree(str(ROOT), names, after_dump if r == 0 else ""))
+            if args.rev != "none":
+                before_runs.append(run_tree(old_tree, names, before_dump if r == 0 else ""))
+        after = best_of(after_runs)
         before = diffs = None
         if args.rev != "none":
-            before_dump = os.path.join(d, "before.npz")
-            before = run_rev(args.rev, names, before_dump)
+            before = best_of(before_runs)
             a, b = np.load(after_dump), np.load(before_dump)
             diffs = {}
             for key in b.files:

@@ -122,9 +122,9 @@ def _polar(sin2: np.ndarray, z: np.ndarray):
     (C2 cancels), and an ulp of sin α would move it by 1e-8."""
     s = np.sqrt(sin2)  # a sum of squares: ≥ 0
     theta = np.arctan2(s, z)
-    r = np.sqrt(s * s + z * z)
-    # the length of a direction is never 0; were it, s = z = 0 divided by 1 gives 0
-    r = np.where(r > 0.0, r, 1.0)
+    # the length of a direction is never 0 (≥ 1e-162 if not 0: a square root of a double);
+    # were it, s = z = 0 divided by the floor gives 0
+    r = np.maximum(np.sqrt(s * s + z * z), 1e-300)
     sn, cn = s / r, z / r
     # θ < π/2 as a double means c/s ≳ 1e-16, so s/c ≤ ~1e16; θ rounded to π/2 (c = 0 or c
     # tiny): tan θ = ∞, never the smaller tangent where ``ok`` holds
@@ -139,7 +139,8 @@ def oren_nayar(wi: np.ndarray, wo: np.ndarray, kd: float, sigma: float) -> np.nd
     two_beta_pi = 2.0 * ab.beta / np.pi
     sin_alpha = ab.sin_alpha
     tb2 = two_beta_pi * two_beta_pi
-    c2 = np.where(cphi >= 0.0, b * sin_alpha, b * (sin_alpha - tb2 * two_beta_pi))
+    # C2 = B sin α if cos Δφ ≥ 0, B (sin α − (2β/π)³) otherwise (sin α − 0 is sin α exactly)
+    c2 = b * (sin_alpha - np.where(cphi >= 0.0, 0.0, tb2 * two_beta_pi))
     ab4 = 4.0 * ab.alpha * ab.beta / np.pi**2
     c3 = 0.125 * s2 / (s2 + 0.09) * (ab4 * ab4)
     single = kd / np.pi * (a + c2 * cphi * ab.tan_beta + c3 * (1.0 - np.abs(cphi)) * ab.tan_mean)

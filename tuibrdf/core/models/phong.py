@@ -40,6 +40,9 @@ N = Param("n", "n", 20.0, 0.0, 10000.0, 1.0, coarse=10.0, relative=True,
 
 #: Integer exponents up to this are taken by repeated squaring (see :func:`lobe_power`)
 INT_POWER_MAX = 64
+#: ... for arrays of more than this many elements (for fewer, one ``pow`` call costs less than
+#: the squarings' several)
+INT_POWER_MIN_SIZE = 64
 #: The smallest normal double: below it a product keeps fewer than 53 bits
 _TINY = float(np.finfo(float).tiny)
 
@@ -61,8 +64,8 @@ def lobe_power(c: np.ndarray, n: float) -> np.ndarray:
     # division); a huge n underflows to 0
     c = np.maximum(c, 0.0)  # a new array (or a scalar): squared and overwritten below
     k = int(n)
-    if k != n or k > INT_POWER_MAX or not isinstance(c, np.ndarray):
-        return np.power(c, n)
+    if k != n or k > INT_POWER_MAX or np.size(c) <= INT_POWER_MIN_SIZE:
+        return np.power(c, n)  # a few elements: one call beats several
     out = None
     base = c
     while True:

@@ -29,18 +29,13 @@ TOGETHER_MAX = 256
 def rgb(above, grey: Sequence, params: Sequence[np.ndarray], channel: Callable) -> np.ndarray:
     """``(..., 3)``: ``channel(*grey, *params)`` for each channel, 0 where ``above`` is False.
 
-    ``grey`` are arrays (or scalars) of shapes that broadcast to the result's ``(...)``;
-    ``params`` are ``(3,)`` arrays.  ``channel`` is called either once with ``(..., 1)`` grey
-    arrays and the ``(3,)`` parameters, or three times with the grey arrays and the channel's
-    scalars, so it must only use elementwise operations.
+    ``above`` has the result's shape ``(...)`` (both directions in the upper hemisphere, so
+    every quantity of the two directions broadcasts to it); ``grey`` are arrays (or scalars)
+    that broadcast to it; ``params`` are ``(3,)`` arrays.  ``channel`` is called either once
+    with ``(..., 1)`` grey arrays and the ``(3,)`` parameters, or three times with the grey
+    arrays and the channel's scalars, so it must only use elementwise operations.
     """
-    shapes = {np.shape(x) for x in grey}
-    shapes.add(np.shape(above))
-    shapes.discard(())
-    if len(shapes) > 1:
-        shape = np.broadcast_shapes(*shapes)
-    else:
-        shape = shapes.pop() if shapes else ()
+    shape = np.shape(above)
     if math.prod(shape) <= TOGETHER_MAX:
         out = channel(*(np.asarray(x)[..., None] for x in grey), *params)
         return np.where(np.asarray(above)[..., None], out, 0.0)
