@@ -154,8 +154,8 @@ class Geometry:
     operations, and no ``(..., 3)`` array or last-axis reduction is made.
     """
 
-    __slots__ = ("_xi", "_yi", "_xo", "_yo", "_sin2_i", "_sin2_o", "cos_i", "cos_o", "h_valid",
-                 "cos_h", "sin2_h", "cos_d", "above")
+    __slots__ = ("_xi", "_yi", "_xo", "_yo", "_sin2_i", "_sin2_o", "_invalid", "_h_valid",
+                 "cos_i", "cos_o", "cos_h", "sin2_h", "cos_d", "above")
 
     def __init__(self, wi: np.ndarray, wo: np.ndarray, half: bool = True):
         xi, yi, zi = xyz(wi)
@@ -183,19 +183,29 @@ class Geometry:
         self.cos_d = np.minimum(0.5 * r, 1.0)
         if not half:
             return
-        self.h_valid = valid = n2 > 0.0
-        # |wi + wo| = 0: H undefined, set to the normal below; there s = 0, so dividing by 1
-        # instead of 0 gives hx = hy = 0 (sin²θh = 0) at the cost of one select
-        inv = 1.0 / np.where(valid, r, 1.0)
+        # |wi + wo| = 0 (n2 ≥ 0): H undefined, set to the normal.  There s = 0, so adding 1 to
+        # the length (exactly: r + True) divides s by 1, not 0, and gives hx = hy = hz = 0
+        # (sin²θh = 0), and cos θh = 0 + 1; elsewhere r + 0 and hz + 0 are r and hz exactly.
+        # An addition costs less than a select.
+        self._invalid = invalid = n2 == 0.0
+        self._h_valid = None
+        inv = 1.0 / (r + invalid)
         if packed:
             h = s * inv[..., None]
             q = h * h
-            self.sin2_h = q[..., 0] + q[..., 1]  # 0 where H is undefined
-            self.cos_h = np.where(valid, h[..., 2], 1.0)
+            self.sin2_h = q[..., 0] + q[..., 1]
+            self.cos_h = h[..., 2] + invalid
         else:
             hx, hy = sx * inv, sy * inv
             self.sin2_h = hx * hx + hy * hy
-            self.cos_h = np.where(valid, sz * inv, 1.0)
+            self.cos_h = sz * inv + invalid
+
+    @property
+    def h_valid(self):
+        """Where the half vector is defined (``wi + wo ≠ 0``)."""
+        if self._h_valid is None:
+            self._h_valid = ~self._invalid
+        return self._h_valid
 
     @property
     def sin2_i(self):

@@ -108,11 +108,12 @@ def vcavity_g_over_cos(cos_h, cos_i, cos_o, cos_psi):
     to the last bit); elsewhere the value is finite and of no use (the models return 0 there).
     """
     ci_co = cos_i * cos_o
-    # each quotient only where it is below HUGE; at or above it counts as +inf, which min()
+    # each quotient only where it is below HUGE; at or above it counts as HUGE, which min()
     # passes over: the horizon limit, now also for cosines like 1e-310 that overflow 1/x
-    a = safe_div(1.0, ci_co, ci_co > 1.0 / HUGE, fill=np.inf)
+    a = safe_div(1.0, ci_co, ci_co > 1.0 / HUGE, fill=HUGE)
     two_h = 2.0 * cos_h
     p = cos_psi * np.maximum(cos_i, cos_o)
-    b = safe_div(two_h, p, p > np.abs(two_h) * (1.0 / HUGE), fill=np.inf)  # |·|: H may point down
+    b = safe_div(two_h, p, p > np.abs(two_h) * (1.0 / HUGE), fill=HUGE)  # |·|: H may point down
     g = np.minimum(a, b)
-    return np.where(np.isfinite(g), 0.25 * g, 0.0)
+    # both at HUGE: no limit, the value is 0 (a product with a 0/1 mask: HUGE·0 = 0)
+    return 0.25 * g * (g < HUGE)

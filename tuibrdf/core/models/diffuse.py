@@ -65,7 +65,7 @@ ROUGHNESS = replace(_ROUGHNESS, doc="roughness: raises grazing retro-reflection"
 
 def above(wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
     """Both directions in the closed upper hemisphere (the BRDF is 0 below the horizon)."""
-    return both_above(xyz(wi)[2], xyz(wo)[2])
+    return both_above(np.asarray(wi)[..., 2], np.asarray(wo)[..., 2])
 
 
 def lambert(wi: np.ndarray, wo: np.ndarray, kd: float) -> np.ndarray:
