@@ -124,7 +124,6 @@ def gltf(wi, wo, base_color, metallic: float, roughness: float):
     m = pow5(1.0 - g.cos_d)  # Schlick's weight; cos θd ∈ [0, 1] (Geometry)
     spec = _specular(g, ggx_d(g.cos_h * g.cos_h, g.sin2_h, alpha),
                      ggx_g2_over_cos(g.cos_i, g.sin2_i, g.cos_o, g.sin2_o, alpha))
-
     return rgb(g.above, (m, spec), (spec_f0, c_diff), _gltf_channel)
 
 
@@ -144,7 +143,6 @@ def ue4(wi, wo, base_color, metallic: float, roughness: float):
         0.25, (g.cos_i * (1.0 - k) + k) * (g.cos_o * (1.0 - k) + k), g.above, fill=0.0
     )
     spec = _specular(g, ggx_d(g.cos_h * g.cos_h, g.sin2_h, alpha), g_over_cos)
-
     return rgb(g.above, (m, spec), (spec_f0, c_diff), _ue4_channel)
 
 
