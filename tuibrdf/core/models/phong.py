@@ -40,9 +40,9 @@ N = Param("n", "n", 20.0, 0.0, 10000.0, 1.0, coarse=10.0, relative=True,
 
 #: Integer exponents up to this are taken by repeated squaring (see :func:`lobe_power`)
 INT_POWER_MAX = 64
-#: ... for arrays of more than this many elements (for fewer, one ``pow`` call costs less than
-#: the squarings' several)
-INT_POWER_MIN_SIZE = 64
+#: ... and only for arrays of more than this many elements (for fewer, one ``pow`` call costs less
+#: than the several products)
+INT_POWER_MIN_SIZE = 256
 #: The smallest normal double: below it a product keeps fewer than 53 bits
 _TINY = float(np.finfo(float).tiny)
 
