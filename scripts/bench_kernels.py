@@ -10,11 +10,11 @@ incident(40, 180), wo)`` with ``wo`` random unit vectors of the upper hemisphere
 cost is the time of one call at n = 1, 10 and 100 points (printed as the range), the *per-point*
 cost ``(t(10⁴) − t(1)) / (10⁴ − 1)``.  Times are the best of several repeats (the machine is
 shared: noisy).  This tree and the revision REV (from ``git archive``) run in subprocesses, in
-turns (``--rounds``, the best of each kept), with the same directions; their values are
-compared on several parameter sets and direction layouts (one wi against many wo, many against
-many, both sides broadcast), including directions on and below the horizon: the largest
-relative difference per model is printed (``rel diff``: ``|new − old| / |old|`` where old ≠ 0,
-and new must be exactly 0 where old is).
+turns, model by model (``--rounds``, the best of each kept), with the same directions; their
+values are compared on several parameter sets and direction layouts (one wi against many wo,
+many against many, both sides broadcast), including directions on and below the horizon: the
+largest relative difference per model is printed (``rel diff``: ``|new − old| / |old|`` where
+old ≠ 0, and new must be exactly 0 where old is).
 """
 
 from __future__ import annotations
@@ -185,13 +185,20 @@ def main() -> None:
             tar = subprocess.run(["git", "-C", str(ROOT), "archive", args.rev, "tuibrdf"],
                                  capture_output=True, check=True).stdout
             subprocess.run(["tar", "-x", "-C", old_tree], input=tar, check=True)
-        # the two trees in turns, best of the rounds: a busy spell of the shared machine
-        # then weighs on both rather than on one
+        # the two trees in turns, model by model, best of the rounds: a busy spell of the
+        # shared machine then weighs on both rather than on one
+        run_tree(str(ROOT), [], after_dump)
+        if args.rev != "none":
+            run_tree(old_tree, [], before_dump)
         after_runs, before_runs = [], []
-        for r in range(args.rounds):
-            after_runs.append(run_tree(str(ROOT), names, after_dump if r == 0 else ""))
-            if args.rev != "none":
-                before_runs.append(run_tree(old_tree, names, before_dump if r == 0 else ""))
+        for _ in range(args.rounds):
+            a_run, b_run = {}, {}
+            for name in names:
+                a_run.update(run_tree(str(ROOT), [name], ""))
+                if args.rev != "none":
+                    b_run.update(run_tree(old_tree, [name], ""))
+            after_runs.append(a_run)
+            before_runs.append(b_run)
         after = best_of(after_runs)
         before = diffs = None
         if args.rev != "none":
