@@ -4,6 +4,7 @@ docs/numerics.md, "Kernel cost").
     PYTHONPATH=$PWD python scripts/bench_kernels.py               # before (git main) and after
     PYTHONPATH=$PWD python scripts/bench_kernels.py --rev REV     # before = git revision REV
     PYTHONPATH=$PWD python scripts/bench_kernels.py --rev none    # this tree only
+    PYTHONPATH=$PWD python scripts/bench_kernels.py --cold        # a fresh process's heap
 
 Each model is called as the viewer calls it: ``evaluate_resolved(model, model.defaults(),
 incident(40, 180), wo)`` with ``wo`` random unit vectors of the upper hemisphere.  The *fixed*
@@ -116,6 +117,13 @@ def measure(names: list[str], dump: str) -> dict[str, list[float]]:
 
     if dump:
         values(dump)
+    # A fresh process's heap gives memory back to the system when a call frees its
+    # temporaries (glibc trims above 128 KB), so the next call page-faults them in again:
+    # 2–3× the time per point at n = 10⁴.  Freeing one large block raises glibc's thresholds
+    # (to its size), as happens early in any long-running process such as the viewer.
+    if not os.environ.get("BENCH_KERNELS_COLD"):
+        warm = np.ones(2**21)
+        del warm
     rng = np.random.default_rng(1)
     wi = incident(40.0, 180.0)
     res = {}
@@ -174,7 +182,11 @@ def main() -> None:
                     help="git revision to compare with ('none': this tree only)")
     ap.add_argument("--models", default=",".join(NAMES), help="comma-separated model names")
     ap.add_argument("--rounds", type=int, default=3, help="runs of each tree, best kept")
+    ap.add_argument("--cold", action="store_true",
+                    help="leave glibc's heap thresholds at their start (see measure())")
     args = ap.parse_args()
+    if args.cold:
+        os.environ["BENCH_KERNELS_COLD"] = "1"
     names = args.models.split(",")
     with tempfile.TemporaryDirectory() as d:
         after_dump = os.path.join(d, "after.npz")
