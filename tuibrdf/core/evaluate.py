@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from .models import get_model
+from .models import BROADCAST_KERNELS, get_model
 from .numerics import kernel_errstate
 from .params import Model
 
@@ -86,8 +86,30 @@ def evaluate(
     return evaluate_resolved(m, values, wi, wo)
 
 
+def _one_direction(w: np.ndarray) -> np.ndarray | None:
+    """The single direction ``w`` repeats, if it is one vector broadcast along every leading
+    axis (all strides 0, as ``np.broadcast_to(wi, wo.shape)`` makes), else None."""
+    if w.ndim > 1 and w.size and not any(w.strides[:-1]):
+        return w[(0,) * (w.ndim - 1)]
+    return None
+
+
 def evaluate_resolved(m: Model, values: Mapping[str, Any], wi: np.ndarray, wo: np.ndarray):
     """:func:`evaluate` without validation, for callers that resolved ``values`` once
-    (renderers, quadrature) and evaluate many times."""
+    (renderers, quadrature) and evaluate many times.
+
+    A built-in kernel given one direction broadcast against many (``np.broadcast_to``, zero
+    strides) evaluates that direction's terms once rather than once per element: the same
+    operations on the same numbers, so the same values (tested)."""
+    kw = m.kernel_params(values)
+    if (m.kernel in BROADCAST_KERNELS and type(wi) is np.ndarray and type(wo) is np.ndarray
+            and wi.shape == wo.shape):
+        one_i = _one_direction(wi)
+        if one_i is not None:
+            wi = one_i
+        else:
+            one_o = _one_direction(wo)
+            if one_o is not None:
+                wo = one_o
     with kernel_errstate():
-        return m.kernel(wi, wo, **m.kernel_params(values))
+        return m.kernel(wi, wo, **kw)

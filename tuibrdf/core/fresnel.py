@@ -19,9 +19,10 @@ grazing there).  ``f0 = 1`` means n → ∞, a perfect mirror: F ≡ 1.  For 0 <
 
 from __future__ import annotations
 
-import numpy as np
+import math
+from functools import lru_cache
 
-from .numerics import safe_sqrt
+import numpy as np
 
 
 def index_from_f0(f0: float) -> float:
@@ -30,32 +31,60 @@ def index_from_f0(f0: float) -> float:
     return float((1.0 + r) / (1.0 - r))
 
 
-def fresnel_exact(cos_psi: np.ndarray, f0: float) -> np.ndarray:
-    c = np.clip(np.asarray(cos_psi, dtype=float), 0.0, 1.0)
+def _clip01(c) -> np.ndarray:
+    return np.minimum(np.maximum(np.asarray(c, dtype=float), 0.0), 1.0)
+
+
+def pow5(u):
+    """``u⁵`` as ``u²·u²·u``: three multiplications instead of ``pow`` (about 20× the time per
+    element); within two ulps of the correctly rounded power."""
+    u2 = u * u
+    return u2 * u2 * u
+
+
+@lru_cache(maxsize=64)
+def _index_terms(f0: float) -> tuple[float, float]:
+    """``(n², n² − 1)`` for 0 < f0 < 1, n = (1 + √f0)/(1 − √f0).
+
+    n² − 1 = 4r/(1 − r)², written without the cancellation of n² − 1 (for f0 ≲ 1e-32, n²
+    rounds to 1 and g would be 0 at grazing: 0/0); it is > 0 for f0 > 0, so g > 0 (no guard
+    needed on the root) and c + g > 0, n² c + g > 0 below.  1 − r > 0 for f0 < 1 (no division
+    by zero) and n² ≤ 2e33 (no overflow) for the largest double below 1."""
+    r = math.sqrt(f0)
+    q = (1.0 + r) / (1.0 - r)
+    return q * q, 4.0 * r / ((1.0 - r) * (1.0 - r))
+
+
+def fresnel_exact(cos_psi: np.ndarray, f0: float, clipped: bool = False) -> np.ndarray:
+    """``clipped=True``: the caller promises ``cos_psi`` in [0, 1] (the models' cos θd is)."""
+    c = cos_psi if clipped else _clip01(cos_psi)
     if f0 <= 0.0:
         return np.zeros_like(c)  # n = 1: no interface, no reflection (0/0 at grazing)
     if f0 >= 1.0:
         return np.ones_like(c)  # n = ∞: the index diverges; the limit is total reflection
-    r = np.sqrt(f0)
-    n2 = ((1.0 + r) / (1.0 - r)) ** 2
-    # n² − 1 = 4r/(1 − r)², written without the cancellation of n² − 1 (for f0 ≲ 1e-32, n²
-    # rounds to 1 and g would be 0 at grazing: 0/0); g > 0 for f0 > 0, so c + g > 0 below
-    g = safe_sqrt(4.0 * r / (1.0 - r) ** 2 + c * c)
+    n2, n2m1 = _index_terms(f0)
+    g = np.sqrt(n2m1 + c * c)
     rs = (c - g) / (c + g)
-    rp = (n2 * c - g) / (n2 * c + g)
+    n2c = n2 * c
+    rp = (n2c - g) / (n2c + g)
     return 0.5 * (rs * rs + rp * rp)
 
 
-def fresnel_schlick(cos_psi: np.ndarray, f0) -> np.ndarray:
-    """Schlick's approximation; ``f0`` may be a scalar or an RGB triple (broadcast last)."""
-    c = np.clip(np.asarray(cos_psi, dtype=float), 0.0, 1.0)
+def fresnel_schlick(cos_psi: np.ndarray, f0, clipped: bool = False) -> np.ndarray:
+    """Schlick's approximation; ``f0`` may be a scalar or an RGB triple (broadcast last).
+    ``clipped=True``: the caller promises ``cos_psi`` in [0, 1]."""
+    c = cos_psi if clipped else _clip01(cos_psi)
+    m = pow5(1.0 - c)
+    if isinstance(f0, float | int):
+        return f0 + (1.0 - f0) * m
     f0 = np.asarray(f0, dtype=float)
-    m = (1.0 - c) ** 5
     if f0.ndim:
-        m = m[..., None]
+        m = np.asarray(m)[..., None]
     return f0 + (1.0 - f0) * m
 
 
-def fresnel(cos_psi: np.ndarray, f0: float, kind: str) -> np.ndarray:
+def fresnel(cos_psi: np.ndarray, f0: float, kind: str, clipped: bool = False) -> np.ndarray:
     """Dispatch on the ``fresnel`` choice parameter (``exact`` | ``schlick``)."""
-    return fresnel_exact(cos_psi, f0) if kind == "exact" else fresnel_schlick(cos_psi, f0)
+    if kind == "exact":
+        return fresnel_exact(cos_psi, f0, clipped)
+    return fresnel_schlick(cos_psi, f0, clipped)

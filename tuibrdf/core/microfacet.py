@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .numerics import safe_div, safe_sqrt
+from .numerics import safe_div
 
 #: A quotient at or above this counts as infinite.  Cosines a few hundred decades below 1 (a
 #: direction given as (1, 0, 1e-310): a valid unit vector, on the horizon to the last bit)
@@ -42,17 +42,18 @@ def alpha_from_roughness(roughness) -> float:
 
 
 def beckmann_d(cos2_h: np.ndarray, sin2_h: np.ndarray, m: float) -> np.ndarray:
+    """Beckmann D of a direction H given by ``cos²θh`` and ``sin²θh`` (summing to 1)."""
     m2 = m * m
-    den = m2 * cos2_h
-    # tan²θh/m² = sin²/(m² cos²): infinite on the horizon, where D's limit is 0 (exp wins);
-    # also where it would overflow (cos²θh ~ 1e-320 from a subnormal z): exp(-1e300) is 0 too
-    ok = den > sin2_h * (1.0 / HUGE)
-    x = safe_div(sin2_h, den, ok, fill=np.inf)
-    # exp(-x) underflows harmlessly to 0 for a sharp lobe; 1/cos⁴ only where exp(-x) > 0,
-    # because cos⁴ underflows to 0 (divide by zero) well before x = sin²/(m²cos²) is large
-    # enough to flush exp(-x): cos² < 1e-154 → x > 1e148 for m ≤ 1.
+    # tan²θh/m² = sin²/(m² cos²): on the horizon (cos = 0) and wherever it would reach HUGE
+    # (cos²θh ~ 1e-320 from a subnormal z), the denominator is raised so the quotient is
+    # HUGE: exp(-HUGE) = 0, D's limit (exp wins); the quotient is unchanged wherever it is
+    # below HUGE.  sin² and cos² are not both 0 for a direction (no 0/0).
+    x = sin2_h / np.maximum(m2 * cos2_h, sin2_h * (1.0 / HUGE))
     e = np.exp(-x)
-    return safe_div(e, np.pi * m2 * cos2_h * cos2_h, e > 0.0)
+    # exp(-x) underflows harmlessly to 0 for a sharp lobe.  Where it is > 0, x < 746, so
+    # cos²θh > 1/(1 + 746 m²) ≥ 1.3e-3 (m ≤ 1) and cos⁴ is far from 0; where it is 0, cos⁴
+    # may underflow to 0 and the floor 1e-300 (never reached where e > 0) gives 0/1e-300 = 0
+    return e / np.maximum(np.pi * m2 * cos2_h * cos2_h, 1e-300)
 
 
 def ggx_d(cos2_h: np.ndarray, sin2_h: np.ndarray, alpha: float) -> np.ndarray:
@@ -68,7 +69,7 @@ def ggx_lambda_cos(cos_t: np.ndarray, sin2_t: np.ndarray, alpha: float) -> np.nd
     ``α² sin² / (2(cos + √(cos² + α² sin²)))``.  At the normal (sin = 0) it is exactly 0.
     """
     a2s2 = alpha * alpha * sin2_t
-    root = safe_sqrt(cos_t * cos_t + a2s2)
+    root = np.sqrt(cos_t * cos_t + a2s2)  # sin² ≥ 0 (module contract): a sum of squares
     den = 2.0 * (cos_t + root)
     return safe_div(a2s2, den, den > 0.0)  # den = 0 only if sin = cos = 0: not a direction
 
@@ -102,15 +103,17 @@ def vcavity_g_over_cos(cos_h, cos_i, cos_o, cos_psi):
 
     ``G/(ci co) = min(1/(ci co), 2ch/(cψ co), 2ch/(cψ ci))``: where one cosine is 0 the other
     terms stay finite (the limit); where both are 0 every term is infinite and the value is 0.
+    For H in the upper hemisphere (ch ≥ 0, as wherever both directions are) the smaller of
+    the last two is ``2ch/(cψ·max(ci, co))``, one division instead of two (the same quotient
+    to the last bit); elsewhere the value is finite and of no use (the models return 0 there).
     """
     ci_co = cos_i * cos_o
-    # each quotient only where it is below HUGE; at or above it counts as +inf, which min()
+    # each quotient only where it is below HUGE; at or above it counts as HUGE, which min()
     # passes over: the horizon limit, now also for cosines like 1e-310 that overflow 1/x
-    a = safe_div(1.0, ci_co, ci_co > 1.0 / HUGE, fill=np.inf)
+    a = safe_div(1.0, ci_co, ci_co > 1.0 / HUGE, fill=HUGE)
     two_h = 2.0 * cos_h
-    po, pi = cos_psi * cos_o, cos_psi * cos_i
-    small = np.abs(two_h) * (1.0 / HUGE)  # |·|: below the horizon H can point down
-    b = safe_div(two_h, po, po > small, fill=np.inf)
-    c = safe_div(two_h, pi, pi > small, fill=np.inf)
-    g = np.minimum(np.minimum(a, b), c)
-    return np.where(np.isfinite(g), 0.25 * g, 0.0)
+    p = cos_psi * np.maximum(cos_i, cos_o)
+    b = safe_div(two_h, p, p > np.abs(two_h) * (1.0 / HUGE), fill=HUGE)  # |·|: H may point down
+    g = np.minimum(a, b)
+    # both at HUGE: no limit, the value is 0 (a product with a 0/1 mask: HUGE·0 = 0)
+    return 0.25 * g * (g < HUGE)

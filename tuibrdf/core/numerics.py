@@ -27,12 +27,21 @@ def safe_div(num: np.ndarray, den: np.ndarray, where: np.ndarray, fill: float = 
     """``num / den`` where ``where`` holds, ``fill`` elsewhere, without evaluating the rest.
 
     ``np.where(mask, a / b, 0)`` evaluates ``a / b`` everywhere and would raise under our policy;
-    this divides only the selected elements.
+    this divides only the selected elements.  Scalars (a kernel's quantities of a single
+    direction) take a branch instead of an array: a numpy scalar, divided only if ``where``.
     """
-    num, den, where = np.broadcast_arrays(
-        np.asarray(num, dtype=float), np.asarray(den, dtype=float), where
-    )
-    out = np.full(num.shape, fill, dtype=np.result_type(num, den))
+    shape = getattr(den, "shape", ())
+    s_num, s_where = getattr(num, "shape", ()), getattr(where, "shape", ())
+    if (s_num and s_num != shape) or s_where != shape:
+        shape = np.broadcast_shapes(s_num, shape, s_where)
+    if not shape:
+        # scalars: float64 scalars obey the errstate policy as arrays do; divided only if where
+        return np.float64(num) / np.float64(den) if where else np.float64(fill)
+    if fill == 0.0:
+        out = np.zeros(shape)  # float64: the package computes in float64 only
+    else:
+        out = np.empty(shape)
+        out.fill(fill)
     np.divide(num, den, out=out, where=where)
     return out
 

@@ -32,6 +32,13 @@ register(
 )
 register(fitted.ABC, fitted.SGD)  # the published fits of the 100 MERL materials
 
+#: Kernels of the analytic built-in models: each accepts any ``wi``, ``wo`` that broadcast
+#: together (one direction of shape ``(3,)`` against many), so a direction broadcast along
+#: every axis may be passed as that one vector (:func:`tuibrdf.core.evaluate.evaluate_resolved`)
+BROADCAST_KERNELS = frozenset(
+    m.kernel for m in MODELS.values() if m is not MERL
+)
+
 
 def get_model(name: str | Model) -> Model:
     """Look a model up by registry name, with a close match in the error for a typo; a path to

@@ -49,11 +49,14 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..frame import Geometry, cos_dphi, cos_theta, sin2_theta, theta_of
-from ..numerics import safe_div, safe_sqrt
+from ..frame import Geometry, _cos_dphi, xyz
+from ..frame import above as both_above
+from ..fresnel import pow5
+from ..numerics import safe_div
 from ..params import Model, Param
 from .common_params import BASE, KD
 from .common_params import ROUGHNESS as _ROUGHNESS
+from .rgb import rgb
 
 SIGMA = Param("sigma", "σ", 20.0, 0.0, 90.0, 1.0, unit="deg",
               doc="facet slope standard deviation (roughness)")
@@ -62,7 +65,7 @@ ROUGHNESS = replace(_ROUGHNESS, doc="roughness: raises grazing retro-reflection"
 
 def above(wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
     """Both directions in the closed upper hemisphere (the BRDF is 0 below the horizon)."""
-    return (wi[..., 2] >= 0.0) & (wo[..., 2] >= 0.0)
+    return both_above(np.asarray(wi)[..., 2], np.asarray(wo)[..., 2])
 
 
 def lambert(wi: np.ndarray, wo: np.ndarray, kd: float) -> np.ndarray:
@@ -88,35 +91,44 @@ class _AlphaBeta:
         sin α = max(si, so)                            (sin increases on [0, π/2])
         tan((α+β)/2) = (sin α + sin β)/(cos α + cos β) = (si + so)/(ci + co)
 
-    each symmetric in (wi, wo) to the last bit, so the model stays exactly reciprocal.
+    each symmetric in (wi, wo) to the last bit, so the model stays exactly reciprocal.  Each
+    direction's terms are computed once (scalars for a single ``wi``).
     """
 
     def __init__(self, wi: np.ndarray, wo: np.ndarray):
-        ti, to = theta_of(wi), theta_of(wo)
+        xi, yi, zi = xyz(wi)
+        xo, yo, zo = xyz(wo)
+        s2i, s2o = xi * xi + yi * yi, xo * xo + yo * yo
+        ti, si, ci, tan_i = _polar(s2i, zi)
+        to, so, co, tan_o = _polar(s2o, zo)
         self.alpha = np.maximum(ti, to)
         self.beta = np.minimum(ti, to)
-        self.cos_dphi = cos_dphi(wi, wo)
+        self.cos_dphi = _cos_dphi(xi, yi, xo, yo, s2i, s2o)
         # both on the horizon (β rounds to 90°): tan β and tan((α+β)/2) have no limit → value 0
-        self.ok = above(wi, wo) & (self.beta < np.pi / 2)
-        si, ci = _sin_cos(wi)
-        so, co = _sin_cos(wo)
-        # θ < π/2 as a double means c/s ≳ 1e-16, so s/c ≤ ~1e16; θ rounded to π/2 (c = 0 or c
-        # tiny): tan θ = ∞, never the smaller tangent where ``ok`` holds
-        tan_i = safe_div(si, ci, ti < np.pi / 2, fill=np.inf)
-        tan_o = safe_div(so, co, to < np.pi / 2, fill=np.inf)
+        self.ok = both_above(zi, zo) & (self.beta < np.pi / 2)
         self.tan_beta = np.where(self.ok, np.minimum(tan_i, tan_o), 0.0)
         self.sin_alpha = np.maximum(si, so)
         # ci + co > 0 wherever ``ok`` holds (at least one direction is above the horizon)
         self.tan_mean = safe_div(si + so, ci + co, self.ok)
 
 
-def _sin_cos(w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``(sin θ, cos θ)`` of a direction from its components, divided by its length (≥ 0 for
-    z ≥ 0; the length of a direction is never 0)."""
-    s = safe_sqrt(sin2_theta(w))
-    c = cos_theta(w)
-    r = np.hypot(s, c)
-    return safe_div(s, r, r > 0.0), safe_div(c, r, r > 0.0)
+def _polar(sin2: np.ndarray, z: np.ndarray):
+    """``(θ, sin θ, cos θ, tan θ)`` of a direction from ``x² + y²`` and ``z``: sin and cos
+    divided by the length (≥ 0 for z ≥ 0).  The length is ``√(s² + z²)`` with s = √(x² + y²)
+    rather than ``hypot(s, z)`` (several times the time per element): the components of a
+    direction are at most 1, so nothing overflows, an underflowing square is negligible beside
+    the other, and ``√(s·s) = s`` exactly in binary64, so near the horizon (z² below half an ulp
+    of s²) sin θ = s/s = 1 exactly, as with ``hypot``: the model is ill-conditioned there
+    (C2 cancels), and an ulp of sin α would move it by 1e-8."""
+    s = np.sqrt(sin2)  # a sum of squares: ≥ 0
+    theta = np.arctan2(s, z)
+    # the length of a direction is never 0 (≥ 1e-162 if not 0: a square root of a double);
+    # were it, s = z = 0 divided by the floor gives 0
+    r = np.maximum(np.sqrt(s * s + z * z), 1e-300)
+    sn, cn = s / r, z / r
+    # θ < π/2 as a double means c/s ≳ 1e-16, so s/c ≤ ~1e16; θ rounded to π/2 (c = 0 or c
+    # tiny): tan θ = ∞, never the smaller tangent where ``ok`` holds
+    return theta, sn, cn, safe_div(sn, cn, theta < np.pi / 2, fill=np.inf)
 
 
 def oren_nayar(wi: np.ndarray, wo: np.ndarray, kd: float, sigma: float) -> np.ndarray:
@@ -126,10 +138,13 @@ def oren_nayar(wi: np.ndarray, wo: np.ndarray, kd: float, sigma: float) -> np.nd
     cphi = ab.cos_dphi
     two_beta_pi = 2.0 * ab.beta / np.pi
     sin_alpha = ab.sin_alpha
-    c2 = np.where(cphi >= 0.0, b * sin_alpha, b * (sin_alpha - two_beta_pi**3))
-    c3 = 0.125 * s2 / (s2 + 0.09) * (4.0 * ab.alpha * ab.beta / np.pi**2) ** 2
+    tb2 = two_beta_pi * two_beta_pi
+    # C2 = B sin α if cos Δφ ≥ 0, B (sin α − (2β/π)³) otherwise (sin α − 0 is sin α exactly)
+    c2 = b * (sin_alpha - np.where(cphi >= 0.0, 0.0, tb2 * two_beta_pi))
+    ab4 = 4.0 * ab.alpha * ab.beta / np.pi**2
+    c3 = 0.125 * s2 / (s2 + 0.09) * (ab4 * ab4)
     single = kd / np.pi * (a + c2 * cphi * ab.tan_beta + c3 * (1.0 - np.abs(cphi)) * ab.tan_mean)
-    inter = 0.17 * kd * kd / np.pi * s2 / (s2 + 0.13) * (1.0 - cphi * two_beta_pi**2)
+    inter = 0.17 * kd * kd / np.pi * s2 / (s2 + 0.13) * (1.0 - cphi * tb2)
     # the qualitative model goes negative near grazing back-scatter for σ ≳ 1 rad: clamp
     return np.where(ab.ok, np.maximum(single + inter, 0.0), 0.0)
 
@@ -142,13 +157,17 @@ def oren_nayar_simple(wi: np.ndarray, wo: np.ndarray, kd: float, sigma: float) -
 
 
 def disney_diffuse(wi: np.ndarray, wo: np.ndarray, base_color, roughness: float) -> np.ndarray:
-    g = Geometry(wi, wo)
-    fd90 = 0.5 + 2.0 * roughness * g.cos_d**2
-    ci = np.clip(g.cos_i, 0.0, 1.0)
-    co = np.clip(g.cos_o, 0.0, 1.0)
-    shape = (1.0 + (fd90 - 1.0) * (1.0 - ci) ** 5) * (1.0 + (fd90 - 1.0) * (1.0 - co) ** 5)
-    out = np.asarray(base_color, dtype=float) / np.pi * shape[..., None]
-    return np.where(g.above[..., None], out, 0.0)
+    g = Geometry(wi, wo, half=False)
+    fd90m1 = 0.5 + 2.0 * roughness * (g.cos_d * g.cos_d) - 1.0
+    # (1 − cos θ)⁵ with cos θ clipped to [0, 1] (below the horizon the value is replaced by 0)
+    ci = np.minimum(np.maximum(g.cos_i, 0.0), 1.0)
+    co = np.minimum(np.maximum(g.cos_o, 0.0), 1.0)
+    shape = (1.0 + fd90m1 * pow5(1.0 - ci)) * (1.0 + fd90m1 * pow5(1.0 - co))
+    return rgb(g.above, (shape,), (np.asarray(base_color, dtype=float),), _disney_channel)
+
+
+def _disney_channel(shape, base):
+    return base / np.pi * shape
 
 
 LAMBERT = Model(

@@ -47,12 +47,13 @@ are 0 there is no limit and the specular term is 0.  All four are reciprocal.
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import lru_cache
 
 import numpy as np
 
 from ..frame import Geometry
 from ..fresnel import fresnel as fresnel_term
-from ..fresnel import fresnel_schlick
+from ..fresnel import pow5
 from ..microfacet import (
     ALPHA_MIN,
     alpha_from_roughness,
@@ -65,6 +66,7 @@ from ..numerics import safe_div
 from ..params import Model, Param
 from .common_params import BASE, KD
 from .common_params import ROUGHNESS as _ROUGHNESS
+from .rgb import rgb
 
 KD0 = replace(KD, default=0.0)
 F0 = Param("f0", "F0", 0.04, 0.0, 1.0, 0.01, doc="Fresnel reflectance at normal incidence")
@@ -83,49 +85,70 @@ def _specular(g: Geometry, d: np.ndarray, g_over_cos: np.ndarray) -> np.ndarray:
     return np.where(g.above & g.h_valid, d * g_over_cos, 0.0)
 
 
+def _dielectric(g: Geometry, kd: float, f0: float, fresnel: str, d, g_over_cos):
+    """``kd/π + F(ψ)·D·G/(4 ci co)`` above the horizon (the specular term where H is defined),
+    0 below (cook-torrance, ggx)."""
+    # cos θd ∈ [0, 1] by construction (Geometry): no clip
+    f = fresnel_term(g.cos_d, f0, fresnel, clipped=True) * (d * g_over_cos)
+    ok = g.above & g.h_valid
+    if not kd:  # kd = 0 would add an exact 0.0
+        return np.where(ok, f, 0.0)
+    return np.where(ok, kd / np.pi + f, np.where(g.above, kd / np.pi, 0.0))
+
+
 def cook_torrance(wi, wo, kd: float, f0: float, m: float, fresnel: str):
     g = Geometry(wi, wo)
-    spec = _specular(g, beckmann_d(g.cos_h**2, g.sin2_h, m),
-                     vcavity_g_over_cos(g.cos_h, g.cos_i, g.cos_o, g.cos_d))
-    return np.where(g.above, kd / np.pi + fresnel_term(g.cos_d, f0, fresnel) * spec, 0.0)
+    return _dielectric(g, kd, f0, fresnel, beckmann_d(g.cos_h * g.cos_h, g.sin2_h, m),
+                       vcavity_g_over_cos(g.cos_h, g.cos_i, g.cos_o, g.cos_d))
 
 
 def ggx(wi, wo, kd: float, f0: float, alpha: float, fresnel: str):
     g = Geometry(wi, wo)
-    spec = _specular(g, ggx_d(g.cos_h**2, g.sin2_h, alpha),
-                     ggx_g2_over_cos(g.cos_i, g.sin2_i, g.cos_o, g.sin2_o, alpha))
-    return np.where(g.above, kd / np.pi + fresnel_term(g.cos_d, f0, fresnel) * spec, 0.0)
+    return _dielectric(g, kd, f0, fresnel, ggx_d(g.cos_h * g.cos_h, g.sin2_h, alpha),
+                       ggx_g2_over_cos(g.cos_i, g.sin2_i, g.cos_o, g.sin2_o, alpha))
 
 
-def _metal_rough(base, metallic: float):
-    base = np.asarray(base, dtype=float)
-    return base * (1.0 - metallic), 0.04 * (1.0 - metallic) + base * metallic
+@lru_cache(maxsize=64)
+def _metal_rough(base: tuple, metallic: float):
+    """``(F0, c_diff)`` as read-only ``(3,)`` arrays, computed once per parameter set."""
+    b = np.asarray(base, dtype=float)
+    f0, c_diff = 0.04 * (1.0 - metallic) + b * metallic, b * (1.0 - metallic)
+    f0.flags.writeable = c_diff.flags.writeable = False
+    return f0, c_diff
 
 
 def gltf(wi, wo, base_color, metallic: float, roughness: float):
     g = Geometry(wi, wo)
     alpha = alpha_from_roughness(roughness)
-    c_diff, spec_f0 = _metal_rough(base_color, metallic)
-    f = fresnel_schlick(g.cos_d, spec_f0)  # (..., 3)
-    spec = _specular(g, ggx_d(g.cos_h**2, g.sin2_h, alpha),
+    spec_f0, c_diff = _metal_rough(tuple(base_color), metallic)
+    m = pow5(1.0 - g.cos_d)  # Schlick's weight; cos θd ∈ [0, 1] (Geometry)
+    spec = _specular(g, ggx_d(g.cos_h * g.cos_h, g.sin2_h, alpha),
                      ggx_g2_over_cos(g.cos_i, g.sin2_i, g.cos_o, g.sin2_o, alpha))
-    out = (1.0 - f) * c_diff / np.pi + f * spec[..., None]
-    return np.where(g.above[..., None], out, 0.0)
+    return rgb(g.above, (m, spec), (spec_f0, c_diff), _gltf_channel)
+
+
+def _gltf_channel(m, spec, f0, c_diff):
+    f = f0 + (1.0 - f0) * m  # Schlick F
+    return (1.0 - f) * c_diff / np.pi + f * spec
 
 
 def ue4(wi, wo, base_color, metallic: float, roughness: float):
     g = Geometry(wi, wo)
     alpha = alpha_from_roughness(roughness)
     k = (roughness + 1.0) ** 2 / 8.0
-    c_diff, spec_f0 = _metal_rough(base_color, metallic)
-    f = fresnel_schlick(g.cos_d, spec_f0)
+    spec_f0, c_diff = _metal_rough(tuple(base_color), metallic)
+    m = pow5(1.0 - g.cos_d)  # Schlick's weight; cos θd ∈ [0, 1] (Geometry)
     # G1(c)/c = 1/(c(1-k)+k): k ≥ 1/8, so the denominators are ≥ 1/8 even on the horizon
     g_over_cos = safe_div(
         0.25, (g.cos_i * (1.0 - k) + k) * (g.cos_o * (1.0 - k) + k), g.above, fill=0.0
     )
-    spec = _specular(g, ggx_d(g.cos_h**2, g.sin2_h, alpha), g_over_cos)
-    out = c_diff / np.pi + f * spec[..., None]
-    return np.where(g.above[..., None], out, 0.0)
+    spec = _specular(g, ggx_d(g.cos_h * g.cos_h, g.sin2_h, alpha), g_over_cos)
+    return rgb(g.above, (m, spec), (spec_f0, c_diff), _ue4_channel)
+
+
+def _ue4_channel(m, spec, f0, c_diff):
+    f = f0 + (1.0 - f0) * m  # Schlick F
+    return c_diff / np.pi + f * spec
 
 
 COOK_TORRANCE = Model(
