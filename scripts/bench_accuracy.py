@@ -33,6 +33,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from revtree import extract
 
 from tuibrdf.core import quadrature as q
 from tuibrdf.core.evaluate import evaluate_resolved
@@ -399,12 +400,9 @@ print(json.dumps(out))
 
 
 def before_table(rev, refs, after_rows):
-    root = Path(__file__).resolve().parent.parent
     cases = [(n, p, th) for (n, p, th) in _case_list()]
     with tempfile.TemporaryDirectory() as d:
-        tar = subprocess.run(["git", "-C", str(root), "archive", rev, "tuibrdf"],
-                             capture_output=True, check=True).stdout
-        subprocess.run(["tar", "-x", "-C", d], input=tar, check=True)
+        extract(rev, d)
         env = dict(os.environ, PYTHONPATH=d)
         res = subprocess.run([sys.executable, "-c", BEFORE_CHILD],
                              input=json.dumps(cases), capture_output=True, text=True,

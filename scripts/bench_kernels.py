@@ -30,6 +30,7 @@ import timeit
 from pathlib import Path
 
 import numpy as np
+from revtree import extract
 
 ROOT = Path(__file__).resolve().parent.parent
 NAMES = ["lambert", "phong", "blinn-phong", "cook-torrance", "oren-nayar", "oren-nayar-simple",
@@ -193,10 +194,7 @@ def main() -> None:
         before_dump = os.path.join(d, "before.npz")
         old_tree = os.path.join(d, "old")
         if args.rev != "none":
-            os.mkdir(old_tree)
-            tar = subprocess.run(["git", "-C", str(ROOT), "archive", args.rev, "tuibrdf"],
-                                 capture_output=True, check=True).stdout
-            subprocess.run(["tar", "-x", "-C", old_tree], input=tar, check=True)
+            extract(args.rev, old_tree)
         # the two trees in turns, model by model, best of the rounds: a busy spell of the
         # shared machine then weighs on both rather than on one
         run_tree(str(ROOT), [], after_dump)
