@@ -185,6 +185,42 @@ async def test_a_crash_sets_a_nonzero_return_code():
     assert app.return_code == 1 and "boom from a test" in str(app._exception)
 
 
+async def test_a_crash_in_the_frame_worker_stops_the_app(monkeypatch):
+    # a bug in the core while the frame worker computes (not bad data: a RuntimeError) ends
+    # the app with exit status 1 and its message, as one on the event loop does; bad data
+    # (ValueError) is a message in the panes instead
+    from tuibrdf.core import scene
+
+    real = scene.compute_frame
+
+    def compute(req, **kw):
+        if req.theta_i == 31.0:
+            raise RuntimeError("boom in the frame worker")
+        if req.theta_i == 32.0:
+            raise ValueError("bad data from a test")
+        return real(req, **kw)
+
+    monkeypatch.setattr(scene, "compute_frame", compute)
+    app = BrdfApp(ViewerState(theta_i=33.0))
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.pause(0.3)
+        await pilot.press("left")  # θi 32: bad data
+        for _ in range(40):
+            await pilot.pause(0.05)
+            if "bad data from a test" in status(app):
+                break
+        assert "bad data from a test" in status(app)
+        assert app.is_running
+    app = BrdfApp(ViewerState(theta_i=32.0))
+    with pytest.raises(Exception, match="boom in the frame worker"):  # Textual's WorkerFailed
+        async with app.run_test(size=(100, 30)) as pilot:
+            await pilot.pause(0.3)
+            await pilot.press("left")  # θi 31: a bug
+            for _ in range(40):
+                await pilot.pause(0.05)
+    assert app.return_code == 1
+
+
 def test_view_command_exits_nonzero_and_prints_the_error(monkeypatch, capsys):
     # the real `tuibrdf view` path, headless: the crash ends the app, the message is printed
     # and the exit status is not 0
