@@ -102,25 +102,21 @@ def beckmann_normal_incidence(m):
 # the rule itself
 
 
-def test_kronrod_constants():
-    # G7 is numpy's 7-point Gauss-Legendre rule; K15 integrates x^k exactly for k ≤ 22
-    x, w = np.polynomial.legendre.leggauss(7)
-    on = polar.WG15 > 0
-    assert np.allclose(polar.X15[on], x, atol=1e-15) and np.allclose(polar.WG15[on], w,
-                                                                        atol=1e-15)
-    for k in range(23):
+@pytest.mark.parametrize("n_gauss,degree,margin", [(7, 22, 1e-9), (3, 10, 1e-6)])
+def test_kronrod_constants(n_gauss, degree, margin):
+    # the Gauss points are numpy's Gauss-Legendre rule; the Kronrod rule integrates x^k
+    # exactly for k ≤ degree + 1 (odd k: 0 by symmetry) and not x^(degree + 2):
+    # (G7, K15) for wide panels, (G3, K7) for small ones
+    n = 2 * n_gauss + 1
+    xs, wg, wk = getattr(polar, f"X{n}"), getattr(polar, f"WG{n}"), getattr(polar, f"WK{n}")
+    x, w = np.polynomial.legendre.leggauss(n_gauss)
+    on = wg > 0
+    assert np.allclose(xs[on], x, atol=1e-15) and np.allclose(wg[on], w, atol=1e-15)
+    for k in range(degree + 2):
         exact = 2.0 / (k + 1) if k % 2 == 0 else 0.0
-        assert np.sum(polar.WK15 * polar.X15**k) == pytest.approx(exact, abs=1e-14)
-    assert abs(np.sum(polar.WK15 * polar.X15**24) - 2 / 25) > 1e-9  # 23 is the limit
-    # the small panels' pair: G3 is numpy's 3-point rule, K7 exact for x^k, k ≤ 11
-    x, w = np.polynomial.legendre.leggauss(3)
-    on = polar.WG7 > 0
-    assert np.allclose(polar.X7[on], x, atol=1e-15) and np.allclose(polar.WG7[on], w,
-                                                                      atol=1e-15)
-    for k in range(12):
-        exact = 2.0 / (k + 1) if k % 2 == 0 else 0.0
-        assert np.sum(polar.WK7 * polar.X7**k) == pytest.approx(exact, abs=1e-14)
-    assert abs(np.sum(polar.WK7 * polar.X7**12) - 2 / 13) > 1e-6
+        assert np.sum(wk * xs**k) == pytest.approx(exact, abs=1e-14)
+    k = degree + 2
+    assert abs(np.sum(wk * xs**k) - 2 / (k + 1)) > margin  # the limit
 
 
 @pytest.mark.parametrize("theta", [0.0, 30.0, 60.0, 89.0, 89.9, 90.0])
