@@ -45,7 +45,8 @@ FILES = ["tuibrdf/core/fresnel.py", "tuibrdf/core/microfacet.py",
          *sorted(str(p.relative_to(ROOT)) for p in (ROOT / "tuibrdf/core/models").glob("*.py"))]
 #: the non-snapshot core tests, in stages: a mutant that survives a stage runs the next one
 #: (the slow hypothesis stability suite only runs for the few mutants the fast tests miss)
-STAGES = [["tests/test_reference_values.py", "tests/test_models.py"], ["tests/test_stability.py"]]
+STAGES = [["tests/test_reference_values.py", "tests/test_models.py", "tests/test_materials.py",
+           "tests/test_kernel_paths.py"], ["tests/test_stability.py"]]
 DECLARATIONS = {"Param", "Model", "replace", "Constraint"}
 
 #: Mutants that cannot change any result, keyed as printed (``file::function::literal#k::±``),
@@ -56,47 +57,125 @@ _DF = "tuibrdf/core/models/diffuse.py"
 _MM = "tuibrdf/core/models/microfacet_models.py"
 _GGX_DEN = ("den = 2(cos θ + √(cos²θ + α² sin²θ)) ≥ 2α ≥ 0.002 for a unit vector and "
             "α ≥ ALPHA_MIN = 0.001: 'den > t' holds everywhere for any t < 0.002")
-_VC_FILL = ("G/(cos cos) is infinite only where both cosines are 0 (then H is on the horizon and "
-            "Beckmann D = 0 multiplies it) or H is undefined (_specular gives 0 there): the fill "
-            "never reaches a result")
 _TAN_FILL = ("tan β's fill where `ok` is False: oren_nayar and oren_nayar_simple return "
              "np.where(ab.ok, ..., 0.0), so the filled elements never reach a result")
-_UNIT = ("r = |w| = 1 to a few ulps for a direction: 'r > t' holds everywhere for any "
-         "t in (−1, 1)")
+_UNIT = ("r = |w| = 1 to a few ulps for a direction (evaluate normalises them): a floor of "
+         "1e-300·(1 ± 0.001) under it never acts")
 _BELOW = ("cos θ < 0 only below the horizon, where the result is replaced by 0 (g.above): "
           "the lower clip at −0.001 changes nothing that is returned")
 _UNIT_COS = "cos θ ≤ 1 for a unit vector: an upper clip at 1.001 never acts"
 _FLAT_TOP = ("equivalent to float64 precision: a clip of cos θ at 0.999 turns (1 − cos θ)⁵ < 1e-15 "
              "into 1e-15, so 1 + (FD90 − 1)(1 − cos θ)⁵ moves by < 2e-15 relative, the size of "
              "its rounding: no test of values can see it")
+_EXP_CAP = ("the floor sin²θh/HUGE caps tan²θh/m² at HUGE·(1 ± 0.001) instead of HUGE, and "
+            "exp(−x) is 0 for every x ≥ 746: D is 0 either way")
+_D_FLOOR = ("where exp(−x) > 0, cos²θh ≥ 1.3e-3 and π m² cos⁴θh ≥ 5e-12 (m ≥ 0.001): the floor "
+            "1e-300·(1 ± 0.001) only acts where the numerator is 0, and 0/floor = 0")
+_BP_FILL = ("the divisor's fill where H is undefined: np.where(valid, …, 0.0) replaces the "
+            "quotient there")
+_COS_D = "cos θd ∈ [0, 1] by construction (Geometry): a lower clip at −0.001 never acts"
+_TIR_FILL = ("a fill where total reflection holds (g² ≤ 0; also where (g + c)² is 0, which "
+             "needs g = 0, i.e. total reflection): np.where(tir, 1.0, …) replaces it")
+_G1_FLAT = ("G1 − 1 = −Λ·expm1(c_g·t^k) for t ≤ 0.001 is above −3.3e-18 in every channel of "
+            "the 100 tables (k ≥ 5.57; light-red-paint's red is the largest): below half an "
+            "ulp of 1, so G1 rounds to 1 either way; sgd's parameters come only from the tables")
+_G1_CLIP = ("G1 = 1 − Λ·expm1(x) with 0 ≤ x < log(1 + 1/Λ) where it is computed (elsewhere "
+            "np.where(dead, 0.0, …) replaces it) lies in (0, 1]: neither clip acts")
+_HUGE_LEVEL = ("a guard's level, 1/HUGE or 0.25/HUGE: it moves a quotient between computed and "
+               "'infinite' only within 0.1% of 1e300, i.e. with both directions within ~1e-150 "
+               "of the horizon, where G/(cos θi cos θo) has no limit (docs/numerics.md) and 0 is "
+               "the documented value; exp(−x) is 0 at either side of it in D")
+_SGD_LEVEL = ("sgd's 1/(cos θi cos θo) has no limit on the horizon (it diverges like 1/cos θ), "
+              "so below a level of cos θi cos θo the specular term counts as 0: within 0.1% of "
+              "1e-290 a direction is within 1e-290 of the horizon (the other at most 1 away)")
+_CROSSOVER = ("a speed crossover (integer powers by squaring; RGB channels together or one by "
+              "one): both paths give the same values to the ulps tests/test_kernel_paths.py "
+              "bounds; an integer size or exponent ≤ 64/256 is ≤ 64.064/256.256 as well")
+_PH = "tuibrdf/core/models/phong.py"
+_FT = "tuibrdf/core/models/fitted.py"
 EQUIVALENT: dict[str, str] = {
-    f"{_MF}::beckmann_d::0.0#0::+": (
-        "cos²θh ≤ 0.001 means tan²θh/m² ≥ 999 for m ≤ 1 (the parameter's range), and "
-        "exp(−999) is 0 in float64 (exp underflows below −745): D is 0 with or without the "
-        "guard"),
+    f"{_MF}::beckmann_d::1.0#0::+": _EXP_CAP,
+    f"{_MF}::beckmann_d::1.0#0::-": _EXP_CAP,
+    f"{_MF}::beckmann_d::1e-300#0::+": _D_FLOOR,
+    f"{_MF}::beckmann_d::1e-300#0::-": _D_FLOOR,
     f"{_MF}::ggx_lambda_cos::0.0#0::+": _GGX_DEN,
     f"{_MF}::ggx_lambda_cos::0.0#0::-": _GGX_DEN,
     f"{_MF}::ggx_g1::0.0#0::-": (
         "den = cos θ + cos θ·Λ > 0 for every direction (α sin θ/2 > 0 on the horizon): "
         "'den > −0.001' selects the same elements as 'den > 0'"),
-    f"{_MF}::vcavity_g_over_cos::0.0#3::+": _VC_FILL,
-    f"{_MF}::vcavity_g_over_cos::0.0#3::-": _VC_FILL,
     f"{_DF}::_AlphaBeta.__init__::0.0#0::+": _TAN_FILL,
     f"{_DF}::_AlphaBeta.__init__::0.0#0::-": _TAN_FILL,
-    f"{_DF}::_sin_cos::0.0#0::+": _UNIT,
-    f"{_DF}::_sin_cos::0.0#0::-": _UNIT,
-    f"{_DF}::_sin_cos::0.0#1::+": _UNIT,
-    f"{_DF}::_sin_cos::0.0#1::-": _UNIT,
+    f"{_DF}::_polar::1e-300#0::+": _UNIT,
+    f"{_DF}::_polar::1e-300#0::-": _UNIT,
     f"{_DF}::disney_diffuse::0.0#0::-": _BELOW,
     f"{_DF}::disney_diffuse::0.0#1::-": _BELOW,
-    f"{_DF}::disney_diffuse::1.0#0::+": _UNIT_COS,
     f"{_DF}::disney_diffuse::1.0#1::+": _UNIT_COS,
-    f"{_DF}::disney_diffuse::1.0#0::-": _FLAT_TOP,
+    f"{_DF}::disney_diffuse::1.0#2::+": _UNIT_COS,
     f"{_DF}::disney_diffuse::1.0#1::-": _FLAT_TOP,
+    f"{_DF}::disney_diffuse::1.0#2::-": _FLAT_TOP,
     f"{_MM}::ue4::0.0#0::+": "fill below the horizon, replaced by 0 in the result (g.above)",
     f"{_MM}::ue4::0.0#0::-": "fill below the horizon, replaced by 0 in the result (g.above)",
-    "tuibrdf/core/models/phong.py::blinn_phong::0.0#0::-": (
+    f"{_PH}::blinn_phong::1.0#1::+": _BP_FILL,
+    f"{_PH}::blinn_phong::1.0#1::-": _BP_FILL,
+    f"{_PH}::blinn_phong::0.0#1::-": (
         "N·H = −0.001 where H is undefined: lobe_power gives 0 for c ≤ 0, as for c = 0"),
+    f"{_FT}::fresnel_dielectric::1.0#0::+": _UNIT_COS,
+    f"{_FT}::fresnel_dielectric::0.0#0::-": _COS_D,
+    f"{_FT}::fresnel_dielectric::0.0#2::-": (
+        "−0.001 < g² ≤ 0 counted as no total reflection: safe_sqrt makes g = 0, and then "
+        "(g − c)²/(g + c)² = 1 and (c·c − 1)² / (1 − c·c)² = 1 exactly, F = 1 as under the mask"),
+    f"{_FT}::fresnel_dielectric::1.0#5::+": _TIR_FILL,
+    f"{_FT}::fresnel_dielectric::1.0#5::-": _TIR_FILL,
+    f"{_FT}::fresnel_dielectric::1.0#8::+": _TIR_FILL,
+    f"{_FT}::fresnel_dielectric::1.0#8::-": _TIR_FILL,
+    f"{_FT}::abc::0.0#0::-": (
+        "cos θh < 0 only where H points below the horizon: never for two directions above it "
+        "(H's z is (zi + zo)/|wi + wo| ≥ 0); below it rgb() returns 0"),
+    f"{_FT}::_tan2::1.0#0::+": _EXP_CAP,
+    f"{_FT}::_tan2::1.0#0::-": _EXP_CAP,
+    f"{_FT}::_sgd_g1::0.0#0::+": _G1_FLAT,
+    f"{_FT}::_sgd_g1::0.0#1::+": _G1_FLAT,
+    f"{_FT}::_sgd_g1::0.0#0::-": (
+        "t = max(θ − θ0, −0.001): t = −0.001 fails 't > 0' as t = 0 does, and t only enters "
+        "where it is > 0"),
+    f"{_FT}::_sgd_g1::1.0#0::+": (
+        "a later 'dead' threshold, log(1 + 1.001/Λ): the x in between are left to the clamp, "
+        "which gives 0 there up to the rounding of 1 − Λ·expm1(x) (≤ 2e-16 in G1)"),
+    f"{_FT}::_sgd_g1::0.0#2::-": _G1_CLIP,
+    f"{_FT}::_sgd_g1::1.0#2::+": _G1_CLIP,
+    f"{_FT}::_sgd_channel::0.0#0::-": (
+        "the clamp at 0 never acts for the 100 tables: only blue-fabric, white-fabric2 and "
+        "white-paint have F < 0 (near cos θd = 1), and their ρd + specular is ≥ 0.024 over "
+        "2.6 M direction pairs about H (θh 0…89.9°, θd 0…30°, every φd); a clamp at −0.001 "
+        "returns the same values"),
+}
+
+#: Not formula constants: a guard's level ("a quotient at or above HUGE counts as infinite")
+#: and the sizes where a kernel switches between two ways of computing the same values.
+#: Moving one by 0.1% changes a result only for inputs in a band 0.1% wide at the level, where
+#: both sides are the documented behaviour, or by the ulps the two ways differ by (tests check
+#: those bounds, not the level).  Counted apart from the equivalent mutants.
+THRESHOLDS: dict[str, str] = {
+    f"{_MF}::<module>::1e300#0::+": _HUGE_LEVEL,
+    f"{_MF}::<module>::1e300#0::-": _HUGE_LEVEL,
+    f"{_MF}::ggx_g2_over_cos::0.25#1::+": _HUGE_LEVEL,
+    f"{_MF}::ggx_g2_over_cos::0.25#1::-": _HUGE_LEVEL,
+    f"{_MF}::vcavity_g_over_cos::1.0#1::+": _HUGE_LEVEL,
+    f"{_MF}::vcavity_g_over_cos::1.0#1::-": _HUGE_LEVEL,
+    f"{_MF}::vcavity_g_over_cos::1.0#2::+": _HUGE_LEVEL,
+    f"{_MF}::vcavity_g_over_cos::1.0#2::-": _HUGE_LEVEL,
+    f"{_PH}::<module>::64#0::+": _CROSSOVER,
+    f"{_PH}::<module>::64#0::-": _CROSSOVER,
+    f"{_PH}::<module>::256#0::+": _CROSSOVER,
+    f"{_PH}::<module>::256#0::-": _CROSSOVER,
+    f"{_FT}::<module>::1e-290#0::+": _SGD_LEVEL,
+    f"{_FT}::<module>::1e-290#0::-": _SGD_LEVEL,
+    f"{_FT}::fresnel_dielectric::0.0#1::+": (
+        "the fast branch for η² − 1 > 0 (no total reflection possible) against the general "
+        "one: for 0 < η² − 1 ≤ 0.001 the general branch computes the same expression, to the "
+        "bit (no mask acts there)"),
+    "tuibrdf/core/models/rgb.py::<module>::256#0::+": _CROSSOVER,
+    "tuibrdf/core/models/rgb.py::<module>::256#0::-": _CROSSOVER,
 }
 
 
@@ -231,6 +310,12 @@ def main(argv: list[str] | None = None) -> int:
     stages = [args.tests] if args.tests else STAGES
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(3))  # clean the temporary copies up
 
+    everything = [m for f in FILES for m in find_mutants(f, args.delta)]
+    stale = stale_keys(everything)
+    if stale:
+        print("these explained mutants no longer exist (the code changed; update the reasons):\n"
+              + "\n".join(f"  {k}" for k in stale), file=sys.stderr)
+        return 2
     mutants = [m for f in args.files for m in find_mutants(f, args.delta) if args.match in m.key]
     earlier: list[tuple[Mutant, str, str]] = []
     if args.rerun:
@@ -274,7 +359,8 @@ def main(argv: list[str] | None = None) -> int:
             finally:
                 free.append(d)
             status = "killed" if code != 0 else (
-                "equivalent" if m.key in EQUIVALENT else "SURVIVED")
+                "equivalent" if m.key in EQUIVALENT else
+                "threshold" if m.key in THRESHOLDS else "SURVIVED")
             return m, status, summary
 
         with ThreadPoolExecutor(max_workers=len(workers)) as pool:
@@ -298,21 +384,36 @@ def main(argv: list[str] | None = None) -> int:
 
 def summarize(results: list[tuple[Mutant, str, str]], note: str) -> list[Mutant]:
     """Print the equivalent and surviving mutants and the kill rate; return the survivors.
-    A mutant that was not killed counts as equivalent if :data:`EQUIVALENT` explains it."""
+    A mutant that was not killed counts as equivalent if :data:`EQUIVALENT` explains it, as a
+    threshold if :data:`THRESHOLDS` does."""
     killed = sum(s == "killed" for _, s, _ in results)
     equivalent = [(m, EQUIVALENT[m.key]) for m, s, _ in results
                   if s != "killed" and m.key in EQUIVALENT]
-    survived = [m for m, s, _ in results if s != "killed" and m.key not in EQUIVALENT]
+    thresholds = [(m, THRESHOLDS[m.key]) for m, s, _ in results
+                  if s != "killed" and m.key in THRESHOLDS]
+    survived = [m for m, s, _ in results
+                if s != "killed" and m.key not in EQUIVALENT and m.key not in THRESHOLDS]
     print()
     for m, why in equivalent:
         print(f"equivalent: {m.key}: {why}")
+    for m, why in thresholds:
+        print(f"threshold:  {m.key}: {why}")
     for m in survived:
         print(f"SURVIVED:   {m.path}:{m.line}  {m.literal} -> {m.replacement}  ({m.key})")
     n = len(results)
-    rate = killed / (n - len(equivalent)) if n > len(equivalent) else 1.0
+    rest = n - len(equivalent) - len(thresholds)
+    rate = killed / rest if rest else 1.0
     print(f"\n{n} mutants ({note}): {killed} killed, {len(equivalent)} equivalent, "
-          f"{len(survived)} survived; kill rate {100 * rate:.1f}% of non-equivalent mutants")
+          f"{len(thresholds)} thresholds, {len(survived)} survived; kill rate "
+          f"{100 * rate:.1f}% of the formula constants' mutants")
     return survived
+
+
+def stale_keys(mutants: list[Mutant]) -> list[str]:
+    """Keys of :data:`EQUIVALENT` and :data:`THRESHOLDS` that name no mutant of today's code
+    (the code moved: a reason may now sit on another literal)."""
+    keys = {m.key for m in mutants}
+    return [k for k in (*EQUIVALENT, *THRESHOLDS) if k not in keys]
 
 
 def report(path: Path, delta: float) -> int:

@@ -19,9 +19,12 @@ from numpy's ``pow`` and an independent Fresnel formula, never from the path und
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
+from tests import hiprec
 from tuibrdf.core import frame
 from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.frame import Geometry, incident
@@ -168,12 +171,41 @@ def textbook_fresnel(c: np.ndarray, eta: float) -> np.ndarray:
     return out
 
 
-@pytest.mark.parametrize("eta", [1.04, 1.5, 2.4, 100.0, 0.7])
+@pytest.mark.parametrize("eta", [1.04, 1.5, 2.4, 100.0, 0.7, 1.0])
 def test_fresnel_dielectric_matches_the_textbook_form(eta):
+    """η > 1 (the tables' η: the fast path), η < 1 (total reflection beyond the critical
+    angle), η = 1 (no interface: 0, but 1 at grazing incidence, the limit)."""
     c = np.concatenate([np.linspace(0.0, 1.0, 1001), [1e-300, 0.9999999999]])
     with kernel_errstate():
         got = fresnel_dielectric(c, eta)
     np.testing.assert_allclose(got, textbook_fresnel(c, eta), rtol=1e-12, atol=1e-15)
+
+
+def exact_fresnel(c: float, eta: float) -> float:
+    """The textbook form at 60 digits, at exactly the double ``c``."""
+    with hiprec.precise():
+        c, e = hiprec.D(c), hiprec.D(eta)
+        sin_t2 = (1 - c * c) / (e * e)
+        if sin_t2 >= 1:
+            return 1.0
+        ct = hiprec.sqrt(1 - sin_t2)
+        rs, rp = (c - e * ct) / (c + e * ct), (e * c - ct) / (e * c + ct)
+        return float((rs * rs + rp * rp) / 2)
+
+
+@pytest.mark.parametrize("eta", [0.7, 0.9999])
+def test_fresnel_dielectric_at_the_critical_angle(eta):
+    """η < 1 just past the critical angle (relative distance δ = 1e-6…1e-2), where F rises
+    to 1 with an infinite slope (F ≈ 1 − K√δ; 0.44…0.99 here): against a 60-digit evaluation,
+    within 1e-9 (the rounding of c and of η² − 1 times that slope: 3.5e-10 measured at
+    η = 0.9999, δ = 1e-6; float64's textbook form does no better), and 1 at and below it."""
+    cc = math.sqrt(1.0 - eta * eta)
+    c = cc * (1.0 + np.geomspace(1e-6, 1e-2, 41))
+    with kernel_errstate():
+        got = fresnel_dielectric(c, eta)
+        below = fresnel_dielectric(cc * np.array([1.0 - 1e-9, 0.5, 0.0]), eta)
+    np.testing.assert_allclose(got, [exact_fresnel(x, eta) for x in c], rtol=0, atol=1e-9)
+    assert np.all(below == 1.0)
 
 
 def test_safe_div_on_scalars_divides_only_where_asked():

@@ -235,13 +235,17 @@ def ref_sgd(r, wi, wo):
 GENERIC = [(10.0, 180.0, 20.0, 0.0), (35.0, 180.0, 45.0, 40.0), (60.0, 180.0, 75.0, 130.0),
            (25.0, 200.0, 30.0, 10.0), (50.0, 170.0, 52.0, 0.0), (70.0, 180.0, 65.0, -20.0),
            (15.0, 90.0, 80.0, 250.0), (45.0, 180.0, 10.0, 60.0), (80.0, 180.0, 78.0, 5.0)]
+#: and grazing ones: wi = wo 0.02° above the horizon (H = wi, cos θh = 3.5e-4), and a pair
+#: 0.5° above it on either side of the plane of incidence
+GRAZING = [(89.98, 180.0, 89.98, 180.0), (89.5, 150.0, 89.5, 20.0)]
 REF = {"abc": ref_abc, "sgd": ref_sgd}
 
 
 @pytest.mark.parametrize("model", ["abc", "sgd"])
 def test_every_material_equals_the_independent_evaluation(model):
-    wi = np.array([_dir(a, b) for a, b, _, _ in GENERIC])
-    wo = np.array([_dir(c, d) for _, _, c, d in GENERIC])
+    pairs = GENERIC + GRAZING
+    wi = np.array([_dir(a, b) for a, b, _, _ in pairs])
+    wo = np.array([_dir(c, d) for _, _, c, d in pairs])
     for name in material_names():
         got = tuibrdf.evaluate(model, {"material": name}, wi, wo)
         row = table(model).row(name)
@@ -310,6 +314,17 @@ def test_sgd_g1_by_hand_and_its_clamp():
         # exp(x) overflows; G1 is 0 (Λ > 0), no FloatingPointError
         g = sgd_g1(np.array(np.pi / 2), b["lambda"], b["c_g"], np.ones(3), b["theta0"])
         assert np.all(g == 0.0)
+
+
+@pytest.mark.parametrize("model", ["abc", "sgd"])
+def test_opposite_directions_on_the_horizon_leave_the_diffuse_term(model):
+    """wi = −wo on the horizon: H is undefined, the specular term is 0 there and the value
+    is the diffuse term, kd/π (abc) or ρd/π (sgd; ρd ≥ 0 in every table)."""
+    wi = np.array([math.cos(math.radians(200.0)), math.sin(math.radians(200.0)), 0.0])
+    for name in material_names():
+        row = table(model).row(name)
+        want = (row["kd"] if model == "abc" else row["rho_d"]) / math.pi
+        np.testing.assert_array_equal(tuibrdf.evaluate(model, {"material": name}, wi, -wi), want)
 
 
 def test_both_models_are_declared_reciprocal_rgb():

@@ -28,6 +28,7 @@ import tuibrdf
 from tests import hiprec
 from tuibrdf.core import fresnel as fresnel_mod
 from tuibrdf.core import microfacet
+from tuibrdf.core.models import MODELS
 
 RTOL = 1e-12
 PI = math.pi
@@ -216,7 +217,13 @@ def blinn_phong_ref(kd, ks, n, wi, wo) -> float:
     return kd / PI + ks * (n + 8.0) / (8.0 * PI) * max(0.0, nh) ** n
 
 
-@pytest.mark.parametrize("pair, n", [(NEAR_MIRROR, 20.0), (GRAZING_MIRROR, 57.0), (SAME, 4.5)])
+#: the mirror pair 0.5° and 0.01° above the horizon: |wi + wo| = 2 cos θ is small (0.017,
+#: 3.5e-4) but H is the normal exactly, the lobe's maximum
+GRAZING_MIRRORS = [(direction(t, 200.0), direction(t, 20.0)) for t in (89.5, 89.99)]
+
+
+@pytest.mark.parametrize("pair, n", [(NEAR_MIRROR, 20.0), (GRAZING_MIRROR, 57.0), (SAME, 4.5),
+                                     *((p, 20.0) for p in GRAZING_MIRRORS)])
 def test_blinn_phong(pair, n):
     params = {"kd": 0.19, "ks": 0.73, "n": n}
     assert_close(value("blinn-phong", params, *pair), blinn_phong_ref(0.19, 0.73, n, *pair))
@@ -640,6 +647,28 @@ def test_below_the_horizon_is_zero(model):
     below = (math.cos(1e-6) * math.cos(0.4), math.cos(1e-6) * math.sin(0.4), -math.sin(1e-6))
     for a, b in ((BACK[0], below), (below, BACK[0])):
         assert np.all(np.asarray(value(model, ANALYTIC[model], a, b)) == 0.0)
+
+
+@pytest.mark.parametrize("model", [name for name, m in MODELS.items()
+                                   if not any(p.kind == "path" for p in m.params)])
+def test_below_the_horizon_is_zero_in_a_batch(model):
+    """The same for 400 pairs at once (the kernels take other paths for large batches: the
+    RGB channels one by one, integer powers by squaring), with kd = 0 where the model has a
+    kd (no diffuse term to mask a specular fill): every pair with a direction below the
+    horizon is exactly 0, and at the defaults the others are not all 0."""
+    rng = np.random.default_rng(7)
+    w = rng.normal(size=(2, 400, 3))
+    w /= np.linalg.norm(w, axis=-1, keepdims=True)
+    w[0, :, 2] = np.abs(w[0, :, 2])
+    w[1, ::2, 2] = np.abs(w[1, ::2, 2])  # every other wo above the horizon
+    w[1, 1::2, 2] = -np.abs(w[1, 1::2, 2]) - 1e-9  # the others below
+    has_kd = any(p.name == "kd" for p in MODELS[model].params)
+    for params in ({}, {"kd": 0.0}) if has_kd else ({},):
+        for wi, wo in ((w[0], w[1]), (w[1], w[0])):
+            f = np.asarray(tuibrdf.evaluate(model, params, wi, wo))
+            below = (wi[:, 2] < 0) | (wo[:, 2] < 0)
+            assert np.all(f[below] == 0.0), (model, params)
+            assert params or np.any(f[~below] > 0.0), model
 
 
 @pytest.mark.parametrize("model, params, diffuse", [
