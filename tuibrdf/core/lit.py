@@ -97,16 +97,6 @@ def tangent_frames(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return t, np.cross(n, t)
 
 
-def to_local(w: np.ndarray, n: np.ndarray) -> np.ndarray:
-    """World direction(s) ``w`` in the local frame ``(T, B, N)`` of each normal ``n``
-    (:func:`tangent_frames`)."""
-    n = np.asarray(n, dtype=float)
-    t, b = tangent_frames(n)
-    w = np.asarray(w, dtype=float)
-    return np.stack([np.sum(w * t, axis=-1), np.sum(w * b, axis=-1), np.sum(w * n, axis=-1)],
-                    axis=-1)
-
-
 @lru_cache(maxsize=8)
 def _sphere(px_w: int, px_h: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(frames, inside, view)`` of a sphere picture, the same for every frame of a pane
