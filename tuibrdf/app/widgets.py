@@ -17,7 +17,7 @@ from textual.widget import Widget
 from textual.widgets import Static
 
 from ..core.params import _fmt
-from ..render.lines import BLANK, pane_lines, render_rows
+from ..render.lines import BLANK, fit_rows, pane_lines, render_rows
 from .state import Side, ViewerState
 
 
@@ -230,8 +230,9 @@ class StatusLine(Rows):
         self._text = text
         if width < 1:  # not laid out yet: drawn by on_resize
             return
-        h = len(self._rows(width))
-        lines = pane_lines(text, self.app.console, width, h)
+        rows = self._rows(width)
+        h = len(rows)
+        lines = fit_rows(rows, width, h)
         if h != self.size.height:  # a new height: laid out again, the rows drawn in the
             self._strips = [Strip(line, width) for line in lines]  # same paint
             self._lines = lines

@@ -61,11 +61,15 @@ def render_rows(part: RenderableType, console: Console, width: int) -> list[list
                                 style=BLANK, pad=True)
 
 
-def pane_lines(renderable: RenderableType, console: Console, width: int,
-               height: int) -> list[list[Segment]]:
-    """``height`` rows of ``width`` cells (cropped, or padded with blank rows), no segment
-    with a ``None`` style."""
-    rows = render_rows(renderable, console, width)[:height]
-    rows += [[Segment(" " * width, BLANK)] for _ in range(height - len(rows))]
+def fit_rows(rows: list[list[Segment]], width: int, height: int) -> list[list[Segment]]:
+    """``rows`` of ``width`` cells as ``height`` rows (cropped, or padded with blank rows), no
+    segment with a ``None`` style."""
+    rows = rows[:height] + [[Segment(" " * width, BLANK)] for _ in range(height - len(rows))]
     return [[s if s.style is not None else Segment(s.text, BLANK) for s in row]
             for row in rows]
+
+
+def pane_lines(renderable: RenderableType, console: Console, width: int,
+               height: int) -> list[list[Segment]]:
+    """``height`` rows of ``width`` cells of ``renderable`` (:func:`fit_rows`)."""
+    return fit_rows(render_rows(renderable, console, width), width, height)
