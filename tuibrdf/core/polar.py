@@ -331,16 +331,6 @@ class _Integrand:
         together, in batches of at most :data:`CHUNK` points (one call while they fit): the
         directions are made batch by batch, so memory stays bounded."""
         one = len(self.c.st) == 1
-        if len(groups) == 1 and groups[0][5].size <= CHUNK:  # the common case: one batch
-            case, cpsi, spsi, params, rmax, rho, d = groups[0]
-            self.count += np.bincount(case, minlength=len(self.count)) * rho.shape[1]
-            wo, w = directions(self.frame, self.c, case, cpsi, spsi, params, rmax, rho, d)
-            wo = wo.reshape(-1, 3)
-            wi = (np.broadcast_to(self.wi[0], wo.shape) if one
-                  else np.repeat(self.wi[case], rho.shape[1], axis=0))
-            fv = np.asarray(self.f(wi, wo), dtype=float)
-            fv = fv.reshape(w.shape + fv.shape[1:])
-            return [fv * (w if fv.ndim == 2 else w[..., None])]
         # pieces (group, first panel, last panel) of at most CHUNK points, packed into batches
         pieces, batches, size = [], [[]], 0
         for gi, grp in enumerate(groups):
