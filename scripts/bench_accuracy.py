@@ -268,7 +268,7 @@ def _run_counted(model, values, th, rtol):
     r = polar.integrate(f, hint.frame, polar.cases(st, ct, sp, cp), scale=hint.scale,
                         radial_breaks=hint.breaks, symmetric=hint.symmetric, rtol=rtol,
                         atol=q.ATOL, max_evals=min(q.MAX_EVALS, hint.max_evals or q.MAX_EVALS),
-                        azimuth_breaks=hint.azimuths)
+                        azimuth_breaks=hint.azimuths, horizon=hint.horizon)
     return r, int(r.evaluations[0]), calls[0]
 
 

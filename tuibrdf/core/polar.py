@@ -47,6 +47,11 @@ out to ρmax, so a lobe at the axis cannot fall between nodes, with the model's 
   (``END_LEVELS`` pieces of ratio 4 after a half): at grazing incidence the integrand is nearly
   singular just beyond such ends (a pole at a distance ~cos θi: GGX's Λ(θo), Oren-Nayar's
   tan((θi + θo)/2)), and halving reached it one round (one kernel call) per halving;
+- a model that knows where its integrand has a pole just beyond the horizon (``horizon``: the
+  Smith GGX masking at grazing incidence, a step of width ~cos θi at the horizon) has the last
+  radial panel of the nodes where this rule's own estimate of that pole's term would exceed
+  ``HORIZON_SHARE·rtol`` cut that way in the first round (:func:`_horizon_cut`), one kernel
+  call before the refinement would;
 - inner panels that start narrower than ``SMALL_PANEL`` lobe widths (the far side at grazing
   incidence, gaps between close kinks) use the K7/G3 pair: 7 evaluations for 15;
 - the inner errors enter the albedo's error weighted by the outer weights, so an incidence's
@@ -428,7 +433,7 @@ def _initial_panels(edges: list[tuple[np.ndarray, np.ndarray]], rmax: np.ndarray
 def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
            edges: Callable[..., list[np.ndarray]], tol: np.ndarray | None,
            rtol: float, atol: float, budget: np.ndarray, span: float = 2.0 * np.pi,
-           small_width: float = 0.0):
+           small_width: float = 0.0, horizon: Callable[..., tuple] | None = None):
     """Inner integrals ``∫₀^ρmax g dρ`` for the outer nodes ``ψⱼ`` (incidence ``case[j]``,
     outer weight ``wpsi[j]``): ``(value, error, tol)``.
 
@@ -440,16 +445,24 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
     spent incidence is not refined further.  Every panel stays in the pool with its value and
     error (K15/G7, or K7/G3 for panels narrower than ``small_width``); each round cuts
     (:func:`_divide`), per incidence still above its allowance, the panels whose weighted
-    error is above the allowance divided by its number of panels (at least the worst one)."""
+    error is above the allowance divided by its number of panels (at least the worst one).
+    ``horizon``: :func:`integrate`'s, for :func:`_horizon_cut`."""
     n, ncase = len(case), len(budget)
     cpsi, spsi = np.cos(psi), np.sin(psi)
     rmax, params = _rho_max(fn.frame, fn.c, case, cpsi)
     new_lo, new_hi, new_node, new_end = _initial_panels(edges(case, cpsi, rmax), rmax)
     if len(new_lo) == 0:  # every node has ρmax = 0 (the far side at θi = 90°)
         return np.zeros(n), np.zeros(n), tol if tol is not None else np.full(ncase, atol)
+    graded = np.zeros(len(new_lo), dtype=bool)
+    if horizon is not None:
+        eps, amp = horizon(fn.c.st[case], fn.c.ct[case], cpsi, rmax)
+        new_lo, new_hi, new_node, new_end, graded = _horizon_cut(
+            new_lo, new_hi, new_node, new_end, rmax, eps, amp, rtol)
     # panels that start narrower than small_width (and their children) use K7, when there
-    # are enough of them to pay for a second group (its directions and rule: ~0.1 ms)
-    new_small = new_hi - new_lo < small_width
+    # are enough of them to pay for a second group (its directions and rule: ~0.1 ms); not
+    # the pieces next to the horizon of a horizon grading (narrow because the integrand is
+    # not polynomial there)
+    new_small = (new_hi - new_lo < small_width) & ~graded
     if np.count_nonzero(new_small) < SMALL_MIN_COUNT:
         new_small[:] = False
     lo = hi = node = end = small = k_all = e_all = None
@@ -507,6 +520,73 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
     return _sum_by(node, k_all, n), _sum_by(node, e_all, n), tol
 
 
+#: Horizon grading (``integrate(horizon=...)``): in the first round, the last radial panel of
+#: a node is cut graded toward ρmax where the model's pole beyond the horizon would leave it
+#: an error estimate above HORIZON_SHARE·rtol of the node's inner integral: a half, then
+#: pieces of ratio 4, down to a last piece of about HORIZON_LAST times the pole's distance
+#: (at most HORIZON_LEVELS cuts: END_LEVELS, the later rounds' graded cut).
+HORIZON_SHARE = 0.1
+HORIZON_LAST = 8.0
+HORIZON_LEVELS = 3
+
+
+def _pole_estimate(delta):
+    """``|K15 − G7|`` of ``δ/(t + δ)`` over ``t ∈ [0, 1]`` (a pole δ beyond the end of the
+    panel, relative to its width), for a float or an array of δ > 0."""
+    d = np.asarray(delta, dtype=float)[..., None]
+    return np.abs((d / (0.5 * (1.0 - X15) + d)) @ (WK15 - WG15)) * 0.5
+
+
+def _horizon_cut(lo: np.ndarray, hi: np.ndarray, node: np.ndarray, end: np.ndarray,
+                 rmax: np.ndarray, eps: np.ndarray, amp: float, rtol: float):
+    """The first round's panels ``(lo, hi, node, end)`` with the last panel of some nodes cut
+    graded toward ρmax, and a flag for the pieces of the graded half (never on K7).
+
+    The model says (``integrate(horizon=...)``) that near the horizon its integrand, relative
+    to the node's inner integral I, is ``amp·(smooth − eps/(d + eps))`` (d = ρmax − ρ): a
+    pole ``eps`` beyond the horizon (``eps`` per node, inf: none).  This rule's
+    own error estimate (|K15 − G7|) of that term on the panel ``[lo, ρmax]`` is computed
+    here, from its 15 values (no model evaluation); where it is above ``HORIZON_SHARE·rtol``
+    the panel is cut at ``ρmax − w/2, ρmax − w/8, …`` (w its width), as the later rounds
+    would cut it (:func:`_divide`) one kernel call later."""
+    flag = np.zeros(len(lo), dtype=bool)
+    # quick exit (most incidences): the estimate is amp·w·B(eps/w), B(δ) = |K15 − G7| of
+    # δ/((1 − x)/2 + δ) over 2, largest (2.6e-3) near δ = 5e-3 and decreasing beyond 1e-2;
+    # w ≤ ρmax
+    wmax, emin = float(rmax.max()), float(eps.min())
+    if not (amp > 0.0 and wmax > 0.0 and emin < np.inf):  # no pole, or no domain
+        return lo, hi, node, end, flag
+    if emin > 1e-2 * wmax and amp * wmax * _pole_estimate(emin / wmax) <= HORIZON_SHARE * rtol:
+        return lo, hi, node, end, flag
+    last = np.flatnonzero(hi >= rmax[node])
+    e, w = eps[node[last]], hi[last] - lo[last]
+    ok = (e > 0.0) & np.isfinite(e) & (w > 0.0)
+    last, e, w = last[ok], e[ok], w[ok]
+    # the pole term at the K15 nodes of [lo, ρmax]: d = (w/2)(1 − x) ≥ 0, eps > 0
+    est = amp * w * _pole_estimate(e / w)
+    on = est > HORIZON_SHARE * rtol
+    if not on.any():
+        return lo, hi, node, end, flag
+    last, e, w = last[on], e[on], w[on]
+    # cuts: the last piece w/2·4^-(k-1) down to about HORIZON_LAST·eps (w > 2·HORIZON_LAST·eps
+    # wherever the estimate is above the threshold in practice; at least one cut anyway)
+    k = np.ceil(np.log(np.maximum(w / (2.0 * HORIZON_LAST * e), 1.0)) / np.log(4.0)) + 1
+    k = np.minimum(k, HORIZON_LEVELS).astype(int)
+    parts = k + 1
+    i = np.arange(parts.sum()) - np.repeat(np.cumsum(parts) - parts, parts)
+    b, ww = np.repeat(hi[last], parts), np.repeat(w, parts)
+    # piece i ends at b − w/2·4^-i (the last at b exactly) and starts where piece i−1 ends
+    right = np.where(i == np.repeat(k, parts), b, b - ww * 0.5 * 0.25 ** i)
+    left = np.where(i == 0, np.repeat(lo[last], parts), b - ww * 0.5 * 0.25 ** (i - 1.0))
+    keep = np.ones(len(lo), dtype=bool)
+    keep[last] = False
+    new_end = i == np.repeat(k, parts)  # the piece at ρmax
+    return (np.concatenate([lo[keep], left]), np.concatenate([hi[keep], right]),
+            np.concatenate([node[keep], np.repeat(node[last], parts)]),
+            np.concatenate([end[keep], new_end]),
+            np.concatenate([flag[keep], i > 0]))
+
+
 def _outer_breaks(frame: str, c: Cases, symmetric: bool,
                   azimuth_breaks: Callable[[float, float], list[float]] | None = None):
     """Initial ψ panels ``(lo, hi, case)``: breakpoints at 0, ±π/2, ±π, ``±azimuth_breaks(sin
@@ -536,8 +616,8 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
               scale: float, radial_breaks: Callable[..., list[np.ndarray]] | None = None,
               symmetric: bool = False, rtol: float = 1e-6, atol: float = 1e-13,
               max_evals: int = 400_000,
-              azimuth_breaks: Callable[[float, float], list[float]] | None = None
-              ) -> PolarResult:
+              azimuth_breaks: Callable[[float, float], list[float]] | None = None,
+              horizon: Callable[..., tuple] | None = None) -> PolarResult:
     """``∫ f(wi, wo) cos θo dωo`` for every incidence of ``c`` (see the module docstring).
 
     ``f(wi (n, 3), wo (n, 3))`` returns ``(n,)`` or ``(n, k)``.  ``scale`` is the lobe's
@@ -546,6 +626,9 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
     outer nodes (arrays ``(j,)`` each; values outside ``(0, ρmax)`` are ignored), or None.
     ``symmetric``: the integrand is even in ψ (an isotropic model: mirror symmetry about the
     plane of incidence); only ψ ∈ [0, π] is integrated, and doubled.
+    ``horizon(st, ct, cpsi, rmax) → (eps, amp)`` per outer node, or None: the integrand has a
+    pole ``eps`` (radians of ρ) beyond the horizon, of amplitude ``amp`` relative to the
+    node's inner integral (:func:`_horizon_cut`): the first round grades toward it.
     Stops when the error estimate is ≤ ``rtol·|a| + atol`` or once ``max_evals`` evaluations
     per incidence are spent (then the error says how far it got)."""
     if frame not in FRAMES:
@@ -597,7 +680,8 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
         case = np.repeat(new_pc, 15)
         wpsi = (half[:, None] * WK15).ravel()
         iv, ie, tol = _inner(fn, case, psi, wpsi, edges, tol, rtol, atol, budget,
-                             np.pi if symmetric else 2.0 * np.pi, SMALL_PANEL * scale)
+                             np.pi if symmetric else 2.0 * np.pi, SMALL_PANEL * scale,
+                             horizon)
         k, e = _rule(iv.reshape(len(new_lo), 15, *iv.shape[1:]), half)
         # the inner errors, integrated with the outer weights
         e = e + _sum_by(np.repeat(np.arange(len(new_lo)), 15), _times(wpsi, ie), len(new_lo))
