@@ -551,8 +551,8 @@ def _horizon_cut(lo: np.ndarray, hi: np.ndarray, node: np.ndarray, end: np.ndarr
     would cut it (:func:`_divide`) one kernel call later."""
     flag = np.zeros(len(lo), dtype=bool)
     # quick exit (most incidences): the estimate is amp·w·B(eps/w), B(δ) = |K15 − G7| of
-    # δ/((1 − x)/2 + δ) over 2, largest (2.6e-3) near δ = 5e-3 and decreasing beyond 1e-2;
-    # w ≤ ρmax
+    # δ/((1 − x)/2 + δ) over 2, at most 2.9e-3 (near δ = 6e-3), decreasing beyond 1e-2
+    # (rounding, ≤ 1e-13, beyond 2: tests/test_polar.py); w ≤ ρmax
     wmax, emin = float(rmax.max()), float(eps.min())
     if not (amp > 0.0 and wmax > 0.0 and emin < np.inf):  # no pole, or no domain
         return lo, hi, node, end, flag
