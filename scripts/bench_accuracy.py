@@ -3,6 +3,8 @@
     PYTHONPATH=. python scripts/bench_accuracy.py                 # ~2-3 minutes
     PYTHONPATH=. python scripts/bench_accuracy.py --before REV    # and the code of git REV
     (--before may be repeated; --quick: the albedo tables only)
+    PYTHONPATH=. python scripts/bench_accuracy.py --interleave REV  # default albedos only,
+    timed here and in REV in alternating processes, with evaluations and kernel calls
 
 For every model's defaults and for the hard cases (sharp lobes down to α = m = 0.001,
 n = 10⁴, roughness 0) at θi from 0° to 90°, it prints the default albedo
@@ -245,6 +247,8 @@ ABLATIONS = [
     ("INNER_SHARE 0.5", {"INNER_SHARE": 0.5}),
     ("radial grading ratio 3 (GRADING 3)", {"GRADING": 3.0}),
     ("outer grading ratio 16 (OUTER_GRADING 16)", {"OUTER_GRADING": 16.0}),
+    ("no horizon grading (HORIZON_SHARE inf)", {"HORIZON_SHARE": np.inf}),
+    ("horizon grading at 0.03 rtol (HORIZON_SHARE)", {"HORIZON_SHARE": 0.03}),
     ("rtol 1e-6", {"rtol": 1e-6}),
     ("rtol 3e-5", {"rtol": 3e-5}),
     ("rtol 1e-4", {"rtol": 1e-4}),
@@ -399,6 +403,81 @@ print(json.dumps(out))
 """
 
 
+TIMING_CHILD = r"""
+import json, sys, time
+import numpy as np
+from tuibrdf.core import quadrature as q
+from tuibrdf.core.models import get_model
+cases, repeat = json.loads(sys.stdin.read())
+count = [0, 0]
+plain = q.evaluate_resolved
+
+
+def counted(model, values, wi, wo):
+    count[0] += 1
+    count[1] += len(wo)
+    return plain(model, values, wi, wo)
+
+
+out = []
+for name, params, th in cases:
+    m = get_model(name)
+    v = m.resolve(params)
+    q.evaluate_resolved = counted
+    count[:] = [0, 0]
+    q.albedo_estimate_resolved(m, v, th)
+    calls, evals = count
+    q.evaluate_resolved = plain
+    best = float("inf")
+    for _ in range(repeat):
+        t = time.perf_counter(); q.albedo_estimate_resolved(m, v, th)
+        best = min(best, time.perf_counter() - t)
+    out.append([evals, calls, best])
+print(json.dumps(out))
+"""
+
+
+def interleaved_table(rev, rounds=6, repeat=5):
+    """The 80 default analytic albedos timed in this tree and in revision REV's, in
+    alternating subprocesses (``rounds`` each, best of ``repeat`` per round, best over the
+    rounds: both trees see the same load), with each one's evaluations and kernel calls
+    (counted in the child by wrapping the evaluation: the same on every machine)."""
+    cases = [(n, p, th) for n, p in DEFAULTS for th in THETAS if n not in FITTED]
+    payload = json.dumps([cases, repeat])
+    best = {"now": None, rev: None}
+    with tempfile.TemporaryDirectory() as d:
+        extract(rev, d)
+        here = str(Path(__file__).resolve().parent.parent)
+        for _ in range(rounds):
+            for label, path in (("now", here), (rev, d)):
+                env = dict(os.environ, PYTHONPATH=path)
+                res = subprocess.run([sys.executable, "-c", TIMING_CHILD], input=payload,
+                                     capture_output=True, text=True, check=True, env=env,
+                                     cwd=path)
+                got = json.loads(res.stdout)
+                best[label] = got if best[label] is None else [
+                    [a[0], a[1], min(a[2], b[2])] for a, b in zip(best[label], got,
+                                                                   strict=True)]
+    print(f"\nDefault albedos of the analytic models, interleaved with {rev} ({rounds} "
+          f"alternating rounds, best of {repeat} each)")
+    print(f"{'model':<18} {'θi':>5} {'evals':>7} {'calls':>5} {'ms':>6} | {'evals':>7} "
+          f"{'calls':>5} {'ms':>6}   (before | now)")
+    for (name, _, th), b, a in zip(cases, best[rev], best["now"], strict=True):
+        mark = "  *" if (a[0], a[1]) != (b[0], b[1]) else ""
+        print(f"{name:<18} {th:5.1f} {b[0]:7d} {b[1]:5d} {b[2] * 1e3:6.2f} | {a[0]:7d} "
+              f"{a[1]:5d} {a[2] * 1e3:6.2f}{mark}")
+    for label in (rev, "now"):
+        r = best[label]
+        t = np.array([x[2] for x in r]) * 1e3
+        slow = [f"{c[0]} {c[2]:g}° {x[2] * 1e3:.2f} ms" for c, x in zip(cases, r, strict=True)
+                if x[2] > 2e-3]
+        print(f"{label}: ≤ 2 ms in {int((t <= 2.0).sum())} of {len(t)}, median "
+              f"{np.median(t):.2f} ms, max {t.max():.2f} ms; evaluations {sum(x[0] for x in r)}, "
+              f"kernel calls {sum(x[1] for x in r)} (albedos needing more than one: "
+              f"{sum(x[1] > 1 for x in r)})" + (f"; above 2 ms: {', '.join(slow)}" if slow else ""))
+    print("(*: evaluations or calls changed)")
+
+
 def before_table(rev, refs, after_rows):
     cases = [(n, p, th) for (n, p, th) in _case_list()]
     with tempfile.TemporaryDirectory() as d:
@@ -446,7 +525,13 @@ def main(argv=None) -> int:
     ap.add_argument("--before", metavar="REV", action="append", default=[],
                     help="also run the albedo of git revision REV (may be repeated)")
     ap.add_argument("--quick", action="store_true", help="albedo tables only")
+    ap.add_argument("--interleave", metavar="REV",
+                    help="only time the 80 default analytic albedos here and in REV, "
+                         "alternating (evaluations, calls, times)")
     args = ap.parse_args(argv)
+    if args.interleave:
+        interleaved_table(args.interleave)
+        return 0
     t0 = time.perf_counter()
     print(f"defaults: DEFAULT_RTOL = {q.DEFAULT_RTOL:g}, MAX_EVALS = {q.MAX_EVALS}")
     refs: dict = {}

@@ -525,16 +525,21 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
 #: an error estimate above HORIZON_SHARE·rtol of the node's inner integral: a half, then
 #: pieces of ratio 4, down to a last piece of about HORIZON_LAST times the pole's distance
 #: (at most HORIZON_LEVELS cuts: END_LEVELS, the later rounds' graded cut).
-HORIZON_SHARE = 0.1
+HORIZON_SHARE = 0.3
 HORIZON_LAST = 8.0
 HORIZON_LEVELS = 3
+
+
+_HALF_1MX = 0.5 * (1.0 - X15)  # t of the K15 nodes on [0, 1], from the far end
+_WK_WG = WK15 - WG15
 
 
 def _pole_estimate(delta):
     """``|K15 − G7|`` of ``δ/(t + δ)`` over ``t ∈ [0, 1]`` (a pole δ beyond the end of the
     panel, relative to its width), for a float or an array of δ > 0."""
     d = np.asarray(delta, dtype=float)[..., None]
-    return np.abs((d / (0.5 * (1.0 - X15) + d)) @ (WK15 - WG15)) * 0.5
+    # einsum, not @: no BLAS call (and no hand-off to its threads) in the quadrature
+    return np.abs(np.einsum("...n,n->...", d / (_HALF_1MX + d), _WK_WG)) * 0.5
 
 
 def _horizon_cut(lo: np.ndarray, hi: np.ndarray, node: np.ndarray, end: np.ndarray,
@@ -559,32 +564,37 @@ def _horizon_cut(lo: np.ndarray, hi: np.ndarray, node: np.ndarray, end: np.ndarr
     if emin > 1e-2 * wmax and amp * wmax * _pole_estimate(emin / wmax) <= HORIZON_SHARE * rtol:
         return lo, hi, node, end, flag
     last = np.flatnonzero(hi >= rmax[node])
-    e, w = eps[node[last]], hi[last] - lo[last]
-    ok = (e > 0.0) & np.isfinite(e) & (w > 0.0)
-    last, e, w = last[ok], e[ok], w[ok]
-    # the pole term at the K15 nodes of [lo, ρmax]: d = (w/2)(1 − x) ≥ 0, eps > 0
-    est = amp * w * _pole_estimate(e / w)
+    w = hi[last] - lo[last]  # > 0 (a panel)
+    # δ capped at 1e3 (B = 0 to rounding there; eps may be inf: no pole)
+    est = (amp * w) * _pole_estimate(np.minimum(eps[node[last]] / w, 1e3))
     on = est > HORIZON_SHARE * rtol
     if not on.any():
         return lo, hi, node, end, flag
-    last, e, w = last[on], e[on], w[on]
-    # cuts: the last piece w/2·4^-(k-1) down to about HORIZON_LAST·eps (w > 2·HORIZON_LAST·eps
-    # wherever the estimate is above the threshold in practice; at least one cut anyway)
-    k = np.ceil(np.log(np.maximum(w / (2.0 * HORIZON_LAST * e), 1.0)) / np.log(4.0)) + 1
-    k = np.minimum(k, HORIZON_LEVELS).astype(int)
-    parts = k + 1
-    i = np.arange(parts.sum()) - np.repeat(np.cumsum(parts) - parts, parts)
-    b, ww = np.repeat(hi[last], parts), np.repeat(w, parts)
-    # piece i ends at b − w/2·4^-i (the last at b exactly) and starts where piece i−1 ends
-    right = np.where(i == np.repeat(k, parts), b, b - ww * 0.5 * 0.25 ** i)
-    left = np.where(i == 0, np.repeat(lo[last], parts), b - ww * 0.5 * 0.25 ** (i - 1.0))
-    keep = np.ones(len(lo), dtype=bool)
-    keep[last] = False
-    new_end = i == np.repeat(k, parts)  # the piece at ρmax
-    return (np.concatenate([lo[keep], left]), np.concatenate([hi[keep], right]),
-            np.concatenate([node[keep], np.repeat(node[last], parts)]),
-            np.concatenate([end[keep], new_end]),
-            np.concatenate([flag[keep], i > 0]))
+    last, w = last[on], w[on]
+    e, b = eps[node[last]], hi[last]
+    # cuts: the last piece w/2·4^-(k-1) down to about HORIZON_LAST·eps (at least one cut)
+    k = np.ceil(np.log(np.maximum(w / (2.0 * HORIZON_LAST * e), 1.0)) * (1.0 / np.log(4.0)))
+    k = np.minimum(k + 1.0, HORIZON_LEVELS)
+    # the panel becomes [lo, b − w/2]; pieces j = 1…k are [b − w/2·4^-(j-1), b − w/2·4^-j],
+    # the last one ending at b exactly
+    cuts = b[:, None] - w[:, None] * _CUT_AT  # (p, HORIZON_LEVELS): b − w/2, b − w/8, …
+    ends = np.where(_CUT_J < k[:, None], cuts, b[:, None])
+    more = _CUT_J < k[:, None]  # piece j + 1 exists
+    hi, end = hi.copy(), end.copy()
+    hi[last] = cuts[:, 0]
+    end[last] = False
+    starts = cuts[more]
+    stops = np.concatenate([ends[:, 1:], b[:, None]], axis=1)[more]
+    owner = np.repeat(node[last], more.sum(axis=1))
+    at_end = stops == np.repeat(b, more.sum(axis=1))
+    return (np.concatenate([lo, starts]), np.concatenate([hi, stops]),
+            np.concatenate([node, owner]), np.concatenate([end, at_end]),
+            np.concatenate([flag, np.ones(len(starts), dtype=bool)]))
+
+
+#: ``w·_CUT_AT[j]`` from the end: the horizon grading's cuts (a half, then ratio 4)
+_CUT_AT = 0.5 * 0.25 ** np.arange(HORIZON_LEVELS)
+_CUT_J = np.arange(HORIZON_LEVELS)
 
 
 def _outer_breaks(frame: str, c: Cases, symmetric: bool,
