@@ -555,14 +555,17 @@ def test_horizon_cut_layout():
     # node 0: panels [0, 0.2], [0.2, 0.8], [0.8, 1.5] (ρmax = 1.5), a pole 1e-3 beyond it with
     # amplitude 0.04: the last panel is cut at ρmax − w/2, − w/8, − w/32 (three cuts: w/32 =
     # 0.022 is still above 8·eps, HORIZON_LEVELS caps it) and the pieces tile it exactly;
-    # node 1: the same but the pole 1 rad away: untouched
+    # node 1: the same but the pole 1 rad away: untouched (both nodes of one incidence, of
+    # equal outer weight)
     lo = np.array([0.0, 0.2, 0.8, 0.0, 0.2, 0.8])
     hi = np.array([0.2, 0.8, 1.5, 0.2, 0.8, 1.5])
     node = np.array([0, 0, 0, 1, 1, 1])
     end = np.array([False, False, True, False, False, True])
     rmax = np.array([1.5, 1.5])
     eps = np.array([1e-3, 1.0])
-    a, b, nd, e, flag = polar._horizon_cut(lo, hi, node, end, rmax, eps, 0.04, 1e-5)
+    case, wpsi = np.array([0, 0]), np.array([1.0, 1.0])
+    a, b, nd, e, flag = polar._horizon_cut(lo, hi, node, end, rmax, eps, 0.04, 1e-5, case,
+                                           wpsi)
     mine = nd == 0
     order = np.argsort(a[mine])
     a0, b0, e0, f0 = a[mine][order], b[mine][order], e[mine][order], flag[mine][order]
@@ -579,9 +582,22 @@ def test_horizon_cut_layout():
     assert not flag[other].any()
     # amplitude 0, or a tolerance the estimate is below: nothing is cut
     for amp, rtol in ((0.0, 1e-5), (0.04, 1.0)):
-        out = polar._horizon_cut(lo, hi, node, end, rmax, eps, amp, rtol)
+        out = polar._horizon_cut(lo, hi, node, end, rmax, eps, amp, rtol, case, wpsi)
         np.testing.assert_array_equal(out[0], lo)
         assert not out[4].any()
+    # the pole term's estimate on node 0's last panel, written here: amp·w·|K15 − G7| of
+    # eps/(d + eps); the incidence's weighted mean of it is that over 2 (node 1: ~0)
+    t = 0.35 * (1.0 - polar.X15)
+    est = 0.04 * 0.35 * abs(np.sum((polar.WK15 - polar.WG15) * 1e-3 / (t + 1e-3)))
+    assert est > polar.HORIZON_SHARE * 1e-5
+    # node 0's weight so small that the incidence's mean is below HORIZON_GATE·rtol: no cut
+    small = np.array([1.0, 2.0 * est / (polar.HORIZON_GATE * 1e-5)])
+    out = polar._horizon_cut(lo, hi, node, end, rmax, eps, 0.04, 1e-5, case, small)
+    np.testing.assert_array_equal(out[0], lo)
+    # an incidence of its own for node 1, weight 0 (no node there): node 0 is cut alone
+    out = polar._horizon_cut(lo, hi, node, end, rmax, eps, 0.04, 1e-5, np.array([0, 1]),
+                             np.array([1.0, 0.0]))
+    assert len(out[0]) == len(lo) + 3
 
 
 def _counted(name, params, theta, horizon=True):
