@@ -552,6 +552,14 @@ def _pole_estimate(delta):
     return np.abs(np.einsum("...n,n->...", d / (_HALF_1MX + d), _WK_WG)) * 0.5
 
 
+def _pole_estimate_1(delta: float) -> float:
+    """:func:`_pole_estimate` of one δ, in plain floats (cheaper for one value)."""
+    return abs(sum(w * delta / (t + delta) for t, w in _T_WKG)) * 0.5
+
+
+_T_WKG = tuple(zip(_HALF_1MX.tolist(), _WK_WG.tolist(), strict=True))
+
+
 def _horizon_cut(lo: np.ndarray, hi: np.ndarray, node: np.ndarray, end: np.ndarray,
                  rmax: np.ndarray, eps: np.ndarray, amp: float, rtol: float,
                  case: np.ndarray, wpsi: np.ndarray):
@@ -567,25 +575,31 @@ def _horizon_cut(lo: np.ndarray, hi: np.ndarray, node: np.ndarray, end: np.ndarr
     incidences) above ``HORIZON_GATE·rtol``, the panel is cut at ``ρmax − w/2, ρmax − w/8,
     …`` (w its width), as the later rounds would cut it (:func:`_divide`) one call later."""
     flag = np.zeros(len(lo), dtype=bool)
-    # quick exit (most incidences): the estimate is amp·w·B(eps/w), B(δ) = |K15 − G7| of
-    # δ/((1 − x)/2 + δ) over 2, at most 2.9e-3 (near δ = 6e-3), decreasing beyond 1e-2
-    # (rounding, ≤ 1e-13, beyond 2: tests/test_polar.py); w ≤ ρmax
-    wmax, emin = float(rmax.max()), float(eps.min())
-    if not (amp > 0.0 and wmax > 0.0 and emin < np.inf):  # no pole, or no domain
-        return lo, hi, node, end, flag
-    if emin > 1e-2 * wmax and amp * wmax * _pole_estimate(emin / wmax) <= HORIZON_SHARE * rtol:
+    emin = float(eps.min())
+    if not (amp > 0.0 and emin < np.inf):  # no pole
         return lo, hi, node, end, flag
     last = np.flatnonzero(hi >= rmax[node])
     w = hi[last] - lo[last]  # > 0 (a panel)
+    # quick exit (most incidences): the estimate is amp·w·B(eps/w), B(δ) = |K15 − G7| of
+    # δ/((1 − x)/2 + δ) over 2, at most 2.9e-3 (near δ = 6e-3), decreasing beyond 1e-2
+    # (rounding, ≤ 1e-13, beyond 2: tests/test_polar.py): below amp·wmax·B(emin/wmax)
+    wmax = float(w.max())
+    if emin > 1e-2 * wmax and amp * wmax * _pole_estimate_1(emin / wmax) <= HORIZON_SHARE * rtol:
+        return lo, hi, node, end, flag
+    nl = node[last]
     # δ capped at 1e3 (B = 0 to rounding there; eps may be inf: no pole)
-    est = (amp * w) * _pole_estimate(np.minimum(eps[node[last]] / w, 1e3))
+    est = (amp * w) * _pole_estimate(np.minimum(eps[nl] / w, 1e3))
     # per node, and per incidence: the estimates' mean weighted by the outer weights (the
     # refinement cuts only where the incidence's weighted total is over its allowance)
-    nl = node[last]
-    nc = int(case.max()) + 1
-    mean = _ratio_or_0(np.bincount(case[nl], weights=wpsi[nl] * est, minlength=nc),
-                       np.bincount(case, weights=wpsi, minlength=nc))
-    on = (est > HORIZON_SHARE * rtol) & (mean > HORIZON_GATE * rtol)[case[nl]]
+    wl = wpsi[nl] * est
+    if np.all(case == case[0]):  # one incidence (a single albedo)
+        mean_ok = np.full(len(nl), wl.sum() > HORIZON_GATE * rtol * wpsi.sum())
+    else:
+        nc = int(case.max()) + 1
+        mean = _ratio_or_0(np.bincount(case[nl], weights=wl, minlength=nc),
+                           np.bincount(case, weights=wpsi, minlength=nc))
+        mean_ok = (mean > HORIZON_GATE * rtol)[case[nl]]
+    on = (est > HORIZON_SHARE * rtol) & mean_ok
     if not on.any():
         return lo, hi, node, end, flag
     last, w = last[on], w[on]

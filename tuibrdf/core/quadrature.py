@@ -158,6 +158,8 @@ def _smith_ggx_horizon(alpha: float):
     def horizon(st, ct, cpsi, rmax):
         r = np.hypot(st * cpsi, ct)
         # r ≥ cos θi > 0 where ct > 0; at θi = 90° (ct = 0) no pole: inf
+        if ct.min() > 0.0:
+            return 0.5 * ct / r, amp
         return np.divide(0.5 * ct, r, out=np.full(len(r), np.inf), where=ct > 0.0), amp
 
     return horizon
