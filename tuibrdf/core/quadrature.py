@@ -45,8 +45,9 @@ DEFAULT_TOL = 1e-5
 #: Relative tolerance of the default albedo, per channel: its error estimate is at most this
 #: (or the evaluation budget ran out, and the estimate says so).  The estimate (|K − G|
 #: summed) is pessimistic: measured errors are ≤ 2.2e-8 at every model's defaults and
-#: ≤ 3.4e-7 on the hard cases (docs/accuracy.md).  1e-6 costs 28 % more evaluations for
-#: errors already below 1e-7; 1e-4 lets gltf at 89.9° reach 2.8e-6 (above the 1e-6 target).
+#: ≤ 3.4e-7 on the hard cases (docs/accuracy.md).  1e-6 costs 25 % more evaluations for
+#: errors already below 1e-7; 1e-4 saves 4 % for errors up to 4.3e-7 (2.8e-6 before the
+#: horizon grading): too close to the 1e-6 target.
 DEFAULT_RTOL = 1e-5
 #: Absolute floor of the tolerance (an albedo of 0 needs no relative accuracy).
 ATOL = 1e-13
