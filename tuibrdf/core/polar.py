@@ -682,6 +682,8 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
         # tangent to ψ = ±π/2, instead of a near-step of ρmax(ψ) at ψ = ±π/2)
         rho0 = 0.5 * np.arctan2(c.ct, c.st)
         c = Cases(c.st, c.ct, c.u, c.v, np.where(rho0 < TILT_WITHIN * scale, rho0, 0.0))
+    if c.tilt is not None and np.any(c.tilt):
+        horizon = None  # its eps is measured in the untilted half frame
     if symmetric:
         # isotropic: f is unchanged by a rotation about N, so every incidence is turned to
         # φi = 0 (wo's components along u and v are then its x and y)
