@@ -63,7 +63,6 @@ from ..materials import material_aliases, material_names, table
 from ..microfacet import HUGE, vcavity_g_over_cos
 from ..numerics import kernel_errstate, safe_div, safe_sqrt
 from ..params import Model, Param
-from .rgb import rgb
 
 DEFAULT_MATERIAL = "gold-metallic-paint"
 #: ``ci·co`` below this is treated as 0 in sgd's 1/(cos θi cos θo): the numerator is ≤ ~1e6,
@@ -120,22 +119,56 @@ def fresnel_dielectric(cos_d: np.ndarray, eta: float) -> np.ndarray:
     return np.where(tir, 1.0, 0.5 * a * (1.0 + b))
 
 
+class _Abc:
+    """One material's ABC parameters: kd and 4A as ``(3, 1)`` columns (the channels are rows
+    of ``(3, M)`` arrays), B, C, η and η² − 1 as floats."""
+
+    def __init__(self, material: str):
+        t = _row("abc", material)
+        # ×4: cook-torrance's helper returns G/(4 ci co); scaling A by 4 instead of G is exact
+        # (a power of 2, and 4A/D's base stays a normal number)
+        self.kd, self.a4 = (np.array(v, dtype=float).reshape(3, 1) for v in (t["kd"],
+                                                                               4.0 * t["a"]))
+        self.b, self.c, self.eta = t["b"], t["c"], t["eta"]
+        self.e2m1 = self.eta * self.eta - 1.0
+
+
+@lru_cache(maxsize=32)
+def _abc_params(material: str) -> _Abc:
+    return _Abc(material)
+
+
+def _fresnel_abc(c, q: _Abc):
+    """:func:`fresnel_dielectric` for ``c`` = cos θd, already in [0, 1] (Geometry), without the
+    clip (the same operations otherwise); η > 1 in every table."""
+    if q.e2m1 <= 0.0:
+        return fresnel_dielectric(c, q.eta)
+    # η > 1: g ≥ √(η² − 1) > 0, so g + c > 0 and c(g − c) + 1 ≥ 1 − c² + cg > 0 (c ≤ 1)
+    g = np.sqrt(q.e2m1 + c * c)
+    gmc, gpc = g - c, g + c
+    a = gmc * gmc / (gpc * gpc)
+    num, den = c * gpc - 1.0, c * gmc + 1.0
+    return 0.5 * a * (1.0 + num * num / (den * den))
+
+
 def abc(wi, wo, material: str):
-    t = _row("abc", material)
+    q = _abc_params(material)
     g = Geometry(wi, wo)
-    ok = g.above & g.h_valid
+    shape = np.shape(g.above)
     # 1 − cos θh without cancellation near H = N (B up to 8e6 multiplies it); 1 + cos θh ≥ 1
     one_minus = g.sin2_h / (1.0 + np.maximum(g.cos_h, 0.0))
-    p = (1.0 + t["b"] * one_minus) ** t["c"]  # D = A/p: base ≥ 1 (B ≥ 0, 1 − cos ≥ 0): p ≥ 1
-    f = fresnel_dielectric(g.cos_d, t["eta"])
-    # G/(ci co) with its limit where one cosine is 0, 0 where both are (cook-torrance's helper
-    # returns G/(4 ci co); ×4 is exact)
-    fg = f * np.where(ok, 4.0 * vcavity_g_over_cos(g.cos_h, g.cos_i, g.cos_o, g.cos_d), 0.0)
-    return rgb(g.above, (p, fg), (t["kd"], t["a"]), _abc_channel)
-
-
-def _abc_channel(p, fg, kd, a):
-    return (kd + a / p * fg) / np.pi
+    p = (1.0 + q.b * one_minus) ** q.c  # D = A/p: base ≥ 1 (B ≥ 0, 1 − cos ≥ 0): p ≥ 1
+    # G/(4 ci co) with its limit where one cosine is 0, 0 where both are (cook-torrance's
+    # helper).  H undefined (wi = −wo) with both directions above means both on the horizon,
+    # where the helper gives 0 already; below the horizon the value is replaced by 0 below
+    fg = _fresnel_abc(g.cos_d, q) * vcavity_g_over_cos(g.cos_h, g.cos_i, g.cos_o, g.cos_d)
+    # the channels as the rows of (3, M): (kd + A/p·F·G/(ci co))/π, one call per operation
+    out = np.empty(shape + (3,))
+    np.divide(q.kd + q.a4 / _flat(p, shape) * _flat(fg, shape), np.pi,
+              out=out.reshape(-1, 3).T)
+    if not np.all(g.above):
+        out[~np.asarray(g.above)] = 0.0
+    return out
 
 
 def _theta(sin2, z):
