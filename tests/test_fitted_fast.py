@@ -228,3 +228,21 @@ def test_both_kernels_stay_reciprocal_to_the_last_bit():
             v = m.resolve({"material": name})
             np.testing.assert_array_equal(evaluate_resolved(m, v, a, b),
                                           evaluate_resolved(m, v, b, a))
+
+
+def test_sgd_single_light_cached_g1_gives_the_uncached_values():
+    # a single wi's G1 is kept per material: a second call with the same wi, calls with other
+    # lights in between (more than the 64 kept), and the same wi as a (1, 3) array (G1
+    # computed per point, not cached) must all give the first call's bits
+    m = MODELS["sgd"]
+    wo = directions(100, 4)
+    for name in ("gold-metallic-paint", "alum-bronze", "black-obsidian"):
+        v = m.resolve({"material": name})
+        with kernel_errstate():
+            first = m.kernel(incident(70.0), wo, **m.kernel_params(v))
+        for theta in np.linspace(0.0, 90.0, 70):
+            evaluate_resolved(m, v, incident(theta), wo)
+            np.testing.assert_array_equal(evaluate_resolved(m, v, incident(70.0), wo), first)
+        with kernel_errstate():
+            as_array = m.kernel(incident(70.0)[None, :], wo, **m.kernel_params(v))
+        np.testing.assert_array_equal(as_array, first)

@@ -164,8 +164,9 @@ def abc(wi, wo, material: str):
     fg = _fresnel_abc(g.cos_d, q) * vcavity_g_over_cos(g.cos_h, g.cos_i, g.cos_o, g.cos_d)
     # the channels as the rows of (3, M): (kd + A/p·F·G/(ci co))/π, one call per operation
     out = np.empty(shape + (3,))
-    np.divide(q.kd + q.a4 / _flat(p, shape) * _flat(fg, shape), np.pi,
-              out=out.reshape(-1, 3).T)
+    if len(shape) > 1:
+        p, fg = _flat(p, shape), _flat(fg, shape)
+    np.divide(q.kd + q.a4 / p * fg, np.pi, out=out.reshape(-1, 3).T)
     if not np.all(g.above):
         out[~np.asarray(g.above)] = 0.0
     return out
@@ -218,6 +219,8 @@ class _Sgd:
             self.rho_d = col(t["rho_d"])
             # exp(−a) = 0 in every channel where tan²θh ≥ this (see sgd)
             self.tan2_max = 746.0 * float(np.max(t["alpha"]))
+        #: G1 of single directions, by (sin²θ, cos θ) (see _sgd_g1_cached)
+        self.g1_cache: dict[tuple[float, float], np.ndarray] = {}
 
 
 @lru_cache(maxsize=32)
@@ -277,6 +280,22 @@ def _sgd_g1(theta, q: _Sgd):
     return g1
 
 
+def _sgd_g1_cached(sin2, z, q: _Sgd):
+    """G1 of the direction(s) with ``sin²θ`` and ``cos θ``; for a single direction (scalars:
+    the light of a whole call, the same from call to call in the viewer and the quadrature)
+    the ``(3, 1)`` column is kept per material, for the last 64 such directions."""
+    if np.ndim(sin2) or np.ndim(z):
+        return _sgd_g1(_theta(sin2, z), q)
+    key = (float(sin2), float(z))
+    g1 = q.g1_cache.get(key)
+    if g1 is None:
+        if len(q.g1_cache) >= 64:
+            q.g1_cache.clear()
+        g1 = q.g1_cache[key] = _sgd_g1(_theta(sin2, z), q)
+        g1.flags.writeable = False
+    return g1
+
+
 def sgd(wi, wo, material: str):
     g = Geometry(wi, wo)
     shape = np.shape(g.above)
@@ -298,8 +317,9 @@ def sgd(wi, wo, material: str):
     n_live = np.count_nonzero(spec_live)
     if n_live == spec_live.size:
         # everywhere (the usual case): the grey arrays flattened to (M,)
-        grey = [_flat(x, shape) for x in (g.cos_d, tan2, c2, cc, g.sin2_i, g.cos_i, g.sin2_o,
-                                          g.cos_o)]
+        grey = (g.cos_d, tan2, c2, cc, g.sin2_i, g.cos_i, g.sin2_o, g.cos_o)
+        if len(shape) > 1:
+            grey = [_flat(x, shape) for x in grey]
         _sgd_total(q, *grey, out=out_t)
     else:
         # the diffuse term alone where the specular one is 0, (ρd + 0)/π as written
@@ -348,7 +368,7 @@ def _sgd_total(q: _Sgd, c, tan2, c2, cc, sin2_i, cos_i, sin2_o, cos_o, out=None)
     # (ρs κ/π)·e/a^p·F·(G1(wi)·G1(wo))·w: the factors before w are bounded, w last (the
     # product is as large as the term, ≤ 1e296 as SGD_MIN_COS_PRODUCT says); every factor is
     # symmetric in (wi, wo), so the value is reciprocal to the last bit
-    g11 = _sgd_g1(_theta(sin2_i, cos_i), q) * _sgd_g1(_theta(sin2_o, cos_o), q)
+    g11 = _sgd_g1_cached(sin2_i, cos_i, q) * _sgd_g1_cached(sin2_o, cos_o, q)
     spec = q.spec * e / ap * fres * g11 * w
     # F < 0 for a few materials: keep the fitted value where the total is ≥ 0, clamp below
     return np.maximum((q.rho_d + spec) / np.pi, 0.0, out=out)
