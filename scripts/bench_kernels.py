@@ -5,6 +5,7 @@ docs/numerics.md, "Kernel cost").
     PYTHONPATH=$PWD python scripts/bench_kernels.py --rev REV     # before = git revision REV
     PYTHONPATH=$PWD python scripts/bench_kernels.py --rev none    # this tree only
     PYTHONPATH=$PWD python scripts/bench_kernels.py --cold        # a fresh process's heap
+    PYTHONPATH=$PWD python scripts/bench_kernels.py --albedo --models abc,sgd   # the albedo
 
 Each model is called as the viewer calls it: ``evaluate_resolved(model, model.defaults(),
 incident(40, 180), wo)`` with ``wo`` random unit vectors of the upper hemisphere.  The *fixed*
@@ -15,7 +16,11 @@ turns, model by model (``--rounds``, the best of each kept), with the same direc
 values are compared on several parameter sets and direction layouts (one wi against many wo,
 many against many, both sides broadcast), including directions on and below the horizon: the
 largest relative difference per model is printed (``rel diff``: ``|new − old| / |old|`` where
-old ≠ 0, and new must be exactly 0 where old is).
+old ≠ 0, and new must be exactly 0 where old is); abc and sgd are compared on every material.
+
+``--albedo`` times ``quadrature.albedo_estimate_resolved`` at the model's defaults instead, at
+θi = 0, 30, 60, 75, 85, 89, 89.9 and 90° (best of 9 calls after a first one, the trees in turns,
+best of the rounds), and prints the albedo's largest relative difference between the trees.
 """
 
 from __future__ import annotations
@@ -61,7 +66,9 @@ import json, sys
 sys.path.insert(0, sys.argv[1])
 sys.path.insert(0, sys.argv[2])
 import bench_kernels as b
-res = b.measure(json.loads(sys.argv[3]), sys.argv[4])
+import os
+f = b.measure_albedo if os.environ.get("BENCH_KERNELS_ALBEDO") else b.measure
+res = f(json.loads(sys.argv[3]), sys.argv[4])
 print(json.dumps(res))
 """
 
@@ -88,6 +95,7 @@ def values(out: str) -> None:
     """Evaluate every model on the comparison cases and save them to ``out`` (.npz)."""
     from tuibrdf.core.evaluate import evaluate_resolved
     from tuibrdf.core.frame import incident
+    from tuibrdf.core.materials import material_names
     from tuibrdf.core.models import MODELS
 
     rng = np.random.default_rng(16)
@@ -97,7 +105,10 @@ def values(out: str) -> None:
     saved = {}
     for name in NAMES:
         m = MODELS[name]
-        for k, params in enumerate([{}, *EXTRA.get(name, [])]):
+        sets = EXTRA.get(name, [])
+        if name in ("abc", "sgd"):  # the fits: every material
+            sets = [{"material": n} for n in material_names()]
+        for k, params in enumerate([{}, *sets]):
             v = m.resolve(params)
             for j, wi in enumerate(wis):
                 saved[f"{name}|{k}|one{j}"] = evaluate_resolved(m, v, wi, wo)
@@ -143,8 +154,78 @@ def measure(names: list[str], dump: str) -> dict[str, list[float]]:
     return res
 
 
+ALBEDO_THETAS = (0.0, 30.0, 60.0, 75.0, 85.0, 89.0, 89.9, 90.0)
+
+
+def measure_albedo(names: list[str], dump: str) -> dict[str, list[float]]:
+    """``{model: [seconds per albedo at each of ALBEDO_THETAS]}``; the albedos (RGB) saved to
+    ``dump`` (if not empty)."""
+    import time
+
+    from tuibrdf.core import quadrature
+    from tuibrdf.core.models import MODELS
+
+    if not os.environ.get("BENCH_KERNELS_COLD"):
+        warm = np.ones(2**21)
+        del warm
+    res, saved = {}, {}
+    for name in names:
+        m = MODELS[name]
+        v = m.defaults()
+        times = []
+        for j, theta in enumerate(ALBEDO_THETAS):
+            saved[f"{name}|{j}"] = np.asarray(quadrature.albedo_estimate_resolved(m, v, theta)
+                                              .value)
+            best = float("inf")
+            for _ in range(9):
+                t0 = time.perf_counter()
+                quadrature.albedo_estimate_resolved(m, v, theta)
+                best = min(best, time.perf_counter() - t0)
+            times.append(best)
+        res[name] = times + [_replayed(m, v, theta) for theta in ALBEDO_THETAS]
+    if dump:
+        np.savez(dump, **saved)
+    return res
+
+
+def _replayed(m, v, theta: float) -> float:
+    """The albedo's time with a kernel that costs nothing: the kernel's outputs of one run
+    recorded, then returned in order (the same values, so the same quadrature path)."""
+    import time
+
+    from tuibrdf.core import evaluate, quadrature
+
+    real, rec = m.kernel, []
+
+    def record(wi, wo, **kw):
+        rec.append(real(wi, wo, **kw))
+        return rec[-1]
+
+    def replay(wi, wo, **kw):
+        replay.i += 1
+        return rec[replay.i - 1]
+
+    saved = evaluate.BROADCAST_KERNELS
+    evaluate.BROADCAST_KERNELS = set(saved) | {record, replay}
+    try:
+        object.__setattr__(m, "kernel", record)
+        quadrature.albedo_estimate_resolved(m, v, theta)
+        object.__setattr__(m, "kernel", replay)
+        best = float("inf")
+        for _ in range(9):
+            replay.i = 0
+            t0 = time.perf_counter()
+            quadrature.albedo_estimate_resolved(m, v, theta)
+            best = min(best, time.perf_counter() - t0)
+    finally:
+        object.__setattr__(m, "kernel", real)
+        evaluate.BROADCAST_KERNELS = saved
+    return best
+
+
 def run_tree(tree: str, names: list[str], dump: str) -> dict[str, list[float]]:
-    """:func:`measure` on the package in directory ``tree``, in a subprocess."""
+    """:func:`measure` (or :func:`measure_albedo` with ``--albedo``) on the package in
+    directory ``tree``, in a subprocess."""
     env = {**os.environ, "PYTHONPATH": tree}
     out = subprocess.run([sys.executable, "-c", CHILD, tree, str(ROOT / "scripts"),
                           json.dumps(names), dump],
@@ -185,9 +266,13 @@ def main() -> None:
     ap.add_argument("--rounds", type=int, default=3, help="runs of each tree, best kept")
     ap.add_argument("--cold", action="store_true",
                     help="leave glibc's heap thresholds at their start (see measure())")
+    ap.add_argument("--albedo", action="store_true",
+                    help="time the albedo at the defaults (8 incidences) instead")
     args = ap.parse_args()
     if args.cold:
         os.environ["BENCH_KERNELS_COLD"] = "1"
+    if args.albedo:
+        os.environ["BENCH_KERNELS_ALBEDO"] = "1"
     names = args.models.split(",")
     with tempfile.TemporaryDirectory() as d:
         after_dump = os.path.join(d, "after.npz")
@@ -197,9 +282,11 @@ def main() -> None:
             extract(args.rev, old_tree)
         # the two trees in turns, model by model, best of the rounds: a busy spell of the
         # shared machine then weighs on both rather than on one
-        run_tree(str(ROOT), [], after_dump)
+        # the values (with --albedo: the albedos, timed and saved in the same run)
+        dump_names = names if args.albedo else []
+        run_tree(str(ROOT), dump_names, after_dump)
         if args.rev != "none":
-            run_tree(old_tree, [], before_dump)
+            run_tree(old_tree, dump_names, before_dump)
         after_runs, before_runs = [], []
         for _ in range(args.rounds):
             a_run, b_run = {}, {}
@@ -218,6 +305,9 @@ def main() -> None:
             for key in b.files:
                 name = key.split("|")[0]
                 diffs[name] = max(diffs.get(name, 0.0), rel_diff(a[key], b[key]))
+    if args.albedo:
+        _print_albedo(names, after, before, diffs, args.rev)
+        return
     print(f"evaluate_resolved(model, defaults, incident(40°, 180°), wo): fixed µs per call "
           f"(n = 1, 10, 100), per-point ns (n = {N_BIG})")
     if before is None:
@@ -233,6 +323,28 @@ def main() -> None:
         pb, pa = _per_point(before[n]), _per_point(after[n])
         print(f"{n:18s} {_fixed(before[n]):>16s} {_fixed(after[n]):>9s} {pb:13.0f} {pa:6.0f} "
               f"{(pa - pb) / pb:+7.0%} {diffs.get(n, 0.0):9.1e}")
+
+
+def _print_albedo(names, after, before, diffs, rev) -> None:
+    print("albedo_estimate_resolved(model, defaults, θi): ms, best of 9 calls and of the rounds"
+          + (f"; before = git {rev}, after = this tree" if before else ""))
+    print("free = this tree with the kernel's outputs replayed (the quadrature's own time)")
+    print(f"{'model':8s} {'θi':>5s} {'before':>7s} {'after':>7s} {'change':>7s} {'free':>7s}")
+    nt = len(ALBEDO_THETAS)
+    for n in names:
+        for j, theta in enumerate(ALBEDO_THETAS):
+            a, free = after[n][j] * 1e3, after[n][nt + j] * 1e3
+            if before:
+                b = before[n][j] * 1e3
+                print(f"{n:8s} {theta:5g} {b:7.2f} {a:7.2f} {(a - b) / b:+7.0%} {free:7.2f}")
+            else:
+                print(f"{n:8s} {theta:5g} {'':7s} {a:7.2f} {'':7s} {free:7.2f}")
+        ok = sum(t <= 2e-3 for t in after[n][:nt])
+        line = f"{n}: ≤ 2 ms in {ok} of {len(ALBEDO_THETAS)} after"
+        if before:
+            line += f", {sum(t <= 2e-3 for t in before[n][:nt])} before; albedo rel diff "
+            line += f"{diffs.get(n, 0.0):.1e}"
+        print(line)
 
 
 if __name__ == "__main__":
