@@ -257,22 +257,13 @@ ABLATIONS = [
 
 def _run_counted(model, values, th, rtol):
     """``(estimate, evaluations, kernel calls)`` of the default rule at ``rtol``."""
-    from tuibrdf.core import polar
-    from tuibrdf.core.frame import sincos_deg
-
-    hint = q.lobe(model, values)
     calls = [0]
 
     def f(wi, wo):
         calls[0] += 1
         return evaluate_resolved(model, values, wi, wo)
 
-    st, ct = sincos_deg(np.atleast_1d(th))
-    sp, cp = sincos_deg(np.atleast_1d(180.0))
-    r = polar.integrate(f, hint.frame, polar.cases(st, ct, sp, cp), scale=hint.scale,
-                        radial_breaks=hint.breaks, symmetric=hint.symmetric, rtol=rtol,
-                        atol=q.ATOL, max_evals=min(q.MAX_EVALS, hint.max_evals or q.MAX_EVALS),
-                        azimuth_breaks=hint.azimuths, horizon=hint.horizon)
+    r = q.albedo_rule(model, values, th, rtol=rtol, kernel=f)
     return r, int(r.evaluations[0]), calls[0]
 
 

@@ -604,7 +604,6 @@ def _counted(name, params, theta, horizon=True):
     """(estimate, evaluations, kernel calls) of the default rule, optionally without the
     model's horizon hint."""
     from tuibrdf.core import quadrature as q
-    from tuibrdf.core.frame import sincos_deg
 
     m = get_model(name)
     v = m.resolve(params)
@@ -615,12 +614,8 @@ def _counted(name, params, theta, horizon=True):
         calls[0] += 1
         return evaluate_resolved(m, v, wi, wo)
 
-    st, ct = sincos_deg(np.atleast_1d(theta))
-    sp, cp = sincos_deg(np.atleast_1d(180.0))
-    r = polar.integrate(f, hint.frame, polar.cases(st, ct, sp, cp), scale=hint.scale,
-                        radial_breaks=hint.breaks, symmetric=hint.symmetric, rtol=DEFAULT_RTOL,
-                        atol=q.ATOL, max_evals=q.MAX_EVALS, azimuth_breaks=hint.azimuths,
-                        horizon=hint.horizon if horizon else None)
+    r = q.albedo_rule(m, v, theta, hint=hint if horizon else hint._replace(horizon=None),
+                      kernel=f)
     return r, int(r.evaluations[0]), calls[0]
 
 

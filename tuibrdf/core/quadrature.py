@@ -303,26 +303,38 @@ def _scalar(x: np.ndarray) -> float | np.ndarray:
 # albedo
 
 
+def albedo_rule(model: Model, values: Mapping[str, Any],
+                thetas_deg: Sequence[float] | np.ndarray, phi_i_deg: float = 180.0, *,
+                rtol: float = DEFAULT_RTOL, max_evals: int = MAX_EVALS, hint: Lobe | None = None,
+                kernel: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None):
+    """The default rule's whole result (:func:`tuibrdf.core.polar.integrate`: value, error
+    estimate, evaluations per incidence) at each incidence, in one batch.  ``hint`` replaces
+    the model's :func:`lobe` and ``kernel(wi, wo)`` its evaluation (the benchmarks and tests
+    count calls, or drop one part of the hint, through them)."""
+    thetas = np.atleast_1d(np.asarray(thetas_deg, dtype=float))
+    for t in thetas:
+        _check_theta(t)
+    st, ct = sincos_deg(thetas)
+    sp, cp = sincos_deg(np.full(len(thetas), _check_phi(phi_i_deg)))
+    hint = lobe(model, values) if hint is None else hint
+
+    def f(wi, wo):
+        return evaluate_resolved(model, values, wi, wo)
+
+    return polar.integrate(kernel or f, hint.frame, polar.cases(st, ct, sp, cp),
+                           scale=hint.scale, radial_breaks=hint.breaks,
+                           symmetric=hint.symmetric, rtol=rtol, atol=ATOL,
+                           max_evals=min(max_evals, hint.max_evals or max_evals),
+                           azimuth_breaks=hint.azimuths, horizon=hint.horizon)
+
+
 def albedo_curve_estimate_resolved(model: Model, values: Mapping[str, Any],
                                    thetas_deg: Sequence[float] | np.ndarray,
                                    phi_i_deg: float = 180.0, *, rtol: float = DEFAULT_RTOL,
                                    max_evals: int = MAX_EVALS) -> AlbedoEstimate:
     """Albedo and error estimate at each incidence, integrated in one batch (one kernel call
     per refinement round for the whole curve): arrays ``(n,)``, or ``(n, 3)`` for RGB."""
-    thetas = np.atleast_1d(np.asarray(thetas_deg, dtype=float))
-    for t in thetas:
-        _check_theta(t)
-    st, ct = sincos_deg(thetas)
-    sp, cp = sincos_deg(np.full(len(thetas), _check_phi(phi_i_deg)))
-    hint = lobe(model, values)
-
-    def f(wi, wo):
-        return evaluate_resolved(model, values, wi, wo)
-
-    r = polar.integrate(f, hint.frame, polar.cases(st, ct, sp, cp), scale=hint.scale,
-                        radial_breaks=hint.breaks, symmetric=hint.symmetric, rtol=rtol,
-                        atol=ATOL, max_evals=min(max_evals, hint.max_evals or max_evals),
-                        azimuth_breaks=hint.azimuths, horizon=hint.horizon)
+    r = albedo_rule(model, values, thetas_deg, phi_i_deg, rtol=rtol, max_evals=max_evals)
     return AlbedoEstimate(r.value, r.error)
 
 
