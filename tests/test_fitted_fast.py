@@ -30,7 +30,7 @@ from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.frame import Geometry, from_degrees, incident
 from tuibrdf.core.materials import material_names, table
 from tuibrdf.core.models import MODELS
-from tuibrdf.core.models.fitted import _sgd_g1, _sgd_params, sgd_g1
+from tuibrdf.core.models.fitted import _sgd_g1, _sgd_params, fresnel_dielectric, sgd_g1
 from tuibrdf.core.numerics import kernel_errstate
 
 EPS = 2.0**-53
@@ -281,3 +281,16 @@ def test_sgd_g1_closed_form_with_unit_parameters():
     assert got.shape == (len(s), 3)
     for k in range(3):
         np.testing.assert_allclose(got[:, k], want, rtol=0.0, atol=1e-15)
+
+
+@pytest.mark.parametrize("eta", [1.5, 0.8])
+def test_fresnel_dielectric_clips_cosines_outside_0_1(eta):
+    # the public function clips cos θd to [0, 1] (a caller's rounding): F(−ε) = F(0) = 1
+    # (c = 0: (g − c)²/(g + c)² = 1 and (c(g + c) − 1)²/(c(g − c) + 1)² = 1, F = ½·1·2; for
+    # η < 1 total reflection, F = 1) and F(1 + ε) = F(1) = ((η − 1)/(η + 1))² (normal
+    # incidence, the textbook closed form)
+    with kernel_errstate():
+        low = fresnel_dielectric(np.array([-5e-4, -1e-9, 0.0]), eta)
+        high = fresnel_dielectric(np.array([1.0 + 5e-4, 1.0 + 1e-9, 1.0]), eta)
+    np.testing.assert_allclose(low, 1.0, rtol=4 * EPS, atol=0.0)
+    np.testing.assert_allclose(high, ((eta - 1.0) / (eta + 1.0)) ** 2, rtol=8 * EPS, atol=0.0)
