@@ -73,7 +73,6 @@ _D_FLOOR = ("where exp(−x) > 0, cos²θh ≥ 1.3e-3 and π m² cos⁴θh ≥ 5
             "1e-300·(1 ± 0.001) only acts where the numerator is 0, and 0/floor = 0")
 _BP_FILL = ("the divisor's fill where H is undefined: np.where(valid, …, 0.0) replaces the "
             "quotient there")
-_COS_D = "cos θd ∈ [0, 1] by construction (Geometry): a lower clip at −0.001 never acts"
 _TIR_FILL = ("a fill where total reflection holds (g² ≤ 0; also where (g + c)² is 0, which "
              "needs g = 0, i.e. total reflection): np.where(tir, 1.0, …) replaces it")
 _G1_FLAT = ("G1 − 1 = −Λ·expm1(c_g·t^k) for t ≤ 0.001 is above −3.3e-18 in every channel of "
@@ -147,8 +146,6 @@ EQUIVALENT: dict[str, str] = {
     f"{_PH}::blinn_phong::1.0#1::-": _BP_FILL,
     f"{_PH}::blinn_phong::0.0#1::-": (
         "N·H = −0.001 where H is undefined: lobe_power gives 0 for c ≤ 0, as for c = 0"),
-    f"{_FT}::fresnel_dielectric::1.0#0::+": _UNIT_COS,
-    f"{_FT}::fresnel_dielectric::0.0#0::-": _COS_D,
     f"{_FT}::fresnel_dielectric::0.0#2::-": (
         "−0.001 < g² ≤ 0 counted as no total reflection: safe_sqrt makes g = 0, and then "
         "(g − c)²/(g + c)² = 1 and (c·c − 1)² / (1 − c·c)² = 1 exactly, F = 1 as under the mask"),
