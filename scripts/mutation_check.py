@@ -45,8 +45,8 @@ FILES = ["tuibrdf/core/fresnel.py", "tuibrdf/core/microfacet.py",
          *sorted(str(p.relative_to(ROOT)) for p in (ROOT / "tuibrdf/core/models").glob("*.py"))]
 #: the non-snapshot core tests, in stages: a mutant that survives a stage runs the next one
 #: (the slow hypothesis stability suite only runs for the few mutants the fast tests miss)
-STAGES = [["tests/test_reference_values.py", "tests/test_models.py", "tests/test_materials.py",
-           "tests/test_kernel_paths.py"], ["tests/test_stability.py"]]
+STAGES = [["tests/test_fitted_fast.py", "tests/test_reference_values.py", "tests/test_models.py",
+           "tests/test_materials.py", "tests/test_kernel_paths.py"], ["tests/test_stability.py"]]
 DECLARATIONS = {"Param", "Model", "replace", "Constraint"}
 
 #: Mutants that cannot change any result, keyed as printed (``file::function::literal#k::±``),
@@ -73,14 +73,11 @@ _D_FLOOR = ("where exp(−x) > 0, cos²θh ≥ 1.3e-3 and π m² cos⁴θh ≥ 5
             "1e-300·(1 ± 0.001) only acts where the numerator is 0, and 0/floor = 0")
 _BP_FILL = ("the divisor's fill where H is undefined: np.where(valid, …, 0.0) replaces the "
             "quotient there")
-_COS_D = "cos θd ∈ [0, 1] by construction (Geometry): a lower clip at −0.001 never acts"
 _TIR_FILL = ("a fill where total reflection holds (g² ≤ 0; also where (g + c)² is 0, which "
              "needs g = 0, i.e. total reflection): np.where(tir, 1.0, …) replaces it")
 _G1_FLAT = ("G1 − 1 = −Λ·expm1(c_g·t^k) for t ≤ 0.001 is above −3.3e-18 in every channel of "
             "the 100 tables (k ≥ 5.57; light-red-paint's red is the largest): below half an "
             "ulp of 1, so G1 rounds to 1 either way; sgd's parameters come only from the tables")
-_G1_CLIP = ("G1 = 1 − Λ·expm1(x) with 0 ≤ x < log(1 + 1/Λ) where it is computed (elsewhere "
-            "np.where(dead, 0.0, …) replaces it) lies in (0, 1]: neither clip acts")
 _HUGE_LEVEL = ("a guard's level, 1/HUGE or 0.25/HUGE: it moves a quotient between computed and "
                "'infinite' only within 0.1% of 1e300, i.e. with both directions within ~1e-150 "
                "of the horizon, where G/(cos θi cos θo) has no limit (docs/numerics.md) and 0 is "
@@ -91,6 +88,36 @@ _SGD_LEVEL = ("sgd's 1/(cos θi cos θo) has no limit on the horizon (it diverge
 _CROSSOVER = ("a speed crossover (integer powers by squaring; RGB channels together or one by "
               "one): both paths give the same values to the ulps tests/test_kernel_paths.py "
               "bounds; an integer size or exponent ≤ 64/256 is ≤ 64.064/256.256 as well")
+_ABC_ETA = ("η ∈ [1.039, 100] in the abc table (η comes only from it): η² − 1 ≥ 0.080, so "
+            "'η² − 1 ≤ ±0.001' is False everywhere, as 'η² − 1 ≤ 0' is")
+_INT_LEN = "len() is an integer: '> 1.001' is '> 1'"
+_FLAT_1D = ("'len(shape) > 0.999' also flattens 1-D results: _flat returns a 1-D grey array "
+            "itself, or its broadcast to the result's shape, whose elements the (3, 1) columns "
+            "meet as they do by broadcasting: the same operations on the same numbers")
+_SKIP_UP = ("sgd's skip level 746.746·max α instead of 746·max α: the points in between are "
+            "computed, with a = tan²θh/α + α ≥ 745.9 in every channel, exp(−a) = 0 (it "
+            "underflows to 0 below −745.13), so the term is 0·(finite) and (ρd + 0)/π = ρd/π, "
+            "the skipped value")
+_SKIP_DOWN = ("sgd's skip level 745.254·max α: the newly skipped points have a ≥ 745.254·(1 − "
+              "3ε) > 745.14 in every channel, where exp(−a) is 0 (it underflows below "
+              "−745.13): their specular term was 0, ρd/π either way.  Not true of a much lower "
+              "level: at tan²θh = 41·max α with θi 1e-12 rad from the horizon the term is "
+              "still > 1e-12 for 64 materials (1/(cos θi cos θo) is large there)")
+_TAN2_CAP = ("the floor sin²θh·(1 ± 0.001)/HUGE caps tan²θh at HUGE/(1 ± 0.001) instead of "
+             "HUGE: where either acts tan²θh ≥ 0.99e300 ≥ 746·max α (α ≤ 0.86), the point is "
+             "skipped and ρd/π returned either way; tan²θh is used nowhere else")
+_AP_CAP = ("the cap of a in a^p at 746·(1 ± 0.001): it changes a^p only where a > 745.254, "
+           "where exp(−a) = 0 (it underflows below −745.13): the term is 0·(finite) whatever "
+           "a^p is (> 0, ≤ 747^1.78)")
+_W_FLOOR = ("the floor of cos⁴θh·ci·co at 1e-300·(1 ± 0.001): computed points have ci·co > "
+            "1e-290, and exp(−a) > 0 in a channel needs tan²θh < 745.14·α ≤ 637, so cos²θh > "
+            "1.5e-3 and the product > 2e-296; the floor acts only where exp(−a) = 0 in every "
+            "channel, where the term is 0·(w ≤ 1.001e300) = 0 either way")
+_G1_BAND = ("the width of the band around t* where sgd's G1 takes the logarithmic test "
+            "instead of the clip at t*·(1 + band): for any width between the test's rounding "
+            "(≲ 1e-13) and ~1e-3 every G1 is the value as written (below the band 1 − Λ·expm1(x) "
+            "> 0 and the test says live; above it the clipped x gives < −5.6e-9, clamped to 0, "
+            "and the test says dead), so 1e-9·(1 ± 0.001) gives the same bits")
 _PH = "tuibrdf/core/models/phong.py"
 _FT = "tuibrdf/core/models/fitted.py"
 EQUIVALENT: dict[str, str] = {
@@ -119,8 +146,6 @@ EQUIVALENT: dict[str, str] = {
     f"{_PH}::blinn_phong::1.0#1::-": _BP_FILL,
     f"{_PH}::blinn_phong::0.0#1::-": (
         "N·H = −0.001 where H is undefined: lobe_power gives 0 for c ≤ 0, as for c = 0"),
-    f"{_FT}::fresnel_dielectric::1.0#0::+": _UNIT_COS,
-    f"{_FT}::fresnel_dielectric::0.0#0::-": _COS_D,
     f"{_FT}::fresnel_dielectric::0.0#2::-": (
         "−0.001 < g² ≤ 0 counted as no total reflection: safe_sqrt makes g = 0, and then "
         "(g − c)²/(g + c)² = 1 and (c·c − 1)² / (1 − c·c)² = 1 exactly, F = 1 as under the mask"),
@@ -131,23 +156,43 @@ EQUIVALENT: dict[str, str] = {
     f"{_FT}::abc::0.0#0::-": (
         "cos θh < 0 only where H points below the horizon: never for two directions above it "
         "(H's z is (zi + zo)/|wi + wo| ≥ 0); below it rgb() returns 0"),
-    f"{_FT}::_tan2::1.0#0::+": _EXP_CAP,
-    f"{_FT}::_tan2::1.0#0::-": _EXP_CAP,
-    f"{_FT}::_sgd_g1::0.0#0::+": _G1_FLAT,
-    f"{_FT}::_sgd_g1::0.0#1::+": _G1_FLAT,
-    f"{_FT}::_sgd_g1::0.0#0::-": (
+    f"{_FT}::_fresnel_abc::0.0#0::+": _ABC_ETA,
+    f"{_FT}::_fresnel_abc::0.0#0::-": _ABC_ETA,
+    f"{_FT}::abc::1#0::+": _INT_LEN,
+    f"{_FT}::abc::1#0::-": _FLAT_1D,
+    f"{_FT}::_Sgd.__init__::1.0#3::-": (
+        "t_lo = t*·(0.999 − band): a wider band, where the logarithmic test as written decides "
+        "'dead' and the live values are the same operations on the same t (t < t_hi is not "
+        "clipped): the same G1 to the bit"),
+    f"{_FT}::_Sgd.__init__::1.0#4::+": (
+        "t_hi = t*·(1.001 + band): the band reaches up to it, and the log test as written "
+        "decides there (dead, 0); above it t is clipped to t_hi, where x = x*·1.001^k "
+        "(≤ 2.4·x* ≤ 41 for k ≤ 856: finite) makes 1 − Λ·expm1(x) < 0: 0 by the clamp, as "
+        "written"),
+    f"{_FT}::_Sgd.__init__::746.0#0::+": _SKIP_UP,
+    f"{_FT}::_Sgd.__init__::746.0#0::-": _SKIP_DOWN,
+    f"{_FT}::_sgd_g1::0.0#0::+": (
+        "t = max(θ − θ0, 0.001) before the clip at t_hi: t* ≥ 0.375 in every channel of the "
+        "table, so 0.001 stays below the band, and " + _G1_FLAT),
+    f"{_FT}::_sgd_g1_cached::64#0::-": "len() is an integer: '≥ 63.936' is '≥ 64'",
+    f"{_FT}::sgd::1.0#0::+": _TAN2_CAP,
+    f"{_FT}::sgd::1.0#0::-": _TAN2_CAP,
+    f"{_FT}::sgd::1#1::+": _INT_LEN,
+    f"{_FT}::sgd::1#1::-": _FLAT_1D,
+    f"{_FT}::_sgd_total::746.0#0::+": _AP_CAP,
+    f"{_FT}::_sgd_total::746.0#0::-": _AP_CAP,
+    f"{_FT}::_sgd_total::1e-300#0::+": _W_FLOOR,
+    f"{_FT}::_sgd_total::1e-300#0::-": _W_FLOOR,
+    f"{_FT}::_sgd_total::0.0#0::-": (
+        "the clamp at 0 never acts for the 100 tables: only blue-fabric, white-fabric2 and "
+        "white-paint have f1 > f0 (F < 0 near cos θd = 1), and their f is ≥ 0.0077 over "
+        "0.96 M direction pairs about H (θh 0…89.9°, θd 0…30°, φd every 10°; beyond, "
+        "exp(−tan²θh/α) vanishes); a clamp at −0.001 returns the same values"),
+    f"{_FT}::_sgd_g1_plain::0.0#0::-": (
         "t = max(θ − θ0, −0.001): t = −0.001 fails 't > 0' as t = 0 does, and t only enters "
         "where it is > 0"),
-    f"{_FT}::_sgd_g1::1.0#0::+": (
-        "a later 'dead' threshold, log(1 + 1.001/Λ): the x in between are left to the clamp, "
-        "which gives 0 there up to the rounding of 1 − Λ·expm1(x) (≤ 2e-16 in G1)"),
-    f"{_FT}::_sgd_g1::0.0#2::-": _G1_CLIP,
-    f"{_FT}::_sgd_g1::1.0#2::+": _G1_CLIP,
-    f"{_FT}::_sgd_channel::0.0#0::-": (
-        "the clamp at 0 never acts for the 100 tables: only blue-fabric, white-fabric2 and "
-        "white-paint have F < 0 (near cos θd = 1), and their ρd + specular is ≥ 0.024 over "
-        "2.6 M direction pairs about H (θh 0…89.9°, θd 0…30°, every φd); a clamp at −0.001 "
-        "returns the same values"),
+    f"{_FT}::_sgd_g1_plain::1.0#2::+": (
+        "x ≥ 0 and Λ > 0, so 1 − Λ·expm1(x) ≤ 1: an upper clip at 1.001 never acts"),
 }
 
 #: Not formula constants: a guard's level ("a quotient at or above HUGE counts as infinite")
@@ -170,6 +215,11 @@ THRESHOLDS: dict[str, str] = {
     f"{_PH}::<module>::256#0::-": _CROSSOVER,
     f"{_FT}::<module>::1e-290#0::+": _SGD_LEVEL,
     f"{_FT}::<module>::1e-290#0::-": _SGD_LEVEL,
+    f"{_FT}::<module>::1e-9#0::+": _G1_BAND,
+    f"{_FT}::<module>::1e-9#0::-": _G1_BAND,
+    f"{_FT}::_sgd_g1_cached::64#0::+": (
+        "a cache size: 65 lights' G1 kept per material instead of 64; the cached G1 is the "
+        "uncached one to the bit (tests/test_fitted_fast.py)"),
     f"{_FT}::fresnel_dielectric::0.0#1::+": (
         "the fast branch for η² − 1 > 0 (no total reflection possible) against the general "
         "one: for 0 < η² − 1 ≤ 0.001 the general branch computes the same expression, to the "

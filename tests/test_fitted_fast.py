@@ -30,7 +30,7 @@ from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.frame import Geometry, from_degrees, incident
 from tuibrdf.core.materials import material_names, table
 from tuibrdf.core.models import MODELS
-from tuibrdf.core.models.fitted import sgd_g1
+from tuibrdf.core.models.fitted import _sgd_g1, _sgd_params, fresnel_dielectric, sgd_g1
 from tuibrdf.core.numerics import kernel_errstate
 
 EPS = 2.0**-53
@@ -246,3 +246,51 @@ def test_sgd_single_light_cached_g1_gives_the_uncached_values():
         with kernel_errstate():
             as_array = m.kernel(incident(70.0)[None, :], wo, **m.kernel_params(v))
         np.testing.assert_array_equal(as_array, first)
+
+
+def test_sgd_kernel_g1_equals_the_plain_g1_to_the_bit():
+    # the kernel's G1 (t clipped at t*·(1 + band), the log test only inside the band) against
+    # plain_g1 (the logarithmic test on every point, as the docstring writes G1): _sgd_g1's
+    # docstring promises the same values, so no level of the band or of the clip may change
+    # one bit.  θ: every channel's kinks (inside and outside the band) and a grid over [0, π/2]
+    grid = np.linspace(0.0, np.pi / 2, 2001)
+    for name in material_names():
+        r = table("sgd").row(name)
+        th = np.concatenate([g1_boundaries(r), grid])
+        th = th[(th >= 0.0) & (th <= np.pi / 2)]
+        with kernel_errstate():
+            got = _sgd_g1(th, _sgd_params(name))
+        for k in range(3):
+            want = plain_g1(th, r["lambda"][k], r["c_g"][k], r["k"][k], r["theta0"][k])
+            np.testing.assert_array_equal(got[k], want, name)
+
+
+def test_sgd_g1_closed_form_with_unit_parameters():
+    # Λ = c_g = k = 1: G1(θ0 + s) = 1 − (e^s − 1) = 2 − e^s for 0 < s < log 2, 0 from log 2
+    # on (the clamp), 1 for s ≤ 0 (expected values from math.exp).  s = 5e-4 puts G1 visibly
+    # below 1 (0.9995) close to θ0; log 2·(1 ∓ 1e-6) sits on either side of the clamp.
+    # Tolerance: θ0 + s − θ0 rounds s by ≤ 6e-17, and |dG1/ds| = e^s ≤ 2.7
+    th0 = 0.25
+    s = np.array([-0.1, 0.0, 5e-4, 0.3, math.log(2.0) * (1.0 - 1e-6),
+                  math.log(2.0) * (1.0 + 1e-6), 1.0])
+    want = [1.0, 1.0, 2.0 - math.exp(5e-4), 2.0 - math.exp(0.3),
+            2.0 - math.exp(math.log(2.0) * (1.0 - 1e-6)), 0.0, 0.0]
+    one = np.ones(3)
+    with kernel_errstate():
+        got = sgd_g1(th0 + s, one, one, one, np.full(3, th0))
+    assert got.shape == (len(s), 3)
+    for k in range(3):
+        np.testing.assert_allclose(got[:, k], want, rtol=0.0, atol=1e-15)
+
+
+@pytest.mark.parametrize("eta", [1.5, 0.8])
+def test_fresnel_dielectric_clips_cosines_outside_0_1(eta):
+    # the public function clips cos θd to [0, 1] (a caller's rounding): F(−ε) = F(0) = 1
+    # (c = 0: (g − c)²/(g + c)² = 1 and (c(g + c) − 1)²/(c(g − c) + 1)² = 1, F = ½·1·2; for
+    # η < 1 total reflection, F = 1) and F(1 + ε) = F(1) = ((η − 1)/(η + 1))² (normal
+    # incidence, the textbook closed form)
+    with kernel_errstate():
+        low = fresnel_dielectric(np.array([-5e-4, -1e-9, 0.0]), eta)
+        high = fresnel_dielectric(np.array([1.0 + 5e-4, 1.0 + 1e-9, 1.0]), eta)
+    np.testing.assert_allclose(low, 1.0, rtol=4 * EPS, atol=0.0)
+    np.testing.assert_allclose(high, ((eta - 1.0) / (eta + 1.0)) ** 2, rtol=8 * EPS, atol=0.0)
