@@ -132,6 +132,7 @@ for _a in (X7, WK7, WG7):
 SMALL_PANEL = 0.5
 SMALL_MIN_COUNT = 48
 
+_EXP = {}
 FRAMES = ("normal", "mirror", "half")
 #: Ratio of the geometric radial grading from the lobe width out to the horizon.
 GRADING = 4.0
@@ -463,6 +464,8 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
     # the pieces next to the horizon of a horizon grading (narrow because the integrand is
     # not polynomial there)
     new_small = (new_hi - new_lo < small_width) & ~graded
+    if _EXP.get("tail") is not None:
+        new_small |= (new_lo >= _EXP["tail"] * (1 - 1e-12)) & ~graded
     if np.count_nonzero(new_small) < SMALL_MIN_COUNT:
         new_small[:] = False
     lo = hi = node = end = small = k_all = e_all = None
@@ -659,7 +662,8 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
               symmetric: bool = False, rtol: float = 1e-6, atol: float = 1e-13,
               max_evals: int = 400_000,
               azimuth_breaks: Callable[[float, float], list[float]] | None = None,
-              horizon: Callable[..., tuple] | None = None) -> PolarResult:
+              horizon: Callable[..., tuple] | None = None,
+              rings: tuple[float, ...] = ()) -> PolarResult:
     """``∫ f(wi, wo) cos θo dωo`` for every incidence of ``c`` (see the module docstring).
 
     ``f(wi (n, 3), wo (n, 3))`` returns ``(n,)`` or ``(n, k)``.  ``scale`` is the lobe's
@@ -699,6 +703,7 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
     while g < top:
         grading.append(g)
         g *= GRADING
+    grading = sorted(set(grading).union(x for x in rings if 0.0 < x < top))
 
     def edges(case: np.ndarray, cpsi: np.ndarray, rmax: np.ndarray):
         n = len(case)
