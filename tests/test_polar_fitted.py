@@ -244,3 +244,31 @@ def test_analytic_hints_do_not_depend_on_rtol(name):
         r0 = q.albedo_rule(m, v, theta, hint=q.lobe(m, v, 1e-13))
         np.testing.assert_array_equal(r.value, r0.value)
         np.testing.assert_array_equal(r.evaluations, r0.evaluations)
+
+
+def test_outer_k7_panels():
+    # polar.integrate(outer_k7=w): outer panels narrower than w use K7/G3.  f = 1 + x² (normal
+    # frame, any θi) integrates to π + π/4 (∫ sin²θ cos²φ cos θ dω = π ∫ sin³θ cos θ dθ = π/4):
+    # within the estimate, with 7 outer nodes per panel instead of 15
+    def f(wi, wo):
+        return 1.0 + wo[:, 0] ** 2
+
+    c = polar.cases(np.array([0.5]), np.array([math.sqrt(0.75)]), np.array([0.0]),
+                    np.array([1.0]))
+    ref = np.pi * 1.25
+    runs = {w: polar.integrate(f, "normal", c, scale=np.pi / 2, symmetric=True, outer_k7=w)
+            for w in (0.0, 10.0)}
+    for r in runs.values():
+        assert abs(r.value[0] - ref) <= r.error[0] + 1e-15
+        assert abs(r.value[0] - ref) < 1e-9 * ref
+    assert runs[10.0].evaluations[0] * 15 == runs[0.0].evaluations[0] * 7
+
+
+def test_outer_k7_only_for_sgd():
+    # sgd's inner integral has no kink curves meeting next to ψ = π/2 (abc's V-cavity ones do:
+    # K7 there cost cook-torrance and abc extra kernel calls): only sgd's hint asks for it
+    for name in q.LOBE_HINTS:
+        if name == "merl":
+            continue
+        m = get_model(name)
+        assert q.lobe(m, m.resolve({})).outer_k7 == (q.SGD_OUTER_K7 if name == "sgd" else 0.0)

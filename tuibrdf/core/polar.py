@@ -674,7 +674,7 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
               max_evals: int = 400_000,
               azimuth_breaks: Callable[[float, float], list[float]] | None = None,
               horizon: Callable[..., tuple] | None = None,
-              rings: tuple[float, ...] = ()) -> PolarResult:
+              rings: tuple[float, ...] = (), outer_k7: float = 0.0) -> PolarResult:
     """``∫ f(wi, wo) cos θo dωo`` for every incidence of ``c`` (see the module docstring).
 
     ``f(wi (n, 3), wo (n, 3))`` returns ``(n,)`` or ``(n, k)``.  ``scale`` is the lobe's
@@ -686,6 +686,9 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
     ``horizon(st, ct, cpsi, rmax) → (eps, amp)`` per outer node, or None: the integrand has a
     pole ``eps`` (radians of ρ) beyond the horizon, of amplitude ``amp`` relative to the
     node's inner integral (:func:`_horizon_cut`): the first round grades toward it.
+    ``rings``: extra radial panel ends (radians, at every outer node; not kinks).
+    ``outer_k7``: outer panels narrower than this (radians) use the K7/G3 pair, for an
+    integrand whose inner integral is smooth in ψ at that scale (no kink curves meeting there).
     Stops when the error estimate is ≤ ``rtol·|a| + atol`` or once ``max_evals`` evaluations
     per incidence are spent (then the error says how far it got)."""
     if frame not in FRAMES:
@@ -737,15 +740,34 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
     lo = hi = pc = k_all = e_all = tol = None
     while len(new_lo):
         mid, half = 0.5 * (new_lo + new_hi), 0.5 * (new_hi - new_lo)
-        psi = (mid[:, None] + half[:, None] * X15).ravel()
-        case = np.repeat(new_pc, 15)
-        wpsi = (half[:, None] * WK15).ravel()
+        small = (new_hi - new_lo) < outer_k7
+        if not small.any():
+            psi = (mid[:, None] + half[:, None] * X15).ravel()
+            case = np.repeat(new_pc, 15)
+            wpsi = (half[:, None] * WK15).ravel()
+            owner = np.repeat(np.arange(len(new_lo)), 15)
+        else:  # the K15 panels' nodes, then the K7 ones'
+            i15, i7 = np.flatnonzero(~small), np.flatnonzero(small)
+            psi = np.concatenate([(mid[i15, None] + half[i15, None] * X15).ravel(),
+                                  (mid[i7, None] + half[i7, None] * X7).ravel()])
+            case = np.concatenate([np.repeat(new_pc[i15], 15), np.repeat(new_pc[i7], 7)])
+            wpsi = np.concatenate([(half[i15, None] * WK15).ravel(),
+                                   (half[i7, None] * WK7).ravel()])
+            owner = np.concatenate([np.repeat(i15, 15), np.repeat(i7, 7)])
         iv, ie, tol = _inner(fn, case, psi, wpsi, edges, tol, rtol, atol, budget,
                              np.pi if symmetric else 2.0 * np.pi, SMALL_PANEL * scale,
                              horizon)
-        k, e = _rule(iv.reshape(len(new_lo), 15, *iv.shape[1:]), half)
+        if not small.any():
+            k, e = _rule(iv.reshape(len(new_lo), 15, *iv.shape[1:]), half)
+        else:
+            n15 = 15 * len(i15)
+            k = np.empty((len(new_lo),) + iv.shape[1:])
+            e = np.empty_like(k)
+            k[i15], e[i15] = _rule(iv[:n15].reshape(len(i15), 15, *iv.shape[1:]), half[i15])
+            k[i7], e[i7] = _rule(iv[n15:].reshape(len(i7), 7, *iv.shape[1:]), half[i7], WK7,
+                                 WG7)
         # the inner errors, integrated with the outer weights
-        e = e + _sum_by(np.repeat(np.arange(len(new_lo)), 15), _times(wpsi, ie), len(new_lo))
+        e = e + _sum_by(owner, _times(wpsi, ie), len(new_lo))
         lo, hi, pc, k_all, e_all = _grow((lo, hi, pc, k_all, e_all),
                                          (new_lo, new_hi, new_pc, k, e))
         tot_v, tot_e = _sum_by(pc, k_all, ncase), _sum_by(pc, e_all, ncase)

@@ -104,6 +104,8 @@ class Lobe(NamedTuple):
     #: extra radial panel ends (radians, the same at every outer node; not kinks: no graded
     #: cuts toward them), e.g. where a lobe's envelope ends
     rings: tuple[float, ...] = ()
+    #: outer panels narrower than this (radians) use K7 (``polar.integrate(outer_k7=...)``)
+    outer_k7: float = 0.0
 
 
 def _theta_i_break(st, ct, cpsi, rmax):
@@ -248,6 +250,8 @@ SGD_ENVELOPE_COVERED = (2.5, 7.0)
 SGD_CLAMP_SHARE = 1e-2
 #: Far-side outer grading for sgd up to this (see :func:`_sgd_azimuths`)
 SGD_FAR_LIMIT = np.pi / 4
+#: sgd's outer panels narrower than this use K7 (see :func:`_sgd_lobe`)
+SGD_OUTER_K7 = 0.05
 
 
 @lru_cache(maxsize=32)
@@ -341,7 +345,8 @@ def _sgd_lobe(v: Mapping[str, Any], rtol: float) -> Lobe:
             out += [np.where(ok, 0.5 * (b - c), rmax), np.where(ok, 0.5 * (b + c), rmax)]
         return out
 
-    return Lobe("half", scale, breaks if kinks else None, azimuths=_sgd_azimuths, rings=rings)
+    return Lobe("half", scale, breaks if kinks else None, azimuths=_sgd_azimuths, rings=rings,
+                outer_k7=SGD_OUTER_K7)
 
 
 #: Registry name → (values, rtol) → :class:`Lobe`, for the built-in models (used only when the
@@ -446,7 +451,7 @@ def albedo_rule(model: Model, values: Mapping[str, Any],
                            symmetric=hint.symmetric, rtol=rtol, atol=ATOL,
                            max_evals=min(max_evals, hint.max_evals or max_evals),
                            azimuth_breaks=hint.azimuths, horizon=hint.horizon,
-                           rings=hint.rings)
+                           rings=hint.rings, outer_k7=hint.outer_k7)
 
 
 def albedo_curve_estimate_resolved(model: Model, values: Mapping[str, Any],
