@@ -54,6 +54,9 @@ out to ρmax, so a lobe at the axis cannot fall between nodes, with the model's 
   call before the refinement would;
 - inner panels that start narrower than ``SMALL_PANEL`` lobe widths (the far side at grazing
   incidence, gaps between close kinks) use the K7/G3 pair: 7 evaluations for 15;
+- a model may add radial panel ends that are not kinks (``rings``: e.g. where its lobe's
+  envelope ends) and ask for K7/G3 on outer panels narrower than ``outer_k7`` (where its
+  inner integral is smooth in ψ: no kink curves meet next to ψ = ±π/2);
 - the inner errors enter the albedo's error weighted by the outer weights, so an incidence's
   allowance is shared among its nodes by weight (nodes of tiny weight may be coarser);
 - the tolerance holds per channel for RGB models.
