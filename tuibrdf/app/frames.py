@@ -6,10 +6,13 @@ A request computed before is shown at once (the core caches results by request);
 :meth:`FrameDelivery.compute` runs in an exclusive thread worker
 (``@work(exclusive=True, thread=True)``): the newest request cancels the older ones, and a
 result that is no longer the current request is dropped, so the latest state always wins and
-its frame always arrives.  The worker posts the fast part (maps, sections, peak) at once and
-the slow part (albedo, albedo curve) when done; the fast part waits up to :data:`HOLD_S` for
-the slow one, so a fast model's key costs one paint: every pane, the panels and the status
-line together (a slow frame lets the panels and status go ahead after :data:`PENDING_S`).  A
+its frame always arrives.  The worker posts the fast part (maps, sections, peak) at once,
+without waiting for it to be handled, and the slow part (albedo, albedo curve) when done.  The
+event loop draws the fast part's panes into rows while the worker computes the albedo, and
+shows them up to :data:`HOLD_S` later, with the albedo, so a fast model's key costs one paint:
+every pane, the panels and the status line together (a slow frame lets the panels and status
+go ahead after :data:`PENDING_S`).  After each frame's paint the garbage of that key is
+collected (:data:`GC_YOUNG`), not in the middle of the next one.  A
 frame waits while Textual's output writer still has frames queued (a slow terminal), and each
 pane is redrawn only when what it shows changed, through
 :func:`tuibrdf.render.lines.pane_lines` (rows of segments, not Rich's line splitting).
@@ -17,10 +20,13 @@ pane is redrawn only when what it shows changed, through
 
 from __future__ import annotations
 
+import gc
+import time
 from functools import partial
 
 from rich.text import Text
 from textual import work
+from textual.message import Message
 from textual.worker import get_current_worker
 
 from ..core import scene
@@ -40,6 +46,22 @@ HOLD_S = 0.006
 #: (ValueError, OSError) and a floating-point exception from a kernel (the kernels raise on
 #: one, core/numerics.py; a picture is not worth losing the session over)
 DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
+#: the automatic collector's young-generation threshold once start-up is over (Python's is
+#: 700): a key leaves ≈ 1,000 objects in reference cycles (Textual's strips cache themselves),
+#: so at 700 a collection fell inside one key in two, and a middle-generation one (≈ 3 ms) in
+#: one in four.  The young objects are collected after each frame's paint instead
+#: (:meth:`FrameDelivery._collect_young`); this threshold only catches what no frame collects
+#: (a burst of keys, a file read).  docs/app.md has the numbers.
+GC_YOUNG = 10_000
+GC_IDLE_S = 1.0  #: a full collection once no frame has come for this long
+
+
+class FramePart(Message):
+    """A frame computed without its albedo (posted by the frame worker)."""
+
+    def __init__(self, result: FrameResult) -> None:
+        super().__init__()
+        self.result = result
 
 
 class FrameDelivery:
@@ -137,7 +159,9 @@ class FrameDelivery:
             return
         try:
             res = scene.compute_frame(req, slow=False)
-            post(self.frame_ready, res)
+            # not waited for (call_from_thread would): the event loop draws the panes of the
+            # fast part while this thread computes the albedo
+            self.post_message(FramePart(res))
             if not res.complete and not worker.is_cancelled:
                 res = scene.compute_frame(req, check=lambda: not worker.is_cancelled)
                 if res is not None:
@@ -160,13 +184,33 @@ class FrameDelivery:
         except AttributeError:
             return False
 
+    def on_frame_part(self, message: FramePart) -> None:
+        self.frame_ready(message.result)
+
     def frame_ready(self, res: FrameResult) -> None:
         """A result for the screen: a complete one at once; one still waiting for its albedo
-        waits up to :data:`HOLD_S` for it, so that a fast model's key costs one paint."""
+        has its panes drawn now (not yet shown: :meth:`_prepare`) and waits up to
+        :data:`HOLD_S` for the albedo, so that a fast model's key costs one paint."""
         if res.complete or res.request != self.request:
             self.show_frame(res)
-        else:
-            self.set_timer(HOLD_S, partial(self._show_partial, res))
+        elif self.frame is None or self.frame.request != res.request:
+            started = time.perf_counter()
+            self._prepare(res)
+            # the hold counts from the result's arrival, drawing included (a timer of 0 s
+            # divides by zero in Textual 8.2)
+            self.set_timer(max(1e-3, HOLD_S - (time.perf_counter() - started)),
+                           partial(self._show_partial, res))
+
+    def _prepare(self, res: FrameResult) -> None:
+        """Draw the rows of every visible pane of ``res`` for :meth:`_draw` to show later (the
+        fast part of a frame: its panes are the same in the complete result)."""
+        if res.request != self.request or self._writer_busy():
+            return
+        self._prepared = {}
+        for pane in visible_panes(self.state):
+            drawn = self._rows(pane, res)
+            if drawn is not None:
+                self._prepared[pane] = drawn
 
     def _show_partial(self, res: FrameResult) -> None:
         if self.frame is None or self.frame.request != res.request:
@@ -183,22 +227,56 @@ class FrameDelivery:
             return
         self.frame = res
         self.frames += 1
+        prepared, self._prepared = self._prepared, {}
         for pane in visible_panes(self.state):
-            self._draw(pane, res)
+            self._draw(pane, res, prepared.get(pane))
         if self.state.compare and self.state.view == "map":
             self.one("legend").update(legend_text(self.state))
         self._panels()
         self._status()
+        if not self.sync:
+            self.call_after_refresh(self._collect_young)
 
-    def _draw(self, pane: str, res: FrameResult) -> None:
+    def _collect_young(self) -> None:
+        """After a frame's paint, the garbage of its key (:data:`GC_YOUNG`): ≈ 0.6 ms between
+        keys rather than inside one; once no frame has come for :data:`GC_IDLE_S`, a full
+        collection (:meth:`collect_idle`)."""
+        gc.collect(1)
+        self._collected_at = time.monotonic()
+
+    def collect_idle(self) -> None:
+        """A full collection when frames have stopped coming (called on an interval)."""
+        last = self._collected_at
+        if last is not None and time.monotonic() - last >= GC_IDLE_S:
+            self._collected_at = None
+            gc.collect()
+
+    def _draw(self, pane: str, res: FrameResult, prepared: tuple | None = None) -> None:
+        """Show ``pane``'s picture of ``res``: ``prepared`` (:meth:`_rows`, drawn before)
+        when it is that picture, else drawn now."""
+        pic = self.one(pane)
+        drawn = prepared if prepared is not None and prepared[0] == self._pane_key(pane, res) \
+            else self._rows(pane, res)
+        if drawn is None:  # shown already
+            return
+        key, rows = drawn
+        if rows is None:
+            pic.show(Text(f"{pic.size.width}×{pic.size.height}: too small for this pane"), None)
+        elif isinstance(rows, Text):
+            pic.show(rows, None)
+        else:
+            pic.show_rows(rows, key)
+
+    def _pane_key(self, pane: str, res: FrameResult) -> object:
+        """What ``pane``'s picture of ``res`` depends on (its size, the frame's inputs and the
+        look); ``None`` when the pane is too small for it."""
         pic = self.one(pane)
         w, h = pic.size.width, pic.size.height
         view, k = PANES[pane]
         look, req = self.look, res.request
         if w < MIN_WIDTH or h < MIN_HEIGHT or (view in ("map", "diff") and not req.map_px) or (
                 view == "extra" and req.extra is None):
-            pic.show(Text(f"{w}×{h}: too small for this pane"), None)
-            return
+            return None
         if view in ("map", "diff"):  # every map of a compare grid on the same pixel grid
             w, h = req.map_px[0], req.map_px[1] // 2 + 3
         what = (req.materials, req.theta_i, req.cosine, req.phi_i)
@@ -207,14 +285,25 @@ class FrameDelivery:
                "solid": (what, look), "albedo": (req.materials, req.theta_i, req.phi_i,
                                                  look.color, res.complete, look.channel),
                "extra": (req.materials, req.extra_key, look)}.get(view)
-        key = (pane, w, h, key or (what, req.section_azimuth, look.color, look.log,
-                                   look.channel))
+        return (pane, w, h, key or (what, req.section_azimuth, look.color, look.log,
+                                    look.channel))
+
+    def _rows(self, pane: str, res: FrameResult) -> tuple | None:
+        """``(key, rows)``: ``pane``'s picture of ``res`` as rows of segments (``rows`` is
+        ``None`` for a pane too small, a ``Text`` for a drawing error); ``None`` when the pane
+        shows that picture already."""
+        key = self._pane_key(pane, res)
+        if key is None:
+            return None, None
+        pic = self.one(pane)
         if pic.shown_for == key:
-            return
+            return None
+        view, k = PANES[pane]
+        _, w, h, _ = key
         try:
-            pic.show(panes.pane(view, res, k, w, h, look), key)
+            return key, pic.rows_of(panes.pane(view, res, k, w, h, self.look))
         except DRAW_ERRORS as e:
-            pic.show(Text(f"cannot draw {pane}: {e}"), None)
+            return key, Text(f"cannot draw {pane}: {e}")
 
     def _status(self) -> None:
         self.one("status").show_text(
