@@ -422,7 +422,11 @@ async def test_panes_drawn_ahead_of_the_albedo_are_the_panes_drawn_with_it(monke
                         lambda self, r: (drawn.append(self.pane), rows_of(self, r))[1])
     app = BrdfApp(ViewerState(sides=[Side.of("ggx")], theta_i=30.0))
     async with app.run_test(size=(160, 48)) as pilot:
-        await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        # start-up settled: the last request's frame shown (the layout settles in steps)
+        assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete
+                              and app.frame.request == app.request
+                              and not (app._worker and app._worker.is_running))
+        await pilot.pause(0.2)
         for theta in (31.0, 32.0, 33.0):
             drawn.clear()
             await pilot.press("right")
