@@ -95,6 +95,8 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self._widgets: dict[str, object] = {}  # id → widget (BrdfApp.one)
         self._prepared: dict[str, tuple] = {}  # pane → rows drawn ahead (FrameDelivery)
         self._collected_at: float | None = None  # the last collection after a frame
+        self._event_loop = None  # the running loop and the app's context (capture_loop)
+        self._loop_context = None
 
     # -- layout ------------------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -119,6 +121,7 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self.set_interval(FILE_POLL_S, self._check_files)
         self.background(_list_presets, self._listed)
         if not self.sync:
+            self.capture_loop()
             self.set_timer(FREEZE_S, _freeze)
             self.set_interval(GC_IDLE_S, self.collect_idle)
 

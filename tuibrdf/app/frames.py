@@ -20,13 +20,14 @@ pane is redrawn only when what it shows changed, through
 
 from __future__ import annotations
 
+import asyncio
+import contextvars
 import gc
 import time
 from functools import partial
 
 from rich.text import Text
 from textual import work
-from textual.message import Message
 from textual.worker import get_current_worker
 
 from ..core import scene
@@ -54,14 +55,6 @@ DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
 #: (a burst of keys, a file read).  docs/app.md has the numbers.
 GC_YOUNG = 10_000
 GC_IDLE_S = 1.0  #: a full collection once no frame has come for this long
-
-
-class FramePart(Message):
-    """A frame computed without its albedo (posted by the frame worker)."""
-
-    def __init__(self, result: FrameResult) -> None:
-        super().__init__()
-        self.result = result
 
 
 class FrameDelivery:
@@ -161,7 +154,7 @@ class FrameDelivery:
             res = scene.compute_frame(req, slow=False)
             # not waited for (call_from_thread would): the event loop draws the panes of the
             # fast part while this thread computes the albedo
-            self.post_message(FramePart(res))
+            self._soon(self.frame_ready, res)
             if not res.complete and not worker.is_cancelled:
                 res = scene.compute_frame(req, check=lambda: not worker.is_cancelled)
                 if res is not None:
@@ -184,8 +177,19 @@ class FrameDelivery:
         except AttributeError:
             return False
 
-    def on_frame_part(self, message: FramePart) -> None:
-        self.frame_ready(message.result)
+    def capture_loop(self) -> None:
+        """Note the event loop and the app's context (on mount) for :meth:`_soon`."""
+        self._loop_context = contextvars.copy_context()
+        self._event_loop = asyncio.get_running_loop()
+
+    def _soon(self, callback, *args) -> None:
+        """``callback(*args)`` on the event loop, from a thread, not waited for: straight onto
+        the loop (a message would wait its turn in the app's queue, ≈ 1 ms later), in the
+        app's context (Textual's context variables)."""
+        try:
+            self._event_loop.call_soon_threadsafe(callback, *args, context=self._loop_context)
+        except RuntimeError:  # the loop has closed meanwhile
+            pass
 
     def frame_ready(self, res: FrameResult) -> None:
         """A result for the screen: a complete one at once; one still waiting for its albedo
