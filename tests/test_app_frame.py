@@ -488,16 +488,24 @@ async def test_garbage_is_collected_after_each_frame_and_fully_when_idle(monkeyp
             assert gc.get_threshold()[0] == frames.GC_YOUNG > 700
             calls.clear()
             shown = app.frames
-            for _ in range(3):
+            for theta in (31.0, 32.0, 33.0):
                 await pilot.press("right")
-                await pilot.pause(0.05)
-            assert await wait_for(pilot, lambda: app.frame.request.theta_i == 33.0
-                                  and app.frame.complete)
-            await pilot.pause(0.05)
+                assert await wait_for(pilot, lambda t=theta: app.frame.request.theta_i == t
+                                      and app.frame.complete)
+                await pilot.pause(2 * frames.GC_AFTER_S)
             young = [c for c in calls if c == (1,)]
             assert len(young) == app.frames - shown >= 3
             assert () not in calls  # no full collection while frames come
             await pilot.pause(0.6)
             assert calls.count(()) == 1  # idle: one full collection, not one per interval
+            # a newer frame on its way: no collection, unless the garbage has grown
+            calls.clear()
+            app.request = dataclasses.replace(app.request, theta_i=34.0)
+            app._collect_young()
+            assert calls == []
+            junk = [[i] for i in range(frames.GC_YOUNG // 2 + 100)]  # tracked: gen 0 count grows
+            app._collect_young()
+            assert calls == [(1,)]
+            del junk
     finally:
         gc.set_threshold(*threshold)

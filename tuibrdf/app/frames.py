@@ -11,8 +11,8 @@ without waiting for it to be handled, and the slow part (albedo, albedo curve) w
 event loop draws the fast part's panes into rows while the worker computes the albedo, and
 shows them up to :data:`HOLD_S` later, with the albedo, so a fast model's key costs one paint:
 every pane, the panels and the status line together (a slow frame lets the panels and status
-go ahead after :data:`PENDING_S`).  After each frame's paint the garbage of that key is
-collected (:data:`GC_YOUNG`), not in the middle of the next one.  A
+go ahead after :data:`PENDING_S`).  Once a frame is on the terminal the garbage of its key
+is collected (:data:`GC_YOUNG`), not in the middle of the next one.  A
 frame waits while Textual's output writer still has frames queued (a slow terminal), and each
 pane is redrawn only when what it shows changed, through
 :func:`tuibrdf.render.lines.pane_lines` (rows of segments, not Rich's line splitting).
@@ -54,6 +54,10 @@ DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
 #: (:meth:`FrameDelivery._collect_young`); this threshold only catches what no frame collects
 #: (a burst of keys, a file read).  docs/app.md has the numbers.
 GC_YOUNG = 10_000
+#: after a frame is shown, when its paint is on the terminal: Textual paints it ≈ 2–15 ms
+#: later and its writer thread, which needs the interpreter lock a collection holds, sends it
+#: ≈ 1 ms after that (a collection run right after the paint delayed the last byte by ≈ 2 ms)
+GC_AFTER_S = 0.03
 GC_IDLE_S = 1.0  #: a full collection once no frame has come for this long
 
 
@@ -238,13 +242,19 @@ class FrameDelivery:
             self.one("legend").update(legend_text(self.state))
         self._panels()
         self._status()
-        if not self.sync:
-            self.call_after_refresh(self._collect_young)
+        if self._event_loop is not None:  # not in sync mode (tests)
+            self._event_loop.call_later(GC_AFTER_S, self._collect_young,
+                                        context=self._loop_context)
 
     def _collect_young(self) -> None:
-        """After a frame's paint, the garbage of its key (:data:`GC_YOUNG`): ≈ 0.6 ms between
-        keys rather than inside one; once no frame has come for :data:`GC_IDLE_S`, a full
-        collection (:meth:`collect_idle`)."""
+        """:data:`GC_AFTER_S` after a frame is shown, the garbage of its key (:data:`GC_YOUNG`):
+        ≈ 0.7 ms between two keys rather than inside one.  Not while the next frame is on its
+        way (it collects after it), unless that garbage has grown to half the threshold (a
+        held key); once no frame has come for :data:`GC_IDLE_S`, a full collection
+        (:meth:`collect_idle`)."""
+        busy = self.frame is None or self.frame.request != self.request
+        if busy and gc.get_count()[0] < GC_YOUNG // 2:
+            return
         gc.collect(1)
         self._collected_at = time.monotonic()
 
