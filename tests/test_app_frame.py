@@ -401,70 +401,7 @@ async def test_status_line_grows_and_shrinks_with_its_text():
         assert st.size.height == 2
 
 
-# -------------------------------------------- drawn while the albedo computes; collected after
-def pictures(app) -> dict[str, list]:
-    from tuibrdf.app.text import visible_panes
-    return {p: app.query_one(f"#{p}")._lines for p in visible_panes(app.state)}
-
-
-async def test_panes_drawn_ahead_of_the_albedo_are_the_panes_drawn_with_it(monkeypatch):
-    # the worker posts the frame without its albedo first: its panes are drawn then
-    # (FrameDelivery._prepare) and shown with the albedo; each pane must be drawn once per key
-    # and be, row for row, what a synchronous viewer draws for the same state
-    from tuibrdf.app import frames, widgets
-    scene.clear_caches()
-    prepared, drawn = [], []
-    prepare, rows_of = frames.FrameDelivery._prepare, widgets.Picture.rows_of
-    monkeypatch.setattr(frames.FrameDelivery, "_prepare",
-                        lambda self, res: (prepared.append(res.request.theta_i),
-                                           prepare(self, res))[1])
-    monkeypatch.setattr(widgets.Picture, "rows_of",
-                        lambda self, r: (drawn.append(self.pane), rows_of(self, r))[1])
-    app = BrdfApp(ViewerState(sides=[Side.of("ggx")], theta_i=30.0))
-    async with app.run_test(size=(160, 48)) as pilot:
-        # start-up settled: the last request's frame shown (the layout settles in steps)
-        assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete
-                              and app.frame.request == app.request
-                              and not (app._worker and app._worker.is_running))
-        await pilot.pause(0.2)
-        for theta in (31.0, 32.0, 33.0):
-            drawn.clear()
-            await pilot.press("right")
-            assert await wait_for(pilot, lambda t=theta: app.frame.request.theta_i == t
-                                  and app.frame.complete)
-            await pilot.pause(0.05)
-            assert theta in prepared
-            assert sorted(drawn) == ["incidence", "map-a", "perpendicular"]
-        seen = pictures(app)
-    scene.clear_caches()
-    ref = BrdfApp(ViewerState(sides=[Side.of("ggx")], theta_i=33.0), sync=True)
-    async with ref.run_test(size=(160, 48)) as pilot:
-        await pilot.pause()
-        assert pictures(ref) == seen
-
-
-async def test_panes_drawn_ahead_for_another_request_are_not_shown():
-    # on a viewer showing θi = 29°, rows drawn for θi = 30° must not be shown for a frame of
-    # θi = 31°
-    scene.clear_caches()
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=29.0), sync=True)
-    async with app.run_test(size=(160, 48)) as pilot:
-        await pilot.pause()
-        req30 = dataclasses.replace(app.frame_request(), theta_i=30.0)
-        req31 = dataclasses.replace(req30, theta_i=31.0)
-        app.request = req30
-        app._prepare(scene.compute_frame(req30, slow=False))
-        assert app._prepared  # drawn ahead
-        app.state.theta_i, app.request = 31.0, req31
-        app.show_frame(scene.compute_frame(req31))
-        await pilot.pause()
-        seen = pictures(app)
-    ref = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=31.0), sync=True)
-    async with ref.run_test(size=(160, 48)) as pilot:
-        await pilot.pause()
-        assert pictures(ref) == seen
-
-
+# ---------------------------------------------------------------- the garbage of each key
 async def test_garbage_is_collected_after_each_frame_and_fully_when_idle(monkeypatch):
     # the young generations after each shown frame's paint, a full collection once frames
     # stop, and the automatic collector's young threshold raised after start-up

@@ -93,7 +93,6 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self._relayout = False  # a change since the last update may show other panes
         self._preset_names: list[str] = []  # the saved presets, for the command palette
         self._widgets: dict[str, object] = {}  # id → widget (BrdfApp.one)
-        self._prepared: dict[str, tuple] = {}  # pane → rows drawn ahead (FrameDelivery)
         self._collected_at: float | None = None  # the last collection after a frame
         self._event_loop = None  # the running loop and the app's context (capture_loop)
         self._loop_context = None

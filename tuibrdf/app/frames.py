@@ -6,13 +6,12 @@ A request computed before is shown at once (the core caches results by request);
 :meth:`FrameDelivery.compute` runs in an exclusive thread worker
 (``@work(exclusive=True, thread=True)``): the newest request cancels the older ones, and a
 result that is no longer the current request is dropped, so the latest state always wins and
-its frame always arrives.  The worker posts the fast part (maps, sections, peak) at once,
-without waiting for it to be handled, and the slow part (albedo, albedo curve) when done.  The
-event loop draws the fast part's panes into rows while the worker computes the albedo, and
-shows them up to :data:`HOLD_S` later, with the albedo, so a fast model's key costs one paint:
-every pane, the panels and the status line together (a slow frame lets the panels and status
-go ahead after :data:`PENDING_S`).  Once a frame is on the terminal the garbage of its key
-is collected (:data:`GC_YOUNG`), not in the middle of the next one.  A
+its frame always arrives.  The worker posts the fast part (maps, sections, peak) at once and
+the slow part (albedo, albedo curve) when done; the fast part waits up to :data:`HOLD_S` for
+the slow one, so a fast model's key costs one paint: every pane, the panels and the status
+line together (a slow frame lets the panels and status go ahead after :data:`PENDING_S`).
+Once a frame is on the terminal the garbage of its key is collected (:data:`GC_YOUNG`), not in
+the middle of the next one.  A
 frame waits while Textual's output writer still has frames queued (a slow terminal), and each
 pane is redrawn only when what it shows changed, through
 :func:`tuibrdf.render.lines.pane_lines` (rows of segments, not Rich's line splitting).
@@ -50,7 +49,7 @@ DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
 #: the automatic collector's young-generation threshold once start-up is over (Python's is
 #: 700): a key leaves ≈ 1,000 objects in reference cycles (Textual's strips cache themselves),
 #: so at 700 a collection fell inside one key in two, and a middle-generation one (≈ 3 ms) in
-#: one in four.  The young objects are collected after each frame's paint instead
+#: one in four.  The young objects are collected after each frame instead
 #: (:meth:`FrameDelivery._collect_young`); this threshold only catches what no frame collects
 #: (a burst of keys, a file read).  docs/app.md has the numbers.
 GC_YOUNG = 10_000
@@ -156,9 +155,7 @@ class FrameDelivery:
             return
         try:
             res = scene.compute_frame(req, slow=False)
-            # not waited for (call_from_thread would): the event loop draws the panes of the
-            # fast part while this thread computes the albedo
-            self._soon(self.frame_ready, res)
+            post(self.frame_ready, res)
             if not res.complete and not worker.is_cancelled:
                 res = scene.compute_frame(req, check=lambda: not worker.is_cancelled)
                 if res is not None:
@@ -181,44 +178,13 @@ class FrameDelivery:
         except AttributeError:
             return False
 
-    def capture_loop(self) -> None:
-        """Note the event loop and the app's context (on mount) for :meth:`_soon`."""
-        self._loop_context = contextvars.copy_context()
-        self._event_loop = asyncio.get_running_loop()
-
-    def _soon(self, callback, *args) -> None:
-        """``callback(*args)`` on the event loop, from a thread, not waited for: straight onto
-        the loop (a message would wait its turn in the app's queue, ≈ 1 ms later), in the
-        app's context (Textual's context variables)."""
-        try:
-            self._event_loop.call_soon_threadsafe(callback, *args, context=self._loop_context)
-        except RuntimeError:  # the loop has closed meanwhile
-            pass
-
     def frame_ready(self, res: FrameResult) -> None:
         """A result for the screen: a complete one at once; one still waiting for its albedo
-        has its panes drawn now (not yet shown: :meth:`_prepare`) and waits up to
-        :data:`HOLD_S` for the albedo, so that a fast model's key costs one paint."""
+        waits up to :data:`HOLD_S` for it, so that a fast model's key costs one paint."""
         if res.complete or res.request != self.request:
             self.show_frame(res)
-        elif self.frame is None or self.frame.request != res.request:
-            started = time.perf_counter()
-            self._prepare(res)
-            # the hold counts from the result's arrival, drawing included (a timer of 0 s
-            # divides by zero in Textual 8.2)
-            self.set_timer(max(1e-3, HOLD_S - (time.perf_counter() - started)),
-                           partial(self._show_partial, res))
-
-    def _prepare(self, res: FrameResult) -> None:
-        """Draw the rows of every visible pane of ``res`` for :meth:`_draw` to show later (the
-        fast part of a frame: its panes are the same in the complete result)."""
-        if res.request != self.request or self._writer_busy():
-            return
-        self._prepared = {}
-        for pane in visible_panes(self.state):
-            drawn = self._rows(pane, res)
-            if drawn is not None:
-                self._prepared[pane] = drawn
+        else:
+            self.set_timer(HOLD_S, partial(self._show_partial, res))
 
     def _show_partial(self, res: FrameResult) -> None:
         if self.frame is None or self.frame.request != res.request:
@@ -235,9 +201,8 @@ class FrameDelivery:
             return
         self.frame = res
         self.frames += 1
-        prepared, self._prepared = self._prepared, {}
         for pane in visible_panes(self.state):
-            self._draw(pane, res, prepared.get(pane))
+            self._draw(pane, res)
         if self.state.compare and self.state.view == "map":
             self.one("legend").update(legend_text(self.state))
         self._panels()
@@ -245,6 +210,11 @@ class FrameDelivery:
         if self._event_loop is not None:  # not in sync mode (tests)
             self._event_loop.call_later(GC_AFTER_S, self._collect_young,
                                         context=self._loop_context)
+
+    def capture_loop(self) -> None:
+        """Note the event loop and the app's context (on mount) for the collections."""
+        self._loop_context = contextvars.copy_context()
+        self._event_loop = asyncio.get_running_loop()
 
     def _collect_young(self) -> None:
         """:data:`GC_AFTER_S` after a frame is shown, the garbage of its key (:data:`GC_YOUNG`):
@@ -265,32 +235,15 @@ class FrameDelivery:
             self._collected_at = None
             gc.collect()
 
-    def _draw(self, pane: str, res: FrameResult, prepared: tuple | None = None) -> None:
-        """Show ``pane``'s picture of ``res``: ``prepared`` (:meth:`_rows`, drawn before)
-        when it is that picture, else drawn now."""
-        pic = self.one(pane)
-        drawn = prepared if prepared is not None and prepared[0] == self._pane_key(pane, res) \
-            else self._rows(pane, res)
-        if drawn is None:  # shown already
-            return
-        key, rows = drawn
-        if rows is None:
-            pic.show(Text(f"{pic.size.width}×{pic.size.height}: too small for this pane"), None)
-        elif isinstance(rows, Text):
-            pic.show(rows, None)
-        else:
-            pic.show_rows(rows, key)
-
-    def _pane_key(self, pane: str, res: FrameResult) -> object:
-        """What ``pane``'s picture of ``res`` depends on (its size, the frame's inputs and the
-        look); ``None`` when the pane is too small for it."""
+    def _draw(self, pane: str, res: FrameResult) -> None:
         pic = self.one(pane)
         w, h = pic.size.width, pic.size.height
         view, k = PANES[pane]
         look, req = self.look, res.request
         if w < MIN_WIDTH or h < MIN_HEIGHT or (view in ("map", "diff") and not req.map_px) or (
                 view == "extra" and req.extra is None):
-            return None
+            pic.show(Text(f"{w}×{h}: too small for this pane"), None)
+            return
         if view in ("map", "diff"):  # every map of a compare grid on the same pixel grid
             w, h = req.map_px[0], req.map_px[1] // 2 + 3
         what = (req.materials, req.theta_i, req.cosine, req.phi_i)
@@ -299,25 +252,14 @@ class FrameDelivery:
                "solid": (what, look), "albedo": (req.materials, req.theta_i, req.phi_i,
                                                  look.color, res.complete, look.channel),
                "extra": (req.materials, req.extra_key, look)}.get(view)
-        return (pane, w, h, key or (what, req.section_azimuth, look.color, look.log,
-                                    look.channel))
-
-    def _rows(self, pane: str, res: FrameResult) -> tuple | None:
-        """``(key, rows)``: ``pane``'s picture of ``res`` as rows of segments (``rows`` is
-        ``None`` for a pane too small, a ``Text`` for a drawing error); ``None`` when the pane
-        shows that picture already."""
-        key = self._pane_key(pane, res)
-        if key is None:
-            return None, None
-        pic = self.one(pane)
+        key = (pane, w, h, key or (what, req.section_azimuth, look.color, look.log,
+                                   look.channel))
         if pic.shown_for == key:
-            return None
-        view, k = PANES[pane]
-        _, w, h, _ = key
+            return
         try:
-            return key, pic.rows_of(panes.pane(view, res, k, w, h, self.look))
+            pic.show(panes.pane(view, res, k, w, h, look), key)
         except DRAW_ERRORS as e:
-            return key, Text(f"cannot draw {pane}: {e}")
+            pic.show(Text(f"cannot draw {pane}: {e}"), None)
 
     def _status(self) -> None:
         self.one("status").show_text(

@@ -98,20 +98,9 @@ class Picture(Rows):
         self.shown_for: object = None  # what the strips were made from (the app's key)
 
     def show(self, renderable: RenderableType, key: object = None) -> None:
-        self.show_rows(self.rows_of(renderable), key)
-
-    def rows_of(self, renderable: RenderableType) -> list[list[Segment]]:
-        """``renderable`` as this pane's rows (its size now), not shown yet."""
-        return pane_lines(renderable, self.app.console, self.size.width, self.size.height)
-
-    def show_rows(self, rows: list[list[Segment]], key: object = None) -> None:
-        """Show rows from :meth:`rows_of` (``key``: what they were made from)."""
         w, h = self.size.width, self.size.height
-        if len(rows) != h or (rows and sum(cell_len(s.text) for s in rows[0]) != w):
-            rows = fit_rows(rows, w, h)  # resized since they were drawn: the next frame redraws
-            key = None
         self.shown_for = key
-        self._set(rows, w, h)
+        self._set(pane_lines(renderable, self.app.console, w, h), w, h)
 
     def on_resize(self, event) -> None:
         self.shown_for = None
