@@ -206,7 +206,10 @@ def _sgd_lobe(v: Mapping[str, Any]) -> Lobe:
     # logarithms (c_g up to 1e38, k up to 856 overflow otherwise); Λ, c_g, k > 0 (the table)
     lt = (np.log(np.log1p(1.0 / t["lambda"])) - np.log(t["c_g"])) / t["k"]
     kinks = np.concatenate([t["theta0"], t["theta0"] + np.exp(np.minimum(lt, 5.0))])
-    kinks = np.unique(kinks[(kinks > 0.0) & (kinks < np.pi / 2)])
+    # sorted, each once (not np.unique: without its index outputs it imports numpy.ma, a
+    # one-off 8–30 ms in the first sgd frame's worker)
+    kinks = np.sort(kinks[(kinks > 0.0) & (kinks < np.pi / 2)])
+    kinks = kinks[np.diff(kinks, prepend=-1.0) > 0.0]
 
     def breaks(st, ct, cpsi, rmax):
         # θo = θk in the half frame: cos θo = R cos(2ρ − β) = cos θk (module polar), so
