@@ -10,7 +10,8 @@ the keys, the first two left out as warm-up):
 
 * ``key``: the key event reaches the app; ``update>``: the coalesced state update runs;
 * ``compute>`` / ``compute<``: the worker's ``compute_frame`` calls, from the first's start
-  (maps, sections, peak) to the last's end (the albedo);
+  (maps, sections, peak) to the last's end (the albedo); ``fast<``: the first call's end (the
+  frame without its albedo); ``ready>``: that part reaches the event loop (``frame_ready``);
 * ``show>`` / ``show<``: ``show_frame`` draws every pane, the panels and the status line;
 * ``paint>`` / ``paint<``: Textual's compositor turns the dirty regions into output;
 * ``flush``: Textual's writer thread flushes it; ``read``: the last byte reaches the driver.
@@ -32,8 +33,8 @@ import termios
 import time
 
 KEYS = {"right": b"\x1b[C", "left": b"\x1b[D", "+": b"+", "-": b"-", "m": b"m"}
-PHASES = ("key", "update>", "compute>", "compute<", "show>", "show<", "paint>", "paint<",
-          "flush", "read")
+PHASES = ("key", "update>", "compute>", "fast<", "ready>", "compute<", "show>", "show<", "paint>",
+          "paint<", "flush", "read")
 
 
 def child(out: str, argv: list[str]) -> None:
@@ -65,6 +66,7 @@ def child(out: str, argv: list[str]) -> None:
 
     wrap(viewer.BrdfApp, "_update", "update")
     wrap(frames.FrameDelivery, "show_frame", "show")
+    wrap(frames.FrameDelivery, "frame_ready", "ready")
     wrap(screen.Screen, "_compositor_refresh", "paint")
     wrap(scene, "compute_frame", "compute")
 
@@ -148,7 +150,9 @@ def table(sends: list[float], marks: list, reads: list[float]) -> str:
         end = sends[i + 1] if i + 1 < len(sends) else s + 0.15
         seen = [(t - s, tag) for t, tag in marks if s <= t < end]
         for p in PHASES[:-1]:
-            ts = [t for t, tag in seen if tag == p]
+            ts = [t for t, tag in seen if tag == ("compute<" if p == "fast<" else p)]
+            if p == "fast<":
+                ts = ts[:1]  # the first call's end
             if ts:  # the first start, the last end
                 per[p].append((max if p.endswith("<") or p == "flush" else min)(ts))
         last = [t - s for t in reads if s <= t < end]

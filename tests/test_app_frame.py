@@ -399,3 +399,50 @@ async def test_status_line_grows_and_shrinks_with_its_text():
         await pilot.pause()
         await pilot.pause()
         assert st.size.height == 2
+
+
+# ---------------------------------------------------------------- the garbage of each key
+async def test_garbage_is_collected_after_each_frame_and_fully_when_idle(monkeypatch):
+    # the young generations after each shown frame's paint, a full collection once frames
+    # stop, and the automatic collector's young threshold raised after start-up
+    import gc
+
+    from tuibrdf.app import app as app_module
+    from tuibrdf.app import frames
+    calls = []
+    collect = gc.collect
+    monkeypatch.setattr(gc, "collect", lambda *a: (calls.append(a), collect(*a))[1])
+    monkeypatch.setattr(app_module, "FREEZE_S", 0.05)
+    monkeypatch.setattr(app_module, "GC_IDLE_S", 0.2)
+    monkeypatch.setattr(frames, "GC_IDLE_S", 0.2)
+    threshold = gc.get_threshold()
+    gc.set_threshold(700, *threshold[1:])  # Python's default (an earlier viewer raised it)
+    try:
+        app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))
+        async with app.run_test(size=(120, 36)) as pilot:
+            await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+            await pilot.pause(0.1)
+            assert gc.get_threshold()[0] == frames.GC_YOUNG > 700
+            calls.clear()
+            shown = app.frames
+            for theta in (31.0, 32.0, 33.0):
+                await pilot.press("right")
+                assert await wait_for(pilot, lambda t=theta: app.frame.request.theta_i == t
+                                      and app.frame.complete)
+                await pilot.pause(2 * frames.GC_AFTER_S)
+            young = [c for c in calls if c == (1,)]
+            assert len(young) == app.frames - shown >= 3
+            assert () not in calls  # no full collection while frames come
+            await pilot.pause(0.6)
+            assert calls.count(()) == 1  # idle: one full collection, not one per interval
+            # a newer frame on its way: no collection, unless the garbage has grown
+            calls.clear()
+            app.request = dataclasses.replace(app.request, theta_i=34.0)
+            app._collect_young()
+            assert calls == []
+            junk = [[i] for i in range(frames.GC_YOUNG // 2 + 100)]  # tracked: gen 0 count grows
+            app._collect_young()
+            assert calls == [(1,)]
+            del junk
+    finally:
+        gc.set_threshold(*threshold)

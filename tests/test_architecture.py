@@ -87,3 +87,24 @@ def test_no_import_cycle_and_layers_point_down():
 def test_the_frame_computation_is_numpy_only(statement):
     mods = loaded_after(statement)
     assert "textual" not in mods and "rich" not in mods
+
+
+def test_no_frame_of_a_built_in_model_imports_numpy_ma():
+    # numpy imports numpy.ma on first use of a few functions (np.unique without index
+    # outputs calls np.ma.is_masked): a one-off 8–30 ms inside the first frame of a model.
+    # Every built-in model's whole frame (map, sections, peak, albedo and its curve) must
+    # go without it.
+    code = """
+from tuibrdf.core import scene
+from tuibrdf.core.material import Material
+from tuibrdf.core.models import MODELS
+from tuibrdf.core.scene import FrameRequest
+for name, m in MODELS.items():
+    if any(p.kind == "path" for p in m.params):  # measured data: needs a file
+        continue
+    req = FrameRequest((Material(name),), 80.0, map_px=(40, 40), curve=True)
+    scene.compute_frame(req)
+"""
+    full = subprocess.run([sys.executable, "-c", code + "\nimport sys\nprint('numpy.ma' in "
+                           "sys.modules)"], capture_output=True, text=True, check=True)
+    assert full.stdout.split()[-1] == "False", full.stdout

@@ -247,3 +247,28 @@ def test_bad_input_is_one_line_and_exit_2(capsys, argv, words):
     assert rc == 2 and out == ""
     assert len(err.strip().splitlines()) == 1 and "Traceback" not in err, err
     assert words in err, err
+
+
+def test_auto_color_looks_at_stdout_as_it_is_at_the_call(monkeypatch):
+    # `--color auto` must ask the standard output of the call, not the one the module saw
+    # when it was imported; a closed or broken stream is not a terminal (no exception)
+    import io
+
+    from tuibrdf.cli.render import color_system
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+
+    monkeypatch.setattr(sys, "stdout", Tty())
+    assert color_system("auto", {}) == "256"
+    closed = io.StringIO()
+    closed.close()
+    monkeypatch.setattr(sys, "stdout", closed)
+    assert color_system("auto", {}) == "none"
+
+    class Broken:
+        def isatty(self):
+            raise OSError("bad file descriptor")
+
+    assert color_system("auto", {}, Broken()) == "none"

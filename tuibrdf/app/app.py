@@ -25,7 +25,7 @@ from ..core.sections import great_circle
 from ..render import panes
 from ..render.polar_braille import angle_at
 from . import keys
-from .frames import FrameDelivery
+from .frames import GC_IDLE_S, GC_YOUNG, FrameDelivery
 from .layout import CSS, arrange
 from .loading import MeasuredData
 from .presets import PresetError, apply_loaded, list_presets, load_preset, preset_dir, save_preset
@@ -50,6 +50,13 @@ def _list_presets() -> list[str]:
         return list_presets()
     except (PresetError, OSError):
         return []
+
+
+def _freeze() -> None:
+    """Start-up is over: what exists now is kept out of every later collection, and the
+    young generation is left to the collection after each frame (:data:`GC_YOUNG`)."""
+    gc.freeze()
+    gc.set_threshold(GC_YOUNG, *gc.get_threshold()[1:])
 
 
 def _read_preset(name: str):
@@ -86,6 +93,9 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self._relayout = False  # a change since the last update may show other panes
         self._preset_names: list[str] = []  # the saved presets, for the command palette
         self._widgets: dict[str, object] = {}  # id → widget (BrdfApp.one)
+        self._collected_at: float | None = None  # the last collection after a frame
+        self._event_loop = None  # the running loop and the app's context (capture_loop)
+        self._loop_context = None
 
     # -- layout ------------------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -110,7 +120,9 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self.set_interval(FILE_POLL_S, self._check_files)
         self.background(_list_presets, self._listed)
         if not self.sync:
-            self.set_timer(FREEZE_S, gc.freeze)
+            self.capture_loop()
+            self.set_timer(FREEZE_S, _freeze)
+            self.set_interval(GC_IDLE_S, self.collect_idle)
 
     def on_resize(self, event) -> None:
         self._changed(self.message, relayout=True)

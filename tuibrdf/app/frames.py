@@ -9,7 +9,9 @@ result that is no longer the current request is dropped, so the latest state alw
 its frame always arrives.  The worker posts the fast part (maps, sections, peak) at once and
 the slow part (albedo, albedo curve) when done; the fast part waits up to :data:`HOLD_S` for
 the slow one, so a fast model's key costs one paint: every pane, the panels and the status
-line together (a slow frame lets the panels and status go ahead after :data:`PENDING_S`).  A
+line together (a slow frame lets the panels and status go ahead after :data:`PENDING_S`).
+Once a frame is on the terminal the garbage of its key is collected (:data:`GC_YOUNG`), not in
+the middle of the next one.  A
 frame waits while Textual's output writer still has frames queued (a slow terminal), and each
 pane is redrawn only when what it shows changed, through
 :func:`tuibrdf.render.lines.pane_lines` (rows of segments, not Rich's line splitting).
@@ -17,6 +19,10 @@ pane is redrawn only when what it shows changed, through
 
 from __future__ import annotations
 
+import asyncio
+import contextvars
+import gc
+import time
 from functools import partial
 
 from rich.text import Text
@@ -40,6 +46,18 @@ HOLD_S = 0.006
 #: (ValueError, OSError) and a floating-point exception from a kernel (the kernels raise on
 #: one, core/numerics.py; a picture is not worth losing the session over)
 DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
+#: the automatic collector's young-generation threshold once start-up is over (Python's is
+#: 700): a key leaves ≈ 1,000 objects in reference cycles (Textual's strips cache themselves),
+#: so at 700 a collection fell inside one key in two, and a middle-generation one (≈ 3 ms) in
+#: one in four.  The young objects are collected after each frame instead
+#: (:meth:`FrameDelivery._collect_young`); this threshold only catches what no frame collects
+#: (a burst of keys, a file read).  docs/app.md has the numbers.
+GC_YOUNG = 10_000
+#: after a frame is shown, when its paint is on the terminal: Textual paints it ≈ 2–15 ms
+#: later and its writer thread, which needs the interpreter lock a collection holds, sends it
+#: ≈ 1 ms after that (a collection run right after the paint delayed the last byte by ≈ 2 ms)
+GC_AFTER_S = 0.03
+GC_IDLE_S = 1.0  #: a full collection once no frame has come for this long
 
 
 class FrameDelivery:
@@ -189,6 +207,33 @@ class FrameDelivery:
             self.one("legend").update(legend_text(self.state))
         self._panels()
         self._status()
+        if self._event_loop is not None:  # not in sync mode (tests)
+            self._event_loop.call_later(GC_AFTER_S, self._collect_young,
+                                        context=self._loop_context)
+
+    def capture_loop(self) -> None:
+        """Note the event loop and the app's context (on mount) for the collections."""
+        self._loop_context = contextvars.copy_context()
+        self._event_loop = asyncio.get_running_loop()
+
+    def _collect_young(self) -> None:
+        """:data:`GC_AFTER_S` after a frame is shown, the garbage of its key (:data:`GC_YOUNG`):
+        ≈ 0.7 ms between two keys rather than inside one.  Not while the next frame is on its
+        way (it collects after it), unless that garbage has grown to half the threshold (a
+        held key); once no frame has come for :data:`GC_IDLE_S`, a full collection
+        (:meth:`collect_idle`)."""
+        busy = self.frame is None or self.frame.request != self.request
+        if busy and gc.get_count()[0] < GC_YOUNG // 2:
+            return
+        gc.collect(1)
+        self._collected_at = time.monotonic()
+
+    def collect_idle(self) -> None:
+        """A full collection when frames have stopped coming (called on an interval)."""
+        last = self._collected_at
+        if last is not None and time.monotonic() - last >= GC_IDLE_S:
+            self._collected_at = None
+            gc.collect()
 
     def _draw(self, pane: str, res: FrameResult) -> None:
         pic = self.one(pane)

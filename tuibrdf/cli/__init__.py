@@ -19,7 +19,7 @@ from . import models as _models
 from . import render as _render
 from . import text
 from . import view as _view
-from .common import Parser, UsageError, unknown
+from .common import Parser, UsageError, isatty, unknown
 
 #: (name, module, one-line help) — the order of ``tuibrdf --help``
 SUBCOMMANDS = [
@@ -81,7 +81,7 @@ def main(argv: list[str] | None = None) -> int:
 def _main(argv: list[str] | None) -> int:
     parser = build_parser()
     argv = sys.argv[1:] if argv is None else list(argv)
-    if not argv and _isatty(sys.stdin) and _isatty(sys.stdout):
+    if not argv and isatty(sys.stdin) and isatty(sys.stdout):
         argv = ["view"]  # plain `tuibrdf` in a terminal opens the viewer (else: the help)
     commands = [name for name, _, _ in SUBCOMMANDS]
     first = next((a for a in argv if not a.startswith("-")), None)
@@ -106,13 +106,6 @@ def _main(argv: list[str] | None) -> int:
     except (UsageError, ValueError, OverflowError) as e:
         _error(str(e))
         return 2
-
-
-def _isatty(stream) -> bool:
-    try:
-        return stream is not None and stream.isatty()
-    except (OSError, ValueError):
-        return False
 
 
 def _error(message: str) -> None:

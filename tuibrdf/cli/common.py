@@ -273,3 +273,13 @@ def choices_type(name: str, valid: Sequence[str]) -> Callable[[str], str]:
 
     parse.__name__ = name
     return parse
+
+
+def isatty(stream: Any) -> bool:
+    """Whether ``stream`` is a terminal; ``False`` for ``None``, an object without
+    ``isatty`` and a closed or broken stream (which raise rather than answer)."""
+    check = getattr(stream, "isatty", None)
+    try:
+        return bool(check is not None and check())
+    except (OSError, ValueError):
+        return False

@@ -28,7 +28,16 @@ import sys
 from typing import Any
 
 from ..render import CMAPS, EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, VIEWS
-from .common import add_model_args, add_phi_i, add_theta_i, bounded, choices_type, int_in, resolve
+from .common import (
+    add_model_args,
+    add_phi_i,
+    add_theta_i,
+    bounded,
+    choices_type,
+    int_in,
+    isatty,
+    resolve,
+)
 
 #: the lit and half/difference views (in :data:`tuibrdf.render.VIEWS`, declared there with no
 #: import so ``--help`` stays light)
@@ -98,13 +107,15 @@ def add_extra_args(parser: argparse.ArgumentParser) -> None:
 
 
 def color_system(choice: str, environ: os._Environ | dict = os.environ,
-                 stream: Any = sys.stdout) -> str:
-    """The colour system ``--color choice`` means here (``auto`` looks at the environment)."""
+                 stream: Any = None) -> str:
+    """The colour system ``--color choice`` means here (``auto`` looks at the environment and
+    at ``stream``, standard output as it is at the call: not at import, which a caller that
+    redirects it later, or closes what it was then, would not see)."""
     if choice != "auto":
         return choice
     if "NO_COLOR" in environ or environ.get("TERM") == "dumb":
         return "none"
-    if not (hasattr(stream, "isatty") and stream.isatty()):
+    if not isatty(sys.stdout if stream is None else stream):
         return "none"
     return "truecolor" if environ.get("COLORTERM") in ("truecolor", "24bit") else "256"
 

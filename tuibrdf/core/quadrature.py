@@ -308,7 +308,9 @@ def _sgd_shape(material: str) -> tuple[float, tuple[float, ...], tuple[float, ..
     inside = (theta_star > 0.0) & (theta_star < np.pi / 2)
     clamps = tuple((float(a), float(s * (np.pi / 2 - a) ** 2))
                    for a, s in zip(theta_star[inside], slope[inside], strict=True))
-    kinks = tuple(float(x) for x in np.unique(th0[(th0 > 0.0) & (th0 < np.pi / 2)]))
+    # sorted, each once, in plain floats (not np.unique: without its index outputs it imports
+    # numpy.ma, a one-off 8–30 ms in the first sgd frame's worker)
+    kinks = tuple(sorted({float(x) for x in th0[(th0 > 0.0) & (th0 < np.pi / 2)]}))
     return scale, rings, kinks, clamps
 
 
