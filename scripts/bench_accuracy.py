@@ -5,6 +5,7 @@
     (--before may be repeated; --quick: the albedo tables only)
     PYTHONPATH=. python scripts/bench_accuracy.py --interleave REV  # default albedos only,
     timed here and in REV in alternating processes, with evaluations and kernel calls
+    (--models abc,sgd: those models' defaults instead of the analytic ones)
 
 For every model's defaults and for the hard cases (sharp lobes down to α = m = 0.001,
 n = 10⁴, roughness 0) at θi from 0° to 90°, it prints the default albedo
@@ -400,6 +401,13 @@ import numpy as np
 from tuibrdf.core import quadrature as q
 from tuibrdf.core.models import get_model
 cases, repeat = json.loads(sys.stdin.read())
+# a fresh process's heap gives the temporaries back to the system after every call (glibc
+# trims above 128 KB) and page-faults them in again on the next: up to 3x the kernel's time
+# per point (scripts/bench_kernels.py).  Freeing one large block raises glibc's thresholds,
+# as happens early in any long-running process (the viewer; the main table here, after its
+# references)
+warm = np.ones(2**21)
+del warm
 count = [0, 0]
 plain = q.evaluate_resolved
 
@@ -428,12 +436,14 @@ print(json.dumps(out))
 """
 
 
-def interleaved_table(rev, rounds=6, repeat=5):
-    """The 80 default analytic albedos timed in this tree and in revision REV's, in
-    alternating subprocesses (``rounds`` each, best of ``repeat`` per round, best over the
-    rounds: both trees see the same load), with each one's evaluations and kernel calls
-    (counted in the child by wrapping the evaluation: the same on every machine)."""
-    cases = [(n, p, th) for n, p in DEFAULTS for th in THETAS if n not in FITTED]
+def interleaved_table(rev, rounds=6, repeat=5, models=None):
+    """The 80 default analytic albedos (or those of ``models``) timed in this tree and in
+    revision REV's, in alternating subprocesses (``rounds`` each, best of ``repeat`` per round,
+    best over the rounds: both trees see the same load), with each one's evaluations and
+    kernel calls (counted in the child by wrapping the evaluation: the same on every
+    machine)."""
+    names = [n for n, _ in DEFAULTS if n not in FITTED] if models is None else models
+    cases = [(n, {}, th) for n in names for th in THETAS]
     payload = json.dumps([cases, repeat])
     best = {"now": None, rev: None}
     with tempfile.TemporaryDirectory() as d:
@@ -449,8 +459,8 @@ def interleaved_table(rev, rounds=6, repeat=5):
                 best[label] = got if best[label] is None else [
                     [a[0], a[1], min(a[2], b[2])] for a, b in zip(best[label], got,
                                                                    strict=True)]
-    print(f"\nDefault albedos of the analytic models, interleaved with {rev} ({rounds} "
-          f"alternating rounds, best of {repeat} each)")
+    print(f"\nDefault albedos of {'the analytic models' if models is None else ', '.join(names)}"
+          f", interleaved with {rev} ({rounds} alternating rounds, best of {repeat} each)")
     print(f"{'model':<18} {'θi':>5} {'evals':>7} {'calls':>5} {'ms':>6} | {'evals':>7} "
           f"{'calls':>5} {'ms':>6}   (before | now)")
     for (name, _, th), b, a in zip(cases, best[rev], best["now"], strict=True):
@@ -519,9 +529,19 @@ def main(argv=None) -> int:
     ap.add_argument("--interleave", metavar="REV",
                     help="only time the 80 default analytic albedos here and in REV, "
                          "alternating (evaluations, calls, times)")
+    ap.add_argument("--models", metavar="NAMES",
+                    help="with --interleave: these models' defaults instead (comma-separated, "
+                         "e.g. abc,sgd)")
     args = ap.parse_args(argv)
+    if args.models and not args.interleave:
+        ap.error("--models goes with --interleave")
     if args.interleave:
-        interleaved_table(args.interleave)
+        models = None
+        if args.models:
+            models = [x.strip() for x in args.models.split(",") if x.strip()]
+            for n in models:
+                get_model(n)  # a typo fails here, with the registry's suggestion
+        interleaved_table(args.interleave, models=models)
         return 0
     t0 = time.perf_counter()
     print(f"defaults: DEFAULT_RTOL = {q.DEFAULT_RTOL:g}, MAX_EVALS = {q.MAX_EVALS}")

@@ -54,6 +54,9 @@ out to ρmax, so a lobe at the axis cannot fall between nodes, with the model's 
   call before the refinement would;
 - inner panels that start narrower than ``SMALL_PANEL`` lobe widths (the far side at grazing
   incidence, gaps between close kinks) use the K7/G3 pair: 7 evaluations for 15;
+- a model may add radial panel ends that are not kinks (``rings``: e.g. where its lobe's
+  envelope ends) and ask for K7/G3 on outer panels narrower than ``outer_k7`` (where its
+  inner integral is smooth in ψ: no kink curves meet next to ψ = ±π/2);
 - the inner errors enter the albedo's error weighted by the outer weights, so an incidence's
   allowance is shared among its nodes by weight (nodes of tiny weight may be coarser);
 - the tolerance holds per channel for RGB models.
@@ -132,6 +135,7 @@ for _a in (X7, WK7, WG7):
 SMALL_PANEL = 0.5
 SMALL_MIN_COUNT = 48
 
+_EXP = {}
 FRAMES = ("normal", "mirror", "half")
 #: Ratio of the geometric radial grading from the lobe width out to the horizon.
 GRADING = 4.0
@@ -193,7 +197,16 @@ def _rho_max(frame: str, c: Cases, case: np.ndarray, cpsi: np.ndarray):
     if frame == "mirror":
         rs = st * cpsi
         return np.pi / 2 - np.arctan2(rs, ct), (np.hypot(rs, ct), rs)
-    t = np.zeros(n) if c.tilt is None else c.tilt[case]
+    if c.tilt is None:
+        # the axis is the normal (t = 0 below: c0 = 1, s0 = 0): the same values, bit for bit,
+        # without the products by 1 and 0 — a0 = cos θi, Q = 2·a1, P = cos θi = −S, so
+        # P − S = 2 cos θi, P + S = 0 and acos(−(P+S)/K) = π/2
+        a1 = cpsi * st
+        q = 2.0 * a1
+        two_ct = ct + ct
+        phi0 = np.arctan2(q, two_ct)
+        return np.maximum(0.5 * (phi0 + np.pi / 2), 0.0), (ct, a1, np.hypot(two_ct, q), phi0)
+    t = c.tilt[case]
     c0, s0 = np.cos(t), np.sin(t)
     a0 = ct * c0 - st * s0  # wi·A = cos(θi + t)
     a1 = cpsi * (st * c0 + ct * s0)  # wi·(cos ψ E1 + sin ψ E2)
@@ -313,8 +326,10 @@ def _sum_by(idx: np.ndarray, x: np.ndarray, n: int) -> np.ndarray:
     """Sum of the rows of ``x (p,)`` or ``(p, k)`` by group ``idx``: ``(n,)`` or ``(n, k)``."""
     if x.ndim == 1:
         return np.bincount(idx, weights=x, minlength=n)
-    return np.stack([np.bincount(idx, weights=x[:, i], minlength=n)
-                     for i in range(x.shape[1])], axis=1)
+    out = np.empty((n, x.shape[1]))
+    for i in range(x.shape[1]):
+        out[:, i] = np.bincount(idx, weights=x[:, i], minlength=n)
+    return out
 
 
 def _times(w: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -463,6 +478,8 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
     # the pieces next to the horizon of a horizon grading (narrow because the integrand is
     # not polynomial there)
     new_small = (new_hi - new_lo < small_width) & ~graded
+    if _EXP.get("tail") is not None:
+        new_small |= (new_lo >= _EXP["tail"] * (1 - 1e-12)) & ~graded
     if np.count_nonzero(new_small) < SMALL_MIN_COUNT:
         new_small[:] = False
     lo = hi = node = end = small = k_all = e_all = None
@@ -659,7 +676,8 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
               symmetric: bool = False, rtol: float = 1e-6, atol: float = 1e-13,
               max_evals: int = 400_000,
               azimuth_breaks: Callable[[float, float], list[float]] | None = None,
-              horizon: Callable[..., tuple] | None = None) -> PolarResult:
+              horizon: Callable[..., tuple] | None = None,
+              rings: tuple[float, ...] = (), outer_k7: float = 0.0) -> PolarResult:
     """``∫ f(wi, wo) cos θo dωo`` for every incidence of ``c`` (see the module docstring).
 
     ``f(wi (n, 3), wo (n, 3))`` returns ``(n,)`` or ``(n, k)``.  ``scale`` is the lobe's
@@ -671,6 +689,9 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
     ``horizon(st, ct, cpsi, rmax) → (eps, amp)`` per outer node, or None: the integrand has a
     pole ``eps`` (radians of ρ) beyond the horizon, of amplitude ``amp`` relative to the
     node's inner integral (:func:`_horizon_cut`): the first round grades toward it.
+    ``rings``: extra radial panel ends (radians, at every outer node; not kinks).
+    ``outer_k7``: outer panels narrower than this (radians) use the K7/G3 pair, for an
+    integrand whose inner integral is smooth in ψ at that scale (no kink curves meeting there).
     Stops when the error estimate is ≤ ``rtol·|a| + atol`` or once ``max_evals`` evaluations
     per incidence are spent (then the error says how far it got)."""
     if frame not in FRAMES:
@@ -681,7 +702,8 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
         # reaches it, put the axis there (the horizon is then a smooth curve through the axis,
         # tangent to ψ = ±π/2, instead of a near-step of ρmax(ψ) at ψ = ±π/2)
         rho0 = 0.5 * np.arctan2(c.ct, c.st)
-        c = Cases(c.st, c.ct, c.u, c.v, np.where(rho0 < TILT_WITHIN * scale, rho0, 0.0))
+        tilt = np.where(rho0 < TILT_WITHIN * scale, rho0, 0.0)
+        c = Cases(c.st, c.ct, c.u, c.v, tilt if np.any(tilt) else None)
     if c.tilt is not None and np.any(c.tilt):
         horizon = None  # its eps is measured in the untilted half frame
     if symmetric:
@@ -699,6 +721,7 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
     while g < top:
         grading.append(g)
         g *= GRADING
+    grading = sorted(set(grading).union(x for x in rings if 0.0 < x < top))
 
     def edges(case: np.ndarray, cpsi: np.ndarray, rmax: np.ndarray):
         n = len(case)
@@ -720,15 +743,34 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
     lo = hi = pc = k_all = e_all = tol = None
     while len(new_lo):
         mid, half = 0.5 * (new_lo + new_hi), 0.5 * (new_hi - new_lo)
-        psi = (mid[:, None] + half[:, None] * X15).ravel()
-        case = np.repeat(new_pc, 15)
-        wpsi = (half[:, None] * WK15).ravel()
+        small = (new_hi - new_lo) < outer_k7
+        if not small.any():
+            psi = (mid[:, None] + half[:, None] * X15).ravel()
+            case = np.repeat(new_pc, 15)
+            wpsi = (half[:, None] * WK15).ravel()
+            owner = np.repeat(np.arange(len(new_lo)), 15)
+        else:  # the K15 panels' nodes, then the K7 ones'
+            i15, i7 = np.flatnonzero(~small), np.flatnonzero(small)
+            psi = np.concatenate([(mid[i15, None] + half[i15, None] * X15).ravel(),
+                                  (mid[i7, None] + half[i7, None] * X7).ravel()])
+            case = np.concatenate([np.repeat(new_pc[i15], 15), np.repeat(new_pc[i7], 7)])
+            wpsi = np.concatenate([(half[i15, None] * WK15).ravel(),
+                                   (half[i7, None] * WK7).ravel()])
+            owner = np.concatenate([np.repeat(i15, 15), np.repeat(i7, 7)])
         iv, ie, tol = _inner(fn, case, psi, wpsi, edges, tol, rtol, atol, budget,
                              np.pi if symmetric else 2.0 * np.pi, SMALL_PANEL * scale,
                              horizon)
-        k, e = _rule(iv.reshape(len(new_lo), 15, *iv.shape[1:]), half)
+        if not small.any():
+            k, e = _rule(iv.reshape(len(new_lo), 15, *iv.shape[1:]), half)
+        else:
+            n15 = 15 * len(i15)
+            k = np.empty((len(new_lo),) + iv.shape[1:])
+            e = np.empty_like(k)
+            k[i15], e[i15] = _rule(iv[:n15].reshape(len(i15), 15, *iv.shape[1:]), half[i15])
+            k[i7], e[i7] = _rule(iv[n15:].reshape(len(i7), 7, *iv.shape[1:]), half[i7], WK7,
+                                 WG7)
         # the inner errors, integrated with the outer weights
-        e = e + _sum_by(np.repeat(np.arange(len(new_lo)), 15), _times(wpsi, ie), len(new_lo))
+        e = e + _sum_by(owner, _times(wpsi, ie), len(new_lo))
         lo, hi, pc, k_all, e_all = _grow((lo, hi, pc, k_all, e_all),
                                          (new_lo, new_hi, new_pc, k, e))
         tot_v, tot_e = _sum_by(pc, k_all, ncase), _sum_by(pc, e_all, ncase)

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
+from functools import lru_cache
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -100,6 +101,11 @@ class Lobe(NamedTuple):
     #: eps (radians of ρ, per outer node; inf: none) and its relative amplitude
     #: (``polar.integrate``'s ``horizon``): the first round grades the last panels toward it
     horizon: Callable[..., np.ndarray] | None = None
+    #: extra radial panel ends (radians, the same at every outer node; not kinks: no graded
+    #: cuts toward them), e.g. where a lobe's envelope ends
+    rings: tuple[float, ...] = ()
+    #: outer panels narrower than this (radians) use K7 (``polar.integrate(outer_k7=...)``)
+    outer_k7: float = 0.0
 
 
 def _theta_i_break(st, ct, cpsi, rmax):
@@ -171,15 +177,50 @@ def _power_width(n: float) -> float:
     return min(np.pi / 2, 1.0 / math.sqrt(max(n, 0.4)))
 
 
-def _abc_lobe(v: Mapping[str, Any]) -> Lobe:
+#: abc's hint leaves out the V-cavity azimuths inside polar's first outer grading panel only
+#: where that panel (2 cot θi wide) is narrower than this (θi > 84.3°; at 80.5–81°, 0.32 rad,
+#: the estimate fell below the error for 5 of the 100 materials: K15 − G7 over a panel that
+#: wide misses the inner integral's kinks; at 82–90° it held for all, docs/accuracy.md) ...
+ABC_DROP_WIDTH = np.pi / 16
+#: ... and at tolerances from this up: the drop moves the albedo by up to 1e-11 (measured),
+#: which the estimate no longer covers below rtol 1e-10
+ABC_DROP_RTOL = 1e-8
+
+
+def _abc_azimuths(st: float, ct: float, drop: bool = True) -> list[float]:
+    """abc's outer panel ends: :func:`_vcavity_azimuths`, except (``drop``) where polar's
+    outer grading toward ψ = π/2 starts less than ABC_DROP_WIDTH from it (its first panel,
+    2 cot θi wide, holds both meeting points, at cot θi and cot θi/√3 from π/2, whose two
+    extra panels cost 30 outer nodes for an outer weight below 2 cot θi); and at θi = 90°,
+    where that grading is empty, one light-side end π/16 from π/2.
+
+    At θi = 90° (cos θd = cos ψ sin ρ in the half frame) the inner integral follows the
+    exact Fresnel factor F(cos θd) up to F(0) = 1 as ψ → π/2: it nearly doubles over the last
+    ~0.3 rad, and one K15 panel over [0, π/2] missed it by 25 times its share (a second kernel
+    call for 30 of the 100 materials).  Below 90° polar's grading always has a light-side end
+    between π/64 and π/8 from π/2 (its coarsest: from 2 cot θi by 8 up to π/8); π/16 stands
+    in for it at 90°."""
+    if ct <= 0.0:
+        return [np.pi / 2 - np.pi / 16]
+    out = _vcavity_azimuths(st, ct)
+    if drop and ct < 0.5 * st:  # grazing (st > 0): polar may grade toward π/2, from π/2 − w
+        w = polar.OUTER_START * ct / st
+        if w < min(polar.OUTER_LIMIT, ABC_DROP_WIDTH):
+            out = [a for a in out if np.pi / 2 - a > w]
+    return out
+
+
+def _abc_lobe(v: Mapping[str, Any], rtol: float) -> Lobe:
     """abc: D = A/(1 + B(1 − cos θh))^C ≈ A/(1 + B θh²/2)^C is halved within θh ~ √(2/B)
-    (B = 11…8e6 over the 100 materials); the V-cavity G is cook-torrance's (same kinks)."""
+    (B = 11…8e6 over the 100 materials); the V-cavity G is cook-torrance's (same kinks); the
+    azimuths of :func:`_abc_azimuths` (the drop from ``ABC_DROP_RTOL`` up)."""
     b = float(table("abc").row(v["material"])["b"])
+    drop = rtol >= ABC_DROP_RTOL
     return Lobe("half", math.sqrt(2.0 / b) if b > 0.0 else np.pi / 2, _vcavity_breaks,
-                azimuths=_vcavity_azimuths)
+                azimuths=lambda st, ct: _abc_azimuths(st, ct, drop))
 
 
-def _cook_torrance_lobe(v: Mapping[str, Any]) -> Lobe:
+def _cook_torrance_lobe(v: Mapping[str, Any], rtol: float) -> Lobe:
     """Beckmann lobe of width m; the V-cavity kinks as radial breaks, and where they cross
     (:func:`_vcavity_azimuths`) as outer ones once the lobe reaches them (m ≥ 0.3: below it
     exp(−tan²ρ/m²) is ≤ 2.5e-2 of the peak at ρ = π/6 and they cost evaluations for nothing;
@@ -196,25 +237,106 @@ def _cook_torrance_lobe(v: Mapping[str, Any]) -> Lobe:
     return Lobe("half", m, breaks, azimuths=_vcavity_azimuths if m >= 0.3 else None)
 
 
-def _sgd_lobe(v: Mapping[str, Any]) -> Lobe:
-    """sgd: D ∝ exp(−a)/a^p, a = α + tan²θh/α: a core of width ~α (a doubles there) in an
-    envelope of width ~√α; the finest channel's α grades.  G1(wo) has kinks where θo reaches
-    θ0 (the shift starts) and θ* (the clamp at 0), per channel: radial breaks."""
-    t = table("sgd").row(v["material"])
-    alpha = float(np.min(t["alpha"]))
-    # G1 = 1 − Λ·expm1(c_g (θ − θ0)^k) reaches 0 at c_g (θ* − θ0)^k = log(1 + 1/Λ): solved in
-    # logarithms (c_g up to 1e38, k up to 856 overflow otherwise); Λ, c_g, k > 0 (the table)
-    lt = (np.log(np.log1p(1.0 / t["lambda"])) - np.log(t["c_g"])) / t["k"]
-    kinks = np.concatenate([t["theta0"], t["theta0"] + np.exp(np.minimum(lt, 5.0))])
-    # sorted, each once (not np.unique: without its index outputs it imports numpy.ma, a
-    # one-off 8–30 ms in the first sgd frame's worker)
-    kinks = np.sort(kinks[(kinks > 0.0) & (kinks < np.pi / 2)])
-    kinks = kinks[np.diff(kinks, prepend=-1.0) > 0.0]
+#: sgd's first radial panel, in half widths of its lobe (:func:`_sgd_shape`): ggx's α is
+#: 1.55 times its D's half width at half maximum (α·√(√2 − 1)), cook-torrance's m 1.2 times.
+SGD_WIDTH = 1.5
+#: The end of sgd's envelope exp(−tan²θh/α): tan θh = 5√α (e^−25, below any tolerance) ...
+SGD_ENVELOPE_END = 5.0
+#: ... added as a panel end unless polar's grading has one where tan θh/√α is in this range
+#: (the envelope at e^−6…e^−49: the lobe's end already falls on a panel end)
+SGD_ENVELOPE_COVERED = (2.5, 7.0)
+#: A G1 clamp θ* so close to the horizon that s·δ² (G1's slope at θ* times the square of its
+#: distance to 90°) is at most this share of rtol is not a panel end (see :func:`_sgd_shape`)
+SGD_CLAMP_SHARE = 1e-2
+#: Far-side outer grading for sgd up to this (see :func:`_sgd_azimuths`)
+SGD_FAR_LIMIT = np.pi / 4
+#: sgd's outer panels narrower than this use K7 (see :func:`_sgd_lobe`)
+SGD_OUTER_K7 = 0.05
+
+
+@lru_cache(maxsize=32)
+def _sgd_shape(material: str) -> tuple[float, tuple[float, ...], tuple[float, ...],
+                                       tuple[tuple[float, float], ...]]:
+    """sgd's lobe, per material: ``(scale, rings, kinks, clamps)`` (radians).
+
+    D ∝ exp(−a)/a^p/cos⁴θh, a = α + tan²θh/α: a core (1 + tan²θh/α²)^−p of width ~α in an
+    envelope exp(−tan²θh/α) of width ~√α.  The scale is SGD_WIDTH times the half width at
+    half maximum of the narrowest channel's core × envelope (t²/α + p·log(1 + t²/α²) = log 2
+    for t = tan θh, by bisection: the left side increases with t; p < 0 is read as 0, none in
+    the table): the core when p is large, the envelope when p ≈ 0 (p is 2e-14 for a tenth of
+    the materials, where α alone put the first panels deep inside a flat top).  Where polar's
+    grading from there (ratio 4) has no panel end while the envelope falls through
+    e^−6…e^−49, one is added where it ends (tan θh = 5√α).
+
+    G1(θo) = clamp(1 − Λ·expm1(c_g (θo − θ0)^k), 0, 1) has kinks at θ0 (0 < θ0 < π/2: the
+    shift starts; k ≥ 5.6, so it is at least C⁵ there): ``kinks``; and at θ* where the clamp
+    reaches 0: ``clamps``, pairs (θ*, s·δ²) with s = |G1'(θ*)| = (1 + Λ)·k·log(1 + 1/Λ)/(θ* −
+    θ0) and δ = π/2 − θ*.  All 145 θ* of the tables below 90° are within 3.4e-6 rad of it
+    (the fits put the clamp at the horizon): there the clamp changes G1 by at most s·δ, over a
+    band of θo δ wide next to the horizon where f·cos θo itself vanishes like G1, so the
+    albedo by ~s·δ² (≤ 1.4e-9 in the tables; measured for the default material, s·δ² =
+    9e-12: 3e-12); as a panel end it costs a sliver panel at every outer node (a quarter of
+    the evaluations at θi ≤ 60° for the default material).  :func:`_sgd_lobe` keeps those
+    with s·δ² above SGD_CLAMP_SHARE·rtol."""
+    t = table("sgd").row(material)
+    alpha, p = np.asarray(t["alpha"], dtype=float), np.maximum(np.asarray(t["p"], float), 0.0)
+    # half width: h(x) = x²/α + p·log1p(x²/α²) − log 2 is < 0 at 0 and ≥ 0 at √(α log 2)
+    lo, hi = np.zeros(3), np.sqrt(alpha * math.log(2.0))
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        below = mid * mid / alpha + p * np.log1p((mid / alpha) ** 2) < math.log(2.0)
+        lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
+    scale = SGD_WIDTH * math.atan(float(np.min(hi)))
+    # polar's radial grading (integrate): scale·FIRST_PANEL·GRADING^j below π/2, in units
+    # of the narrowest envelope √α
+    a0 = float(np.min(alpha))
+    g, grading = scale * polar.FIRST_PANEL, []
+    while g < np.pi / 2:
+        grading.append(math.tan(g) / math.sqrt(a0))
+        g *= polar.GRADING
+    lo_c, hi_c = SGD_ENVELOPE_COVERED
+    rings = () if any(lo_c <= x <= hi_c for x in grading) else (
+        math.atan(SGD_ENVELOPE_END * math.sqrt(a0)),)
+    # the clamp: c_g·t^k reaches log(1 + 1/Λ) at t* = θ* − θ0, solved in logarithms (c_g up
+    # to 1e38, k up to 856 overflow otherwise); Λ, c_g, k > 0 (the table); t* capped at
+    # e^5 (beyond π anyway)
+    lam, cg, k, th0 = (np.asarray(t[f], dtype=float) for f in ("lambda", "c_g", "k", "theta0"))
+    x_star = np.log1p(1.0 / lam)
+    t_star = np.exp(np.minimum((np.log(x_star) - np.log(cg)) / k, 5.0))  # > 0
+    theta_star = th0 + t_star
+    slope = (1.0 + lam) * k * x_star / t_star  # |dG1/dθ| at θ*: Λ·e^x*·k·x*/t*
+    inside = (theta_star > 0.0) & (theta_star < np.pi / 2)
+    clamps = tuple((float(a), float(s * (np.pi / 2 - a) ** 2))
+                   for a, s in zip(theta_star[inside], slope[inside], strict=True))
+    # sorted, each once, in plain floats (not np.unique: without its index outputs it imports
+    # numpy.ma, a one-off 8–30 ms in the first sgd frame's worker)
+    kinks = tuple(sorted({float(x) for x in th0[(th0 > 0.0) & (th0 < np.pi / 2)]}))
+    return scale, rings, kinks, clamps
+
+
+def _sgd_azimuths(st: float, ct: float) -> list[float]:
+    """sgd's far side: polar grades ψ toward π/2 from 2 cot θi (``OUTER_START``) only while
+    that is below π/8 (θi > 79°); on the far side ρmax(ψ) falls from π/4 to (π/2 − θi)/2
+    within ~cot θi of π/2, where the horizon cuts through sgd's envelope (up to ~1 rad wide),
+    and one K15 panel over [π/2, π] missed that by up to 6 times its share at 70–78° (the
+    default material at 75°: a second and third kernel call).  The same first break, on the
+    far side only, up to SGD_FAR_LIMIT (θi ≥ 68.5°)."""
+    if not 0.0 < ct < 0.5 * st:
+        return []
+    w = polar.OUTER_START * ct / st
+    return [np.pi / 2 + w] if polar.OUTER_LIMIT <= w < SGD_FAR_LIMIT else []
+
+
+def _sgd_lobe(v: Mapping[str, Any], rtol: float) -> Lobe:
+    """sgd: the lobe's scale, envelope end and G1 kinks of :func:`_sgd_shape` (the clamps
+    whose s·δ² is above SGD_CLAMP_SHARE·rtol), the far-side azimuth of
+    :func:`_sgd_azimuths`.  A G1 kink at θo = θk is, in the half frame (cos θo = R cos(2ρ −
+    β), module polar), at 2ρ = β ± acos(cos θk / R): radial breaks."""
+    scale, rings, kinks, clamps = _sgd_shape(v["material"])
+    kinks = sorted(set(kinks).union(a for a, e in clamps if e > SGD_CLAMP_SHARE * rtol))
 
     def breaks(st, ct, cpsi, rmax):
-        # θo = θk in the half frame: cos θo = R cos(2ρ − β) = cos θk (module polar), so
-        # 2ρ = β ± acos(cos θk / R); no solution where cos θk > R (then ρmax is returned:
-        # ignored)
+        # no solution where cos θk > R (then ρmax is returned: ignored)
         b = np.arctan2(st * cpsi, ct)
         r = np.hypot(st * cpsi, ct)
         out = []
@@ -225,41 +347,43 @@ def _sgd_lobe(v: Mapping[str, Any]) -> Lobe:
             out += [np.where(ok, 0.5 * (b - c), rmax), np.where(ok, 0.5 * (b + c), rmax)]
         return out
 
-    return Lobe("half", alpha, breaks if len(kinks) else None)
+    return Lobe("half", scale, breaks if kinks else None, azimuths=_sgd_azimuths, rings=rings,
+                outer_k7=SGD_OUTER_K7)
 
 
-#: Registry name → values → :class:`Lobe`, for the built-in models (used only when the model
-#: is the registered one: same kernel).
-LOBE_HINTS: dict[str, Callable[[Mapping[str, Any]], Lobe]] = {
-    "lambert": lambda v: Lobe("normal", np.pi / 2),
-    "oren-nayar": lambda v: Lobe("normal", np.pi / 2, _theta_i_break),
-    "oren-nayar-simple": lambda v: Lobe("normal", np.pi / 2, _theta_i_break),
-    "disney-diffuse": lambda v: Lobe("normal", np.pi / 2),
-    "phong": lambda v: Lobe("mirror", _power_width(float(v["n"])), _mirror_kink),
-    "blinn-phong": lambda v: Lobe("half", _power_width(float(v["n"]))),
+#: Registry name → (values, rtol) → :class:`Lobe`, for the built-in models (used only when the
+#: model is the registered one: same kernel).  ``rtol`` is the tolerance the albedo is asked
+#: for: a hint may leave out a panel end whose effect on the value is far below it.
+LOBE_HINTS: dict[str, Callable[[Mapping[str, Any], float], Lobe]] = {
+    "lambert": lambda v, rtol: Lobe("normal", np.pi / 2),
+    "oren-nayar": lambda v, rtol: Lobe("normal", np.pi / 2, _theta_i_break),
+    "oren-nayar-simple": lambda v, rtol: Lobe("normal", np.pi / 2, _theta_i_break),
+    "disney-diffuse": lambda v, rtol: Lobe("normal", np.pi / 2),
+    "phong": lambda v, rtol: Lobe("mirror", _power_width(float(v["n"])), _mirror_kink),
+    "blinn-phong": lambda v, rtol: Lobe("half", _power_width(float(v["n"]))),
     "cook-torrance": _cook_torrance_lobe,
-    "ggx": lambda v: Lobe("half", float(v["alpha"]),
+    "ggx": lambda v, rtol: Lobe("half", float(v["alpha"]),
                           horizon=_smith_ggx_horizon(float(v["alpha"]))),
-    "gltf": lambda v: Lobe("half", alpha_from_roughness(v["roughness"]),
+    "gltf": lambda v, rtol: Lobe("half", alpha_from_roughness(v["roughness"]),
                            horizon=_smith_ggx_horizon(alpha_from_roughness(v["roughness"]))),
-    "ue4": lambda v: Lobe("half", alpha_from_roughness(v["roughness"])),
+    "ue4": lambda v, rtol: Lobe("half", alpha_from_roughness(v["roughness"])),
     # measured, isotropic; the specular peak of shiny materials is ~0.5° wide.  The lookups
     # are piecewise constant or linear over 1.46 million bins, so refinement never reaches
     # 1e-6: a smaller budget (the error estimate stays honest: 1e-5…1e-3 measured)
     "abc": _abc_lobe,
     "sgd": _sgd_lobe,
-    "merl": lambda v: Lobe("half", 0.004, max_evals=MERL_MAX_EVALS),
+    "merl": lambda v, rtol: Lobe("half", 0.004, max_evals=MERL_MAX_EVALS),
 }
 #: Any other model: the half-vector frame (a specular lobe at the pole for every θi), graded
 #: down to the narrowest built-in lobe, no symmetry assumed.
 DEFAULT_LOBE = Lobe("half", 1e-3, None, False)
 
 
-def lobe(model: Model, values: Mapping[str, Any]) -> Lobe:
-    """The integration hint for ``model`` (see :data:`LOBE_HINTS`)."""
+def lobe(model: Model, values: Mapping[str, Any], rtol: float = DEFAULT_RTOL) -> Lobe:
+    """The integration hint for ``model`` at tolerance ``rtol`` (see :data:`LOBE_HINTS`)."""
     reg = MODELS.get(model.name)
     if reg is not None and reg.kernel is model.kernel and model.name in LOBE_HINTS:
-        return LOBE_HINTS[model.name](values)
+        return LOBE_HINTS[model.name](values, rtol)
     return DEFAULT_LOBE
 
 
@@ -319,7 +443,7 @@ def albedo_rule(model: Model, values: Mapping[str, Any],
         _check_theta(t)
     st, ct = sincos_deg(thetas)
     sp, cp = sincos_deg(np.full(len(thetas), _check_phi(phi_i_deg)))
-    hint = lobe(model, values) if hint is None else hint
+    hint = lobe(model, values, rtol) if hint is None else hint
 
     def f(wi, wo):
         return evaluate_resolved(model, values, wi, wo)
@@ -328,7 +452,8 @@ def albedo_rule(model: Model, values: Mapping[str, Any],
                            scale=hint.scale, radial_breaks=hint.breaks,
                            symmetric=hint.symmetric, rtol=rtol, atol=ATOL,
                            max_evals=min(max_evals, hint.max_evals or max_evals),
-                           azimuth_breaks=hint.azimuths, horizon=hint.horizon)
+                           azimuth_breaks=hint.azimuths, horizon=hint.horizon,
+                           rings=hint.rings, outer_k7=hint.outer_k7)
 
 
 def albedo_curve_estimate_resolved(model: Model, values: Mapping[str, Any],
