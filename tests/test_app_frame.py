@@ -413,27 +413,31 @@ async def test_garbage_is_collected_after_each_frame_and_fully_when_idle(monkeyp
     collect = gc.collect
     monkeypatch.setattr(gc, "collect", lambda *a: (calls.append(a), collect(*a))[1])
     monkeypatch.setattr(app_module, "FREEZE_S", 0.05)
-    monkeypatch.setattr(app_module, "GC_IDLE_S", 0.2)
-    monkeypatch.setattr(frames, "GC_IDLE_S", 0.2)
+    monkeypatch.setattr(app_module, "GC_IDLE_S", 0.5)
+    monkeypatch.setattr(frames, "GC_IDLE_S", 0.5)
     threshold = gc.get_threshold()
     gc.set_threshold(700, *threshold[1:])  # Python's default (an earlier viewer raised it)
     try:
         app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))
         async with app.run_test(size=(120, 36)) as pilot:
-            await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-            await pilot.pause(0.1)
-            assert gc.get_threshold()[0] == frames.GC_YOUNG > 700
+            # start-up settled: the last request's frame shown (the layout settles in steps)
+            assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete
+                                  and app.frame.request == app.request
+                                  and not (app._worker and app._worker.is_running))
+            assert await wait_for(pilot, lambda: gc.get_threshold()[0] == frames.GC_YOUNG)
+            assert frames.GC_YOUNG > 700
+            await pilot.pause(0.1)  # the collections of start-up's frames
             calls.clear()
             shown = app.frames
             for theta in (31.0, 32.0, 33.0):
                 await pilot.press("right")
                 assert await wait_for(pilot, lambda t=theta: app.frame.request.theta_i == t
                                       and app.frame.complete)
-                await pilot.pause(2 * frames.GC_AFTER_S)
-            young = [c for c in calls if c == (1,)]
-            assert len(young) == app.frames - shown >= 3
+                # its collection, GC_AFTER_S after the frame
+                assert await wait_for(pilot, lambda: calls.count((1,)) == app.frames - shown)
+            assert app.frames - shown >= 3
             assert () not in calls  # no full collection while frames come
-            await pilot.pause(0.6)
+            await pilot.pause(1.6)
             assert calls.count(()) == 1  # idle: one full collection, not one per interval
             # a newer frame on its way: no collection, unless the garbage has grown
             calls.clear()
