@@ -136,6 +136,8 @@ SMALL_PANEL = 0.5
 SMALL_MIN_COUNT = 48
 #: ``1 − x`` of the K15 and K7 nodes (by node count): the nodes' distance from the panel's end
 _ONE_MINUS = {15: 1.0 - X15, 7: 1.0 - X7}
+for _a in _ONE_MINUS.values():
+    _a.setflags(write=False)
 _TINY = np.finfo(float).tiny
 
 _EXP = {}
@@ -338,8 +340,8 @@ def _sum_by(idx: np.ndarray, x: np.ndarray, n: int) -> np.ndarray:
     if x.ndim == 1:
         return np.bincount(idx, weights=x, minlength=n)
     out = np.empty((n, x.shape[1]))
-    for i in range(x.shape[1]):
-        out[:, i] = np.bincount(idx, weights=x[:, i], minlength=n)
+    for i, xi in enumerate(np.ascontiguousarray(x.T)):  # one copy, not one per channel
+        out[:, i] = np.bincount(idx, weights=xi, minlength=n)
     return out
 
 
@@ -445,11 +447,11 @@ def _divide(lo: np.ndarray, hi: np.ndarray, owner: np.ndarray, excess: np.ndarra
 
 
 def _initial_panels(vals: np.ndarray, brk: np.ndarray | None, rmax: np.ndarray):
-    """Panels ``(lo, hi, node, end)`` from breakpoints ``vals (m, n)``, increasing down each
-    node's column, flagged ``brk (m, n)`` (a radial break; None: none), cut at ρmax; ``end``:
-    the panel ends at a break or at ρmax.  Level by level, node by node within a level (the
-    order of the sums over panels)."""
-    m, n = vals.shape
+    """Panels ``(lo, hi, node, end)`` from breakpoints ``vals (m, n)`` (or ``(m, 1)``: the same
+    for every node), increasing down each node's column, flagged ``brk (m, n)`` (a radial
+    break; None: none), cut at ρmax; ``end``: the panel ends at a break or at ρmax.  Level by
+    level, node by node within a level (the order of the sums over panels)."""
+    m, n = len(vals), len(rmax)
     e = np.empty((m + 2, n))
     e[0] = 0.0
     np.minimum(vals, rmax, out=e[1:-1])
@@ -659,8 +661,9 @@ def _horizon_cut(lo: np.ndarray, hi: np.ndarray, node: np.ndarray, end: np.ndarr
     end[last] = False
     starts = cuts[more]
     stops = np.concatenate([ends[:, 1:], b[:, None]], axis=1)[more]
-    owner = np.repeat(node[last], more.sum(axis=1))
-    at_end = stops == np.repeat(b, more.sum(axis=1))
+    count = more.sum(axis=1)
+    owner = np.repeat(node[last], count)
+    at_end = stops == np.repeat(b, count)
     return (np.concatenate([lo, starts]), np.concatenate([hi, stops]),
             np.concatenate([node, owner]), np.concatenate([end, at_end]),
             np.concatenate([flag, np.ones(len(starts), dtype=bool)]))
@@ -757,7 +760,7 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
         extra = [] if radial_breaks is None else list(
             radial_breaks(c.st[case], c.ct[case], cpsi, rmax))
         if not extra:
-            return np.broadcast_to(grading_col, (len(grading), n)), None
+            return grading_col, None  # (m, 1): the same at every node
         extra = [np.where((x > 0.0) & (x < rmax), x, rmax) for x in extra]
         vals = np.empty((n, len(grading) + len(extra)))
         vals[:, :len(grading)] = grading

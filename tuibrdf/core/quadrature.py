@@ -439,7 +439,7 @@ def albedo_rule(model: Model, values: Mapping[str, Any],
     the model's :func:`lobe` and ``kernel(wi, wo)`` its evaluation (the benchmarks and tests
     count calls, or drop one part of the hint, through them)."""
     thetas = np.atleast_1d(np.asarray(thetas_deg, dtype=float))
-    for t in thetas:
+    for t in thetas.tolist():
         _check_theta(t)
     # one call for θi and φi (elementwise: the same values as two)
     s, c = sincos_deg(np.append(thetas, _check_phi(phi_i_deg)))
