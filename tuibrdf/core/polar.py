@@ -134,6 +134,11 @@ for _a in (X7, WK7, WG7):
 #: when at least SMALL_MIN_COUNT of them start in one pass (8 evaluations saved per panel).
 SMALL_PANEL = 0.5
 SMALL_MIN_COUNT = 48
+#: ``1 − x`` of the K15 and K7 nodes (by node count): the nodes' distance from the panel's end
+_ONE_MINUS = {15: 1.0 - X15, 7: 1.0 - X7}
+for _a in _ONE_MINUS.values():
+    _a.setflags(write=False)
+_TINY = np.finfo(float).tiny
 
 _EXP = {}
 FRAMES = ("normal", "mirror", "half")
@@ -182,8 +187,10 @@ def cases(st: np.ndarray, ct: np.ndarray, sp: np.ndarray, cp: np.ndarray) -> Cas
     """Incidences from ``sin/cos θi`` and ``sin/cos φi`` (exact components at multiples of 90°
     come from :func:`tuibrdf.core.frame.sincos_deg`)."""
     st, ct, sp, cp = (np.atleast_1d(np.asarray(a, dtype=float)) for a in (st, ct, sp, cp))
-    z = np.zeros_like(st)
-    return Cases(st, ct, np.stack([cp, sp, z], -1), np.stack([-sp, cp, z], -1))
+    u, v = np.zeros((len(st), 3)), np.zeros((len(st), 3))
+    u[:, 0], u[:, 1] = cp, sp
+    v[:, 0], v[:, 1] = -sp, cp
+    return Cases(st, ct, u, v)
 
 
 def _rho_max(frame: str, c: Cases, case: np.ndarray, cpsi: np.ndarray):
@@ -309,8 +316,14 @@ def _rule(g: np.ndarray, half: np.ndarray, wk: np.ndarray = WK15,
         k = np.einsum("pn,n->p", g, wk) * half
         gg = np.einsum("pn,n->p", g, wg) * half
     else:
-        k = np.einsum("pnc,n->pc", g, wk) * half[:, None]
-        gg = np.einsum("pnc,n->pc", g, wg) * half[:, None]
+        # channel by channel: einsum sums a strided row in order, as it does over "pnc" (the
+        # same values, bit for bit: tests/test_polar.py), in half the time of the 3-D form
+        k, gg = np.empty(g.shape[::2]), np.empty(g.shape[::2])
+        for i in range(g.shape[2]):
+            k[:, i] = np.einsum("pn,n->p", g[:, :, i], wk)
+            gg[:, i] = np.einsum("pn,n->p", g[:, :, i], wg)
+        k *= half[:, None]
+        gg *= half[:, None]
     return k, np.abs(k - gg)
 
 
@@ -327,9 +340,14 @@ def _sum_by(idx: np.ndarray, x: np.ndarray, n: int) -> np.ndarray:
     if x.ndim == 1:
         return np.bincount(idx, weights=x, minlength=n)
     out = np.empty((n, x.shape[1]))
-    for i in range(x.shape[1]):
-        out[:, i] = np.bincount(idx, weights=x[:, i], minlength=n)
+    for i, xi in enumerate(np.ascontiguousarray(x.T)):  # one copy, not one per channel
+        out[:, i] = np.bincount(idx, weights=xi, minlength=n)
     return out
+
+
+def _count(idx: np.ndarray, n: int) -> np.ndarray:
+    """How many of ``idx`` fall in each of ``0 … n − 1`` (``np.bincount``; one group: all)."""
+    return np.array([len(idx)]) if n == 1 else np.bincount(idx, minlength=n)
 
 
 def _times(w: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -356,7 +374,7 @@ class _Integrand:
         for gi, grp in enumerate(groups):
             n = grp[5].shape[1]
             step = max(CHUNK // n, 1)
-            self.count += np.bincount(grp[0], minlength=len(self.count)) * n
+            self.count += _count(grp[0], len(self.count)) * n
             for s0 in range(0, len(grp[5]), step):
                 s1 = min(s0 + step, len(grp[5]))
                 if size + (s1 - s0) * n > CHUNK and batches[-1]:
@@ -428,21 +446,26 @@ def _divide(lo: np.ndarray, hi: np.ndarray, owner: np.ndarray, excess: np.ndarra
     return out if small is None else (*out, np.repeat(small, parts))
 
 
-def _initial_panels(edges: list[tuple[np.ndarray, np.ndarray]], rmax: np.ndarray):
-    """Panels ``(lo, hi, node, end)`` from increasing breakpoints per node ``(value, is a
-    radial break)``, cut at ρmax; ``end``: the panel ends at a break or at ρmax."""
-    n = len(rmax)
-    lo_l, hi_l, node_l, end_l = [], [], [], []
-    prev = np.zeros(n)
-    for e, brk in [*edges, (rmax, np.ones(n, dtype=bool))]:
-        e = np.minimum(e, rmax)
-        keep = e > prev
-        lo_l.append(prev[keep])
-        hi_l.append(e[keep])
-        node_l.append(np.flatnonzero(keep))
-        end_l.append((brk | (e >= rmax))[keep])
-        prev = np.where(keep, e, prev)
-    return tuple(np.concatenate(x) for x in (lo_l, hi_l, node_l, end_l))
+def _initial_panels(vals: np.ndarray, brk: np.ndarray | None, rmax: np.ndarray):
+    """Panels ``(lo, hi, node, end)`` from breakpoints ``vals (m, n)`` (or ``(m, 1)``: the same
+    for every node), increasing down each node's column, flagged ``brk (m, n)`` (a radial
+    break; None: none), cut at ρmax; ``end``: the panel ends at a break or at ρmax.  Level by
+    level, node by node within a level (the order of the sums over panels)."""
+    m, n = len(vals), len(rmax)
+    e = np.empty((m + 2, n))
+    e[0] = 0.0
+    np.minimum(vals, rmax, out=e[1:-1])
+    e[-1] = rmax
+    # the end of the last panel before each breakpoint (0 before the first): a breakpoint
+    # that does not pass it (one at or beyond ρmax, or a repeat) makes no panel
+    prev = np.maximum.accumulate(e[:-1], axis=0)
+    e = e[1:]
+    keep = e > prev
+    end = e >= rmax
+    end[-1] = True
+    if brk is not None:
+        end[:-1] |= brk
+    return prev[keep], e[keep], np.nonzero(keep)[1], end[keep]
 
 
 def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
@@ -465,7 +488,7 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
     n, ncase = len(case), len(budget)
     cpsi, spsi = np.cos(psi), np.sin(psi)
     rmax, params = _rho_max(fn.frame, fn.c, case, cpsi)
-    new_lo, new_hi, new_node, new_end = _initial_panels(edges(case, cpsi, rmax), rmax)
+    new_lo, new_hi, new_node, new_end = _initial_panels(*edges(case, cpsi, rmax), rmax)
     if len(new_lo) == 0:  # every node has ρmax = 0 (the far side at θi = 90°)
         return np.zeros(n), np.zeros(n), tol if tol is not None else np.full(ncase, atol)
     graded = np.zeros(len(new_lo), dtype=bool)
@@ -482,7 +505,7 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
         new_small |= (new_lo >= _EXP["tail"] * (1 - 1e-12)) & ~graded
     if np.count_nonzero(new_small) < SMALL_MIN_COUNT:
         new_small[:] = False
-    lo = hi = node = end = small = k_all = e_all = None
+    lo = hi = node = end = small = k_all = e_all = allow = None
     while len(new_lo):
         mid, half = 0.5 * (new_lo + new_hi), 0.5 * (new_hi - new_lo)
         k15, k7 = (X15, WK15, WG15), (X7, WK7, WG7)
@@ -494,13 +517,13 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
             parts = [(~new_small, k15), (new_small, k7)]
         groups = []
         for sel, (x, _, _) in parts:
-            h, j = half[sel], new_node[sel]
-            rho = mid[sel][:, None] + h[:, None] * x
+            h, j = half[sel][:, None], new_node[sel]
+            cj, rj = case[j], rmax[j]
+            rho = mid[sel][:, None] + h * x
             # distance to the horizon from the panel's end: exact in the last panel
-            d = (rmax[j] - new_hi[sel])[:, None] + h[:, None] * (1.0 - x)
-            groups.append((case[j], cpsi[j], spsi[j], tuple(p[j] for p in params), rmax[j],
-                           rho, d))
-            budget -= len(x) * np.bincount(case[j], minlength=ncase)
+            d = (rj - new_hi[sel])[:, None] + h * _ONE_MINUS[len(x)]
+            groups.append((cj, cpsi[j], spsi[j], tuple(p[j] for p in params), rj, rho, d))
+            budget -= len(x) * _count(cj, ncase)
         values = fn(groups)
         if len(parts) == 1:
             k, e = _rule(values[0], half, *parts[0][1][1:])
@@ -515,18 +538,22 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
             tot_v = _sum_by(node, k_all, n)
             tol = rtol * np.abs(_sum_by(case, _times(wpsi, tot_v), ncase)) + atol
         pcase = case[node]
-        # the inner errors enter the albedo's error weighted by the outer weights: these nodes
-        # may add INNER_SHARE·tol in proportion to their share of the outer span, shared among
-        # the incidence's panels (nodes of tiny weight, as near ψ = ±π/2 at grazing incidence,
-        # may be coarser than heavy ones)
-        # > 0: an incidence with no node here has no panel either (its allowance is unused)
-        allow = np.maximum(_times(INNER_SHARE * _sum_by(case, wpsi, ncase) / span, tol),
-                           np.finfo(float).tiny)
+        if allow is None:  # tol is fixed from here on: the same allowance every round
+            # the inner errors enter the albedo's error weighted by the outer weights: these
+            # nodes may add INNER_SHARE·tol in proportion to their share of the outer span,
+            # shared among the incidence's panels (nodes of tiny weight, as near ψ = ±π/2 at
+            # grazing incidence, may be coarser than heavy ones)
+            # > 0: an incidence with no node here has no panel either (its allowance is unused)
+            allow = np.maximum(_times(INNER_SHARE * _sum_by(case, wpsi, ncase) / span, tol),
+                               _TINY)
         we = _times(wpsi[node], e_all)
-        npan = np.bincount(pcase, minlength=ncase).clip(1)
+        # incidences above their allowance with evaluations left (none: done)
+        over = (_ratio(_sum_by(pcase, we, ncase), allow) > 1.0) & (budget > 0)
+        if not over.any():
+            break
+        npan = _count(pcase, ncase).clip(1)
         excess = _ratio(we, _times(1.0 / npan, allow)[pcase])
-        over = (_ratio(_sum_by(pcase, we, ncase), allow) > 1.0)[pcase]
-        split = over & (excess > 1.0) & (hi - lo > 2 * MIN_WIDTH) & (budget[pcase] > 0)
+        split = over[pcase] & (excess > 1.0) & (hi - lo > 2 * MIN_WIDTH)
         if not split.any():
             break
         new_lo, new_hi, new_node, new_end, new_small = _divide(
@@ -634,8 +661,9 @@ def _horizon_cut(lo: np.ndarray, hi: np.ndarray, node: np.ndarray, end: np.ndarr
     end[last] = False
     starts = cuts[more]
     stops = np.concatenate([ends[:, 1:], b[:, None]], axis=1)[more]
-    owner = np.repeat(node[last], more.sum(axis=1))
-    at_end = stops == np.repeat(b, more.sum(axis=1))
+    count = more.sum(axis=1)
+    owner = np.repeat(node[last], count)
+    at_end = stops == np.repeat(b, count)
     return (np.concatenate([lo, starts]), np.concatenate([hi, stops]),
             np.concatenate([node, owner]), np.concatenate([end, at_end]),
             np.concatenate([flag, np.ones(len(starts), dtype=bool)]))
@@ -723,24 +751,30 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
         g *= GRADING
     grading = sorted(set(grading).union(x for x in rings if 0.0 < x < top))
 
+    grading_col = np.array(grading).reshape(-1, 1)
+
     def edges(case: np.ndarray, cpsi: np.ndarray, rmax: np.ndarray):
+        """Breakpoints ``(m, n)`` of the nodes' radial panels, increasing down each column,
+        and which are radial breaks (None: none)."""
         n = len(case)
-        out = [(np.full(n, x), np.zeros(n, dtype=bool)) for x in grading]
         extra = [] if radial_breaks is None else list(
             radial_breaks(c.st[case], c.ct[case], cpsi, rmax))
         if not extra:
-            return out
+            return grading_col, None  # (m, 1): the same at every node
         extra = [np.where((x > 0.0) & (x < rmax), x, rmax) for x in extra]
-        vals = np.stack([*(e for e, _ in out), *extra], axis=1)
+        vals = np.empty((n, len(grading) + len(extra)))
+        vals[:, :len(grading)] = grading
+        for i, x in enumerate(extra, len(grading)):
+            vals[:, i] = x
         brk = np.zeros(vals.shape, dtype=bool)
-        brk[:, len(out):] = True
+        brk[:, len(grading):] = True
         order = np.argsort(vals, axis=1, kind="stable")
         vals = np.take_along_axis(vals, order, axis=1)
         brk = np.take_along_axis(brk, order, axis=1)
-        return [(vals[:, i], brk[:, i]) for i in range(vals.shape[1])]
+        return vals.T, brk.T
 
     new_lo, new_hi, new_pc = _outer_breaks(frame, c, symmetric, azimuth_breaks)
-    lo = hi = pc = k_all = e_all = tol = None
+    lo = hi = pc = k_all = e_all = tol = tot_v = tot_e = None
     while len(new_lo):
         mid, half = 0.5 * (new_lo + new_hi), 0.5 * (new_hi - new_lo)
         small = (new_hi - new_lo) < outer_k7
@@ -775,14 +809,20 @@ def integrate(f: Callable[[np.ndarray, np.ndarray], np.ndarray], frame: str, c: 
                                          (new_lo, new_hi, new_pc, k, e))
         tot_v, tot_e = _sum_by(pc, k_all, ncase), _sum_by(pc, e_all, ncase)
         tol = rtol * np.abs(tot_v) + atol
-        npan = np.bincount(pc, minlength=ncase).clip(1)
+        # incidences above their tolerance with evaluations left (none: done)
+        over = (_ratio(tot_e, tol) > 1.0) & (budget > 0)
+        if not over.any():
+            break
+        npan = _count(pc, ncase).clip(1)
         excess = _ratio(e_all, _times(1.0 / npan, tol)[pc])
-        split = ((_ratio(tot_e, tol) > 1.0)[pc] & (excess > 1.0)
-                 & (hi - lo > 2 * MIN_WIDTH) & (budget[pc] > 0))
+        split = over[pc] & (excess > 1.0) & (hi - lo > 2 * MIN_WIDTH)
         if not split.any():
             break
         new_lo, new_hi, new_pc, _ = _divide(lo[split], hi[split], pc[split], excess[split])
         keep = ~split
         lo, hi, pc, k_all, e_all = lo[keep], hi[keep], pc[keep], k_all[keep], e_all[keep]
+        tot_v = tot_e = None
+    if tot_v is None:  # the loop ended on an empty round (no final tally)
+        tot_v, tot_e = _sum_by(pc, k_all, ncase), _sum_by(pc, e_all, ncase)
     k = 2.0 if symmetric else 1.0
-    return PolarResult(k * _sum_by(pc, k_all, ncase), k * _sum_by(pc, e_all, ncase), fn.count)
+    return PolarResult(k * tot_v, k * tot_e, fn.count)

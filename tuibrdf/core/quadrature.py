@@ -439,10 +439,12 @@ def albedo_rule(model: Model, values: Mapping[str, Any],
     the model's :func:`lobe` and ``kernel(wi, wo)`` its evaluation (the benchmarks and tests
     count calls, or drop one part of the hint, through them)."""
     thetas = np.atleast_1d(np.asarray(thetas_deg, dtype=float))
-    for t in thetas:
+    for t in thetas.tolist():
         _check_theta(t)
-    st, ct = sincos_deg(thetas)
-    sp, cp = sincos_deg(np.full(len(thetas), _check_phi(phi_i_deg)))
+    # one call for θi and φi (elementwise: the same values as two)
+    s, c = sincos_deg(np.append(thetas, _check_phi(phi_i_deg)))
+    st, ct = s[:-1], c[:-1]
+    sp, cp = np.full(len(thetas), s[-1]), np.full(len(thetas), c[-1])
     hint = lobe(model, values, rtol) if hint is None else hint
 
     def f(wi, wo):
