@@ -140,7 +140,6 @@ for _a in _ONE_MINUS.values():
     _a.setflags(write=False)
 _TINY = np.finfo(float).tiny
 
-_EXP = {}
 FRAMES = ("normal", "mirror", "half")
 #: Ratio of the geometric radial grading from the lobe width out to the horizon.
 GRADING = 4.0
@@ -501,8 +500,6 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
     # the pieces next to the horizon of a horizon grading (narrow because the integrand is
     # not polynomial there)
     new_small = (new_hi - new_lo < small_width) & ~graded
-    if _EXP.get("tail") is not None:
-        new_small |= (new_lo >= _EXP["tail"] * (1 - 1e-12)) & ~graded
     if np.count_nonzero(new_small) < SMALL_MIN_COUNT:
         new_small[:] = False
     lo = hi = node = end = small = k_all = e_all = allow = None
