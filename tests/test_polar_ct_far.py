@@ -116,7 +116,7 @@ def _expected_far(theta_i, m):
     (2 cot θi × 8^j below π/8) continued to π/2 in pieces of ratio ≤ 8, evenly in log, or,
     where polar has none, 2 cot θi itself."""
     t = math.radians(theta_i)
-    if (np.pi / 2 - t) / 2 >= m:
+    if (np.pi / 2 - t) / 2 >= m or theta_i == 0.0 or 2.0 / math.tan(t) >= np.pi / 2:
         return []
     w = 2.0 / math.tan(t)
     if math.cos(t) < 0.5 * math.sin(t) and w < np.pi / 8:
@@ -145,6 +145,8 @@ def _expected_far(theta_i, m):
     (89.5, 0.01, 1),  # polar's last 0.140, 11 times; ρmax(π) = 0.0044 < m
     (89.0, 0.01, 0),
     (89.9, 0.001, 0),
+    (0.0, 1.0, 0),  # normal incidence: no far side
+    (30.0, 1.0, 0),  # 2 cot 30° = 3.5 > π/2
 ])
 def test_far_breaks_where_the_formula_says(theta, m, count):
     st, ct = math.sin(math.radians(theta)), math.cos(math.radians(theta))

@@ -240,7 +240,8 @@ def _cook_torrance_far(st: float, ct: float, m: float) -> list[float]:
     panel [π/2, π]).  Here, where ρmax(π) < CT_FAR_LOBE·m, the far side is graded on to π:
     from polar's last break (or from 2 cot θi itself where polar has none, as sgd's hint
     does) with pieces of ratio at most OUTER_GRADING, evenly in log w."""
-    if not (ct > 0.0 and 0.5 * math.atan2(ct, st) < CT_FAR_LOBE * m):
+    # st > 0: at normal incidence there is no far side (and 2 cot θi is infinite)
+    if not (ct > 0.0 and st > 0.0 and 0.5 * math.atan2(ct, st) < CT_FAR_LOBE * m):
         return []
     w = polar.OUTER_START * ct / st
     out = []
