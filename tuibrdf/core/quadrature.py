@@ -220,11 +220,49 @@ def _abc_lobe(v: Mapping[str, Any], rtol: float) -> Lobe:
                 azimuths=lambda st, ct: _abc_azimuths(st, ct, drop))
 
 
+#: cook-torrance's far side is graded to ψ = π (:func:`_cook_torrance_far`) where the horizon
+#: at ψ = π, (π/2 − θi)/2 from the pole, is within this many lobe widths m
+CT_FAR_LOBE = 1.0
+
+
+def _cook_torrance_far(st: float, ct: float, m: float) -> list[float]:
+    """cook-torrance's far-side outer panel ends, ψ − π/2 (radians), where the horizon cuts
+    the lobe.
+
+    On the far side (ψ = π/2 + w) ρmax = atan(cot θi / sin w)/2 falls from π/4 to
+    ρmax(π) = (π/2 − θi)/2; once it is below the lobe's width the horizon cuts the lobe and
+    the inner integral falls about as a power of ρmax ∝ cot θi / sin w: a scale-free tail
+    with its singularity ~cot θi from π/2 (in the complex plane), which needs outer panels
+    graded geometrically in w, as polar's grading does from 2 cot θi by OUTER_GRADING, but
+    only up to OUTER_LIMIT.  Its last far panel [π/2 + w, π] is up to 32 times wider than w
+    (4.5 at 80°, 9 at 85°, 30 at 88.5°), and its |K15 − G7| was 4.7 times its share at 85°
+    (the defaults, m = 0.2), 12 times at 75° where the grading is empty (θi < 78.9°: one
+    panel [π/2, π]).  Here, where ρmax(π) < CT_FAR_LOBE·m, the far side is graded on to π:
+    from polar's last break (or from 2 cot θi itself where polar has none, as sgd's hint
+    does) with pieces of ratio at most OUTER_GRADING, evenly in log w."""
+    # st > 0: at normal incidence there is no far side (and 2 cot θi is infinite)
+    if not (ct > 0.0 and st > 0.0 and 0.5 * math.atan2(ct, st) < CT_FAR_LOBE * m):
+        return []
+    w = polar.OUTER_START * ct / st
+    out = []
+    if ct < 0.5 * st and w < polar.OUTER_LIMIT:  # polar grades: its last break
+        while w * polar.OUTER_GRADING < polar.OUTER_LIMIT:
+            w *= polar.OUTER_GRADING
+    elif w < np.pi / 2:  # polar does not grade: its first break, on the far side only
+        out.append(w)
+    else:
+        return []
+    r = (np.pi / 2) / w  # > 1
+    n = math.ceil(math.log(r) / math.log(polar.OUTER_GRADING) - 1e-9) - 1  # pieces ≤ ratio
+    return out + [w * r ** (j / (n + 1)) for j in range(1, n + 1)]
+
+
 def _cook_torrance_lobe(v: Mapping[str, Any], rtol: float) -> Lobe:
     """Beckmann lobe of width m; the V-cavity kinks as radial breaks, and where they cross
     (:func:`_vcavity_azimuths`) as outer ones once the lobe reaches them (m ≥ 0.3: below it
     exp(−tan²ρ/m²) is ≤ 2.5e-2 of the peak at ρ = π/6 and they cost evaluations for nothing;
-    measured in docs/accuracy.md)."""
+    measured in docs/accuracy.md); the far side graded where the horizon cuts the lobe
+    (:func:`_cook_torrance_far`)."""
     m = float(v["m"])
     # beyond tan²ρ = 45 m², D/D(0) = exp(−tan²ρ/m²)/cos⁴ρ < exp(−45)(1 + 45 m²)² ≤ 6e-17
     # (m ≤ 1): the specular term, and its kinks, are nil there; only the smooth diffuse
@@ -234,7 +272,11 @@ def _cook_torrance_lobe(v: Mapping[str, Any], rtol: float) -> Lobe:
     def breaks(st, ct, cpsi, rmax):
         return [np.where(b < cut, b, rmax) for b in _vcavity_breaks(st, ct, cpsi, rmax)]
 
-    return Lobe("half", m, breaks, azimuths=_vcavity_azimuths if m >= 0.3 else None)
+    def azimuths(st: float, ct: float) -> list[float]:
+        near = _vcavity_azimuths(st, ct) if m >= 0.3 else []
+        return near + [np.pi / 2 + w for w in _cook_torrance_far(st, ct, m)]
+
+    return Lobe("half", m, breaks, azimuths=azimuths)
 
 
 #: sgd's first radial panel, in half widths of its lobe (:func:`_sgd_shape`): ggx's α is
