@@ -258,14 +258,7 @@ ABLATIONS = [
 
 def _run_counted(model, values, th, rtol):
     """``(estimate, evaluations, kernel calls)`` of the default rule at ``rtol``."""
-    calls = [0]
-
-    def f(wi, wo):
-        calls[0] += 1
-        return evaluate_resolved(model, values, wi, wo)
-
-    r = q.albedo_rule(model, values, th, rtol=rtol, kernel=f)
-    return r, int(r.evaluations[0]), calls[0]
+    return q.albedo_rule_counted(model, values, th, rtol=rtol)
 
 
 def ablation_table(refs):

@@ -609,15 +609,8 @@ def _counted(name, params, theta, horizon=True):
     m = get_model(name)
     v = m.resolve(params)
     hint = q.lobe(m, v)
-    calls = [0]
-
-    def f(wi, wo):
-        calls[0] += 1
-        return evaluate_resolved(m, v, wi, wo)
-
-    r = q.albedo_rule(m, v, theta, hint=hint if horizon else hint._replace(horizon=None),
-                      kernel=f)
-    return r, int(r.evaluations[0]), calls[0]
+    return q.albedo_rule_counted(m, v, theta,
+                                 hint=hint if horizon else hint._replace(horizon=None))
 
 
 @pytest.mark.parametrize("name,params,theta", [

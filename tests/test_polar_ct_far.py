@@ -13,7 +13,6 @@ import pytest
 import tuibrdf
 from tuibrdf.core import polar
 from tuibrdf.core import quadrature as q
-from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.frame import from_degrees
 from tuibrdf.core.models import get_model
 
@@ -178,14 +177,7 @@ def _counted(params, theta, far=True):
     hint = q.lobe(model, v)
     if not far:
         hint = hint._replace(azimuths=q._vcavity_azimuths if v["m"] >= 0.3 else None)
-    calls = [0]
-
-    def f(wi, wo):
-        calls[0] += 1
-        return evaluate_resolved(model, v, wi, wo)
-
-    r = q.albedo_rule(model, v, theta, hint=hint, kernel=f)
-    return r, int(r.evaluations[0]), calls[0]
+    return q.albedo_rule_counted(model, v, theta, hint=hint)
 
 
 @pytest.mark.parametrize("theta", [75.0, 85.0])

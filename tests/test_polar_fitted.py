@@ -12,7 +12,6 @@ from test_polar import _half_frame_wo, reference_albedo
 
 from tuibrdf.core import polar
 from tuibrdf.core import quadrature as q
-from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.frame import sincos_deg
 from tuibrdf.core.materials import material_names, table
 from tuibrdf.core.models import get_model
@@ -41,15 +40,7 @@ def _clamp_by_bisection(t, channel):
 def _counted(name, material, theta, rtol=q.DEFAULT_RTOL):
     """(estimate, evaluations, kernel calls) of the default rule."""
     m = get_model(name)
-    v = m.resolve({"material": material})
-    calls = [0]
-
-    def f(wi, wo):
-        calls[0] += 1
-        return evaluate_resolved(m, v, wi, wo)
-
-    r = q.albedo_rule(m, v, theta, rtol=rtol, kernel=f)
-    return r, int(r.evaluations[0]), calls[0]
+    return q.albedo_rule_counted(m, m.resolve({"material": material}), theta, rtol=rtol)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -500,6 +500,23 @@ def albedo_rule(model: Model, values: Mapping[str, Any],
                            rings=hint.rings, outer_k7=hint.outer_k7)
 
 
+def albedo_rule_counted(model: Model, values: Mapping[str, Any],
+                        thetas_deg: Sequence[float] | np.ndarray, phi_i_deg: float = 180.0,
+                        **kw: Any) -> tuple[Any, int, int]:
+    """:func:`albedo_rule`'s result, its evaluations at the first incidence and the number of
+    kernel calls it made (how the benchmarks and tests count the rule's rounds); ``kw`` as
+    :func:`albedo_rule` takes them (but ``kernel``)."""
+    calls = 0
+
+    def f(wi, wo):
+        nonlocal calls
+        calls += 1
+        return evaluate_resolved(model, values, wi, wo)
+
+    r = albedo_rule(model, values, thetas_deg, phi_i_deg, kernel=f, **kw)
+    return r, int(r.evaluations[0]), calls
+
+
 def albedo_curve_estimate_resolved(model: Model, values: Mapping[str, Any],
                                    thetas_deg: Sequence[float] | np.ndarray,
                                    phi_i_deg: float = 180.0, *, rtol: float = DEFAULT_RTOL,
