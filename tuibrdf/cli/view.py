@@ -24,7 +24,7 @@ import argparse
 import os
 import sys
 
-from .common import UsageError, add_phi_i, add_theta_i, choices_type, parse_params, unknown
+from .common import UsageError, add_phi_i, add_theta_i, choices_type, isatty, parse_params, unknown
 
 COLORS = ("auto", "truecolor", "256", "none")
 FITS = ("abc", "sgd")
@@ -165,11 +165,7 @@ def check_terminal(stdin=None, stdout=None) -> None:
     stdin = sys.stdin if stdin is None else stdin
     stdout = sys.stdout if stdout is None else stdout
     for what, stream in (("standard input", stdin), ("standard output", stdout)):
-        try:
-            tty = stream is not None and stream.isatty()
-        except (OSError, ValueError):  # a closed stream
-            tty = False
-        if not tty:
+        if not isatty(stream):  # also a closed stream
             raise UsageError(f"view needs a terminal, and {what} is not one (for a picture "
                              "in a pipe or a file: tuibrdf render)")
 
