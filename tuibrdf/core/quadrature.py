@@ -203,10 +203,9 @@ def _abc_azimuths(st: float, ct: float, drop: bool = True) -> list[float]:
     if ct <= 0.0:
         return [np.pi / 2 - np.pi / 16]
     out = _vcavity_azimuths(st, ct)
-    if drop and ct < 0.5 * st:  # grazing (st > 0): polar may grade toward π/2, from π/2 − w
-        w = polar.OUTER_START * ct / st
-        if w < min(polar.OUTER_LIMIT, ABC_DROP_WIDTH):
-            out = [a for a in out if np.pi / 2 - a > w]
+    grading = polar.outer_grading(st, ct)  # polar's outer grading, from π/2 − w
+    if drop and grading and grading[0] < ABC_DROP_WIDTH:
+        out = [a for a in out if np.pi / 2 - a > grading[0]]
     return out
 
 
@@ -243,12 +242,12 @@ def _cook_torrance_far(st: float, ct: float, m: float) -> list[float]:
     # st > 0: at normal incidence there is no far side (and 2 cot θi is infinite)
     if not (ct > 0.0 and st > 0.0 and 0.5 * math.atan2(ct, st) < CT_FAR_LOBE * m):
         return []
-    w = polar.OUTER_START * ct / st
+    grading = polar.outer_grading(st, ct)
     out = []
-    if ct < 0.5 * st and w < polar.OUTER_LIMIT:  # polar grades: its last break
-        while w * polar.OUTER_GRADING < polar.OUTER_LIMIT:
-            w *= polar.OUTER_GRADING
-    elif w < np.pi / 2:  # polar does not grade: its first break, on the far side only
+    if grading:  # polar grades: its last break
+        w = grading[-1]
+    elif (w := polar.OUTER_START * ct / st) < np.pi / 2:
+        # polar does not grade: its first break, on the far side only
         out.append(w)
     else:
         return []
@@ -332,10 +331,7 @@ def _sgd_shape(material: str) -> tuple[float, tuple[float, ...], tuple[float, ..
     # polar's radial grading (integrate): scale·FIRST_PANEL·GRADING^j below π/2, in units
     # of the narrowest envelope √α
     a0 = float(np.min(alpha))
-    g, grading = scale * polar.FIRST_PANEL, []
-    while g < np.pi / 2:
-        grading.append(math.tan(g) / math.sqrt(a0))
-        g *= polar.GRADING
+    grading = [math.tan(g) / math.sqrt(a0) for g in polar.radial_grading(scale, np.pi / 2)]
     lo_c, hi_c = SGD_ENVELOPE_COVERED
     rings = () if any(lo_c <= x <= hi_c for x in grading) else (
         math.atan(SGD_ENVELOPE_END * math.sqrt(a0)),)
