@@ -64,7 +64,7 @@ class Rows(Widget):
         regions = []
         strips = []
         for y, (a, a_line, line) in enumerate(zip(old, old_lines, lines, strict=True)):
-            if a_line == line:
+            if a_line is line or a_line == line:  # the same row: the picture lent it
                 strips.append(a)
                 continue
             strips.append(Strip(line, w))
@@ -96,11 +96,14 @@ class Picture(Rows):
         super().__init__(**kw)
         self.pane = pane
         self.shown_for: object = None  # what the strips were made from (the app's key)
+        #: the renderable shown: the next one takes the rows they share from it
+        self._shown: RenderableType | None = None
 
     def show(self, renderable: RenderableType, key: object = None) -> None:
         w, h = self.size.width, self.size.height
         self.shown_for = key
-        self._set(pane_lines(renderable, self.app.console, w, h), w, h)
+        like, self._shown = self._shown, renderable
+        self._set(pane_lines(renderable, self.app.console, w, h, like), w, h)
 
     def on_resize(self, event) -> None:
         self.shown_for = None
