@@ -159,9 +159,15 @@ class ParamPanel(QuietStatic):
     ParamPanel.active { border: round $accent; }
     """
 
+    _for: tuple | None = None  # what the panel shows now (:meth:`show`)
+
     def show(self, state: ViewerState, side_index: int) -> None:
         side: Side = state.sides[side_index]
         active = side_index == state.active
+        key = (side.material, side.selected, active, state.compare)
+        if key == self._for:  # every key of the viewer shows the panels: most change nothing
+            return
+        self._for = key
         self.set_class(active and state.compare, "active")
         label = "AB"[side_index] + ": " if state.compare else ""
         name = side.spec.title
