@@ -175,14 +175,15 @@ def split_halves(index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 #: the code tables kept across frames (:func:`_code_table`): a few palettes at a time (the
 #: colour maps in use; a lit picture's palette is its own distinct colours, new each frame)
 TABLES_KEPT = 8
-_TABLES: OrderedDict[tuple, dict[int, tuple[str, Style]]] = OrderedDict()
+_TABLES: OrderedDict[tuple, dict] = OrderedDict()
 
 
-def _code_table(system: str, ring: int | None, palette: np.ndarray) -> dict[int, tuple[str, Style]]:
+def _code_table(system: str, ring: int | None, palette: np.ndarray) -> dict:
     """``code → (character, style)`` of a palette's cells in ``system`` (the codes of
-    :meth:`HalfBlockImage._build`), filled as codes are met and kept for the next frame with
-    the same palette: a map's frame meets the same few hundred colour pairs again, and
-    working each out anew was ≈ 40 % of drawing it."""
+    :meth:`HalfBlockImage._build`; a mark's look is keyed by the mark and its two pixels),
+    filled as codes are met and kept for the next frame with the same palette: a map's frame
+    meets the same few hundred colour pairs again, and working each out anew was ≈ 40 % of
+    drawing it."""
     key = (system, ring, palette.tobytes())
     table = _TABLES.get(key)
     if table is None:
@@ -312,8 +313,13 @@ class HalfBlockImage:
         run_codes = codes[rows, starts].tolist()
         for r, c, n, code in zip(rows.tolist(), starts.tolist(), lengths.tolist(), run_codes,
                                  strict=True):
-            if code < 0:
-                char, style = self._mark(self.marks[-code - 1], top[r, c], bottom[r, c], system)
+            if code < 0:  # a mark's look: its glyph and colour over the two pixels' mean
+                m = self.marks[-code - 1]
+                key = (m.glyph, m.ascii, m.rgb, int(top[r, c]), int(bottom[r, c]))
+                got = table.get(key)
+                if got is None:
+                    got = table[key] = self._mark(m, key[3], key[4], system)
+                char, style = got
             else:
                 got = table.get(code)
                 if got is None:
