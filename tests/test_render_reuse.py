@@ -142,3 +142,36 @@ def test_canvas_lends_equal_rows_only():
     rc = c.rows(like=b)
     assert rc == canvas(color="blue").rows()
     assert not any(x is y for x, y in zip(rb, rc, strict=True))
+
+
+def test_changed_rows_know_their_changed_cells_and_hold_no_chain():
+    """A row drawn again names the row it was compared with and the cells that differ: the
+    span must cover every cell whose character or style differs (checked cell by cell here)
+    and the rows outside it must be equal; an old row forgets what it was compared with once
+    a newer picture is drawn against it (no chain of every frame's rows)."""
+    from tuibrdf.render.rowdiff import ChangedRow
+
+    con = console("truecolor")
+
+    def cells(row):
+        return [(ch, s.style) for s in row for ch in s.text]
+
+    frames = [render_view(v, "phong", {}, t, 78, 40, levels=32)
+              for t in (30.0, 31.0, 35.0, 35.5) for v in ("map",)]
+    frames += [render_view("incidence", "phong", {}, t, 78, 40) for t in (30.0, 31.0, 40.0)]
+    checked = 0
+    for a, b in zip(frames, frames[1:]):
+        if type(a) is not type(b) or len(a.renderables) != len(b.renderables):
+            continue
+        ra = pane_lines(a, con, 78, 40)
+        rb = pane_lines(b, con, 78, 40, a)
+        for x, y in zip(ra, rb, strict=True):
+            if type(y) is ChangedRow and y.against is x:
+                x0, x1 = y.span
+                cx, cy = cells(x), cells(y)
+                assert len(cx) == len(cy) == 78
+                differ = [i for i in range(78) if cx[i] != cy[i]]
+                assert differ and x0 <= differ[0] and differ[-1] < x1
+                checked += 1
+        assert not any(type(x) is ChangedRow and x.against is not None for x in ra)
+    assert checked >= 20

@@ -18,6 +18,7 @@ from textual.widgets import Static
 
 from ..core.params import _fmt
 from ..render.lines import BLANK, fit_rows, pane_lines, render_rows
+from ..render.rowdiff import ChangedRow
 from .state import Side, ViewerState
 
 
@@ -64,11 +65,16 @@ class Rows(Widget):
         regions = []
         strips = []
         for y, (a, a_line, line) in enumerate(zip(old, old_lines, lines, strict=True)):
-            if a_line is line or a_line == line:  # the same row: the picture lent it
+            if a_line is line:  # the same row: the picture lent it
+                strips.append(a)
+                continue
+            # a row drawn against this very row knows its changed cells (render.rowdiff)
+            known = line.span if type(line) is ChangedRow and line.against is a_line else None
+            if known is None and a_line == line:
                 strips.append(a)
                 continue
             strips.append(Strip(line, w))
-            x0, x1 = changed_span(a_line, line, w)
+            x0, x1 = known or changed_span(a_line, line, w)
             if x1 > x0:
                 regions.append(Region(x0, y, x1 - x0, 1))
         self._strips = strips

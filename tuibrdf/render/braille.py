@@ -36,6 +36,8 @@ from rich.measure import Measurement
 from rich.segment import Segment
 from rich.style import Style
 
+from .rowdiff import mark_changed
+
 BRAILLE_BASE = 0x2800
 #: bit of the dot at (row 0..3, column 0..1) of a cell (Unicode braille numbering 1-8)
 DOT_BITS = np.array([[0x01, 0x08], [0x02, 0x10], [0x04, 0x20], [0x40, 0x80]], dtype=np.int64)
@@ -264,8 +266,10 @@ class BrailleCanvas:
         colour = np.array([_colour_id(c) for c in palette])[cid]
         old = None if like is None else like._drawn
         same = np.zeros(self.height, dtype=bool)
+        diff = None
         if old is not None and old[0].shape == chars.shape:
-            same = (old[0] == chars).all(axis=1) & (old[1] == colour).all(axis=1)
+            diff = (old[0] != chars) | (old[1] != colour)
+            same = ~diff.any(axis=1)
             for r in np.flatnonzero(same).tolist():
                 out[r] = old[2][r]
         starts = np.ones(cid.shape, dtype=bool)
@@ -284,6 +288,8 @@ class BrailleCanvas:
         for r, a, b, st in zip(rows.tolist(), flat.tolist(), ends.tolist(), run_styles,
                                strict=True):
             out[r].append(Segment(text[a:b], st))
+        if diff is not None:
+            mark_changed(out, old[2], ~same, diff)
         return chars, colour, out
 
     def lines(self) -> list[str]:

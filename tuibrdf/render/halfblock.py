@@ -45,6 +45,7 @@ from rich.segment import Segment
 from rich.style import Style
 
 from ..core.conventions import REC709  # here applied to 8-bit values: a luma
+from .rowdiff import mark_changed
 
 ColorSystem = Literal["truecolor", "256", "none"]
 COLOR_SYSTEMS: tuple[str, ...] = ("truecolor", "256", "none")
@@ -275,20 +276,20 @@ class HalfBlockImage:
             self._rows[system] = self._build(system, like)
         return self._rows[system]
 
-    def _same_rows(self, codes: np.ndarray, system: str,
-                   like: HalfBlockImage | None) -> np.ndarray:
-        """Rows whose cells equal ``like``'s: the same codes under the same palette, no mark
-        in the row of either (a mark's code names a mark, not the colours under it)."""
-        same = np.zeros(self.height, dtype=bool)
+    def _differ(self, codes: np.ndarray, system: str,
+                like: HalfBlockImage | None) -> np.ndarray | None:
+        """Cells that may differ from ``like``'s (None: all of them): the codes differ, under
+        the same palette, or a mark of either is there (a mark's code names a mark, not the
+        colours under it)."""
         old = None if like is None else like._codes.get(system)
         if (old is None or old.shape != codes.shape or like.ring != self.ring
                 or not np.array_equal(like.palette, self.palette)):
-            return same
-        same = (codes == old).all(axis=1)
+            return None
+        diff = codes != old
         for m in (*self.marks, *like.marks):
-            if 0 <= m.row < self.height:
-                same[m.row] = False
-        return same
+            if 0 <= m.row < self.height and 0 <= m.col < self.width:
+                diff[m.row, m.col] = True
+        return diff
 
     def _build(self, system: str, like: HalfBlockImage | None = None) -> list[list[Segment]]:
         top, bottom = split_halves(self.index)
@@ -301,7 +302,8 @@ class HalfBlockImage:
             if 0 <= m.row < self.height and 0 <= m.col < self.width:
                 codes[m.row, m.col] = -(k + 1)
         self._codes[system] = codes
-        same = self._same_rows(codes, system, like)
+        diff = self._differ(codes, system, like)
+        same = np.zeros(self.height, dtype=bool) if diff is None else ~diff.any(axis=1)
         out: list[list[Segment]] = [[] for _ in range(self.height)]
         for r in np.flatnonzero(same).tolist():
             out[r] = like._rows[system][r]
@@ -326,6 +328,8 @@ class HalfBlockImage:
                     got = table[code] = make(code)
                 char, style = got
             out[r].append(Segment(char * n, style))
+        if diff is not None:
+            mark_changed(out, like._rows[system], ~same, diff)
         return out
 
     def _color_codes(self, top, bottom, system):
