@@ -232,7 +232,7 @@ def line_view(
         ys = [v for _, _, v in curves]
         ylim = (0.0, vmax * 1.05)
         ticks = nice_ticks(0.0, ylim[1], 4)
-        tick_labels = [fmt_value(t) for t in ticks]
+        tick_labels = [fmt_value(t + 0.0) for t in ticks]  # + 0.0: a tick of −0.0 reads "0"
     canvas = BrailleCanvas(plot_w, rows, (0.0, 90.0), ylim, color=color, charset=charset)
     guide = canvas.layer(GUIDE, "sparse", ".")
     for t in ticks:
@@ -248,6 +248,8 @@ def line_view(
     labels = [""] * rows
     for t, s in zip(ticks, tick_labels, strict=True):
         r = int((ylim[1] - t) / (ylim[1] - ylim[0]) * rows)  # ylim[1] > ylim[0]
+        if t >= ylim[0]:  # the axis's lower end (0, or the lowest decade) labels the last row
+            r = min(r, rows - 1)
         if 0 <= r < rows:
             labels[r] = s
     axis = axis_line(plot_w, [t / 90.0 for t in TICKS_DEG], [f"{t}°" for t in TICKS_DEG],

@@ -36,6 +36,17 @@ def title(parts: Sequence[tuple[str, int]], width: int, style: str = "") -> Text
     return Text(fit_parts(parts, width), style=style, no_wrap=True, overflow="crop")
 
 
+def first_fitting(variants: Sequence[Sequence[tuple[str, int]]], width: int,
+                  style: str = "") -> Text:
+    """:func:`title` of the first variant whose rank 0 parts fit ``width`` whole (a longer
+    wording first, a shorter one after), else of the last: the shorter wording goes before
+    :func:`fit_parts` crops a number's label."""
+    for parts in variants:
+        if cell_len(SEP.join(s for s, r in parts if s and r == 0)) <= width:
+            return title(parts, width, style)
+    return title(variants[-1], width, style)
+
+
 # -------------------------------------------------------------------- guides and marks
 #: colour of the horizon ring drawn just outside the disc and of the solid's guides: a muted
 #: blue that quantises to xterm colour 61 (95, 95, 175), which no colour map (grey, viridis,
