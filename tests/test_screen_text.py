@@ -113,3 +113,27 @@ def test_line_plot_labels_the_bottom_of_its_axis():
     assert "-0" not in labels
     nums = [float(s) for s in labels if s]
     assert nums == sorted(nums, reverse=True) and len(nums) >= 2
+
+
+@pytest.mark.parametrize("channel, tag", [("lum", "Y"), ("G", "G")])
+def test_section_max_of_an_rgb_model_says_which_curve(channel, tag):
+    # gltf copper-like at θi = 45°: the map's peak is the red channel's (17.7 "(R)"); with the
+    # curves switched to the luminance (key C) the incidence section's max was 11 with no
+    # word of which curve, beside a "(R)" peak in the same direction
+    mat = Material("gltf", {"base_color": (0.9, 0.5, 0.1), "metallic": 1.0, "roughness": 0.3})
+    res = scene.compute_frame(scene.FrameRequest((mat,), 45.0), slow=False)
+    v = res.sides[0].sections["incidence"]
+    # Rec.709 luminance weights (ITU-R BT.709), written here rather than taken from the code
+    want = {"lum": v @ np.array([0.2126, 0.7152, 0.0722]), "G": v[:, 1]}[channel]
+    head = lines(panes.pane("incidence", res, 0, 120, 20,
+                            panes.Look(color="none", channel=channel)), 120)[0]
+    assert f"section max {fmt_value(float(np.max(want)))} ({tag})" in head, head
+    # all three channels drawn: the max is the largest channel's, no tag
+    head = lines(panes.pane("incidence", res, 0, 120, 20, panes.Look(color="none")), 120)[0]
+    assert f"section max {fmt_value(float(np.max(v)))}  " in head, head
+    # a scalar model has no channels to name
+    ct = scene.compute_frame(scene.FrameRequest((Material("cook-torrance"),), 45.0),
+                             slow=False)
+    head = lines(panes.pane("incidence", ct, 0, 120, 20,
+                            panes.Look(color="none", channel="lum")), 120)[0]
+    assert "(Y)" not in head

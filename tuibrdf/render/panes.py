@@ -49,6 +49,9 @@ from .text import (
 PROBE_MARK = dict(glyph="+", ascii="+", rgb=(0, 230, 230))
 
 SIDE_LABELS = ("A", "B")
+#: how a section's caption names the curves of an RGB model (Look.channel): Y the luminance,
+#: as the status line's "(Y)" peak
+CHANNEL_TAGS = {"lum": "Y"}
 #: diverging palette of the difference map: blue (B larger) – grey – red (A larger)
 DIVERGING = ((59, 76, 192), (221, 221, 221), (180, 4, 38))
 
@@ -258,8 +261,12 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
             parts = [(res.sides[0].material.label, 2), (f"θi={t:g}°", 3), (None, 0),
                      (f"(φ {res.request.phi_i:g}°|{(res.request.phi_i + 180) % 360:g}°)", 4),
                      (fn, 1)]
-    variants = [[(what if s is None else s, r) for s, r in parts] + caption_parts(caption)
-                for what in whats]
+    cap = caption_parts(caption)
+    if look.channel != "rgb" and any(s.sections[key].ndim == 2 for s in res.sides):
+        # an RGB model's curves are its luminance or one channel (C): say which, or
+        # "section max" reads as a disagreement with the map's "(R)" peak
+        cap[0] = (f"{cap[0][0]} ({CHANNEL_TAGS.get(look.channel, look.channel)})", 0)
+    variants = [[(what if s is None else s, r) for s, r in parts] + cap for what in whats]
     return Group(first_fitting(variants, w), canvas)
 
 
