@@ -137,3 +137,21 @@ def test_section_max_of_an_rgb_model_says_which_curve(channel, tag):
     head = lines(panes.pane("incidence", ct, 0, 120, 20,
                             panes.Look(color="none", channel="lum")), 120)[0]
     assert "(Y)" not in head
+
+
+# -------------------------------------------------------------------------- help screen
+def test_help_lines_wrap_under_their_own_column():
+    # the help screen is 64 cells wide (about 58 for the text): a long help line used to go
+    # on under the key column ("exponents: ×1.1" where the next key is expected)
+    from tuibrdf.app import keys
+
+    rows = lines(keys.help_text(), 58)
+    shown = {k.shown for k in keys.KEYS}
+    body = rows[2:rows.index("", 2)]  # between the heading and the closing note
+    assert len(body) > len(keys.KEYS)  # some lines wrap at this width
+    for row in body:
+        key = row[:keys.KEY_COLUMN].strip()
+        assert key == "" or key in shown, row  # the key column holds keys or nothing
+    keyed = [r[:keys.KEY_COLUMN].strip() for r in body if r[:keys.KEY_COLUMN].strip()]
+    assert keyed == [k.shown for k in keys.KEYS]
+    assert "shift+left" not in shown and "shift+←" in shown  # keys are written as keys
