@@ -15,7 +15,7 @@ from tuibrdf.core.material import Material
 from tuibrdf.core.models import MODELS
 from tuibrdf.render import panes
 from tuibrdf.render.colormap import Scale, colorbar
-from tuibrdf.render.halfdiff_view import theta_h_view
+from tuibrdf.render.halfdiff_view import theta_d_view, theta_h_view
 from tuibrdf.render.views import map_pixels
 
 
@@ -155,3 +155,23 @@ def test_help_lines_wrap_under_their_own_column():
     keyed = [r[:keys.KEY_COLUMN].strip() for r in body if r[:keys.KEY_COLUMN].strip()]
     assert keyed == [k.shown for k in keys.KEYS]
     assert "shift+left" not in shown and "shift+←" in shown  # keys are written as keys
+
+
+# ------------------------------------------------------------------- clipped line plots
+@pytest.mark.parametrize("width", range(40, 101, 4))
+def test_clipped_theta_d_plot_says_where_its_axis_stops(width):
+    # Cook-Torrance at θh = 0 grows as 1/(4 cos²θd) toward grazing (D, G = 1 and F fixed or
+    # growing), so the plot's axis stops at the largest value with both directions within
+    # 85° of the normal: θd = 85° itself, wi = (0, sin 85°, cos 85°), wo = (0, −sin 85°,
+    # cos 85°) (φd = 90°).  At 80×24 (44 cells) the title used to drop that note whole
+    from tuibrdf import evaluate
+
+    t = np.radians(85.0)
+    top = float(evaluate("cook-torrance", {}, np.array([0.0, np.sin(t), np.cos(t)]),
+                         np.array([0.0, -np.sin(t), np.cos(t)])))
+    ct = MODELS["cook-torrance"]
+    head = lines(theta_d_view(ct, ct.resolve({}), width, 12, theta_h_deg=0.0, color="none"),
+                 width)[0]
+    assert head.startswith("f(θd) at θh=0° φd=90°") or "  f(θd) at θh=0° φd=90°" in head
+    assert re.search(rf"scale {re.escape(fmt_value(top))}( sr⁻¹)? \(θ≤85°\)", head), head
+    assert len(head) <= width
