@@ -266,7 +266,10 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
         # an RGB model's curves are its luminance or one channel (C): say which, or
         # "section max" reads as a disagreement with the map's "(R)" peak
         cap[0] = (f"{cap[0][0]} ({CHANNEL_TAGS.get(look.channel, look.channel)})", 0)
-    variants = [[(what if s is None else s, r) for s, r in parts] + cap for what in whats]
+    # narrower: "max 0.113" (the pane's title says it is a section) before any crop
+    short = [(cap[0][0].replace("section max", "max", 1), 0), *cap[1:]]
+    variants = [[(what if s is None else s, r) for s, r in parts] + c
+                for c, what in [*((cap, x) for x in whats), (short, whats[-1])]]
     return Group(first_fitting(variants, w), canvas)
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from rich.cells import cell_len, set_cell_size
+from rich.cells import cell_len
 from rich.text import Text
 
 SEP = "  "
@@ -28,7 +28,17 @@ def fit_parts(parts: Sequence[tuple[str, int]], width: int) -> str:
             break
         del kept[worst]
     line = SEP.join(s for _, s, _ in kept)
-    return line if cell_len(line) <= width else set_cell_size(line, max(width, 0)).rstrip()
+    if cell_len(line) <= width:
+        return line
+    n = used = 0
+    while n < len(line) and used + cell_len(line[n]) <= width:
+        used += cell_len(line[n])
+        n += 1
+    head = line[:n]
+    # a cut inside a word would show a wrong number ("0.113" as "0.11"): the word goes whole
+    if not line[n].isspace() and " " in head:
+        head = head[:head.rindex(" ")]
+    return head.rstrip()
 
 
 def title(parts: Sequence[tuple[str, int]], width: int, style: str = "") -> Text:
