@@ -13,6 +13,7 @@ import re
 
 import numpy as np
 import pytest
+from rich.console import Console
 from textual import events
 
 from tuibrdf.app import keys
@@ -56,7 +57,10 @@ async def wait_for(pilot, cond, seconds=20.0):
 def test_bindings_footer_help_and_palette_come_from_one_table():
     assert [b.action for b in keys.BINDINGS] == [k.action for k in keys.KEYS]
     assert [b.show for b in keys.BINDINGS] == [k.footer for k in keys.KEYS]
-    help_lines = keys.help_text().plain
+    con = Console(width=300, color_system=None)  # wide: no help line wraps
+    with con.capture() as cap:
+        con.print(keys.help_text())
+    help_lines = cap.get()
     for k in keys.KEYS:
         assert f"{k.shown:<12}{k.help}" in help_lines
     listed = {k.action for k in keys.palette_keys()}

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from rich.console import Group
+from rich.table import Table
 from rich.text import Text
 from textual.binding import Binding
 
@@ -39,8 +41,8 @@ def _s(method: str, *args: object) -> str:
 KEYS: tuple[Key, ...] = (
     Key("left", _s("step_theta", -1), "θi−", "θi −1°  (shift+← −10°)", "←", footer=True),
     Key("right", _s("step_theta", 1), "θi+", "θi +1°  (shift+→ +10°)", "→", footer=True),
-    Key("shift+left", _s("step_theta", -10), "θi −10°", "θi −10°"),
-    Key("shift+right", _s("step_theta", 10), "θi +10°", "θi +10°"),
+    Key("shift+left", _s("step_theta", -10), "θi −10°", "θi −10°", "shift+←"),
+    Key("shift+right", _s("step_theta", 10), "θi +10°", "θi +10°", "shift+→"),
     Key("greater_than_sign", _s("step_phi_i", 15), "φi+", "light azimuth φi +15° (default 180°)",
         ">"),
     Key("less_than_sign", _s("step_phi_i", -15), "φi−", "light azimuth φi −15°", "<"),
@@ -112,14 +114,21 @@ BINDINGS = [Binding(k.keys, k.action, k.short, show=k.footer, key_display=k.disp
                     priority=k.priority) for k in KEYS]
 
 
-def help_text() -> Text:
-    """The help screen: every key with its help line."""
-    t = Text("tuibrdf — keys\n\n", style="bold")
+#: the help screen's key column
+KEY_COLUMN = 12
+
+
+def help_text() -> Group:
+    """The help screen: every key with its help line, a long one wrapped under its own
+    column (not under the keys)."""
+    grid = Table.grid()
+    grid.add_column(width=KEY_COLUMN, no_wrap=True, style="bold")
+    grid.add_column(ratio=1)
     for k in KEYS:
-        t.append(f"{k.shown:<12}", style="bold")
-        t.append(f"{k.help}\n")
-    t.append("\nEsc or ? closes this screen; ctrl+p opens the command palette.", style="dim")
-    return t
+        grid.add_row(k.shown, k.help)
+    return Group(Text("tuibrdf — keys\n", style="bold"), grid,
+                 Text("\nEsc or ? closes this screen; ctrl+p opens the command palette.",
+                      style="dim"))
 
 
 def palette_keys() -> list[Key]:

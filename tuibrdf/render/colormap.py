@@ -323,7 +323,11 @@ def colorbar(
     bar = _bar(max(int(width), 3), cmap, levels, color_system)
     width = bar.width
     lo, mid, hi = (fmt_value(x) for x in scale.ticks())
-    right = hi + f" {unit}" + (f" {note}" if note else "") + (" (log)" if scale.log else "")
+    log = " (log)" if scale.log else ""
+    # the top value is the bar's one number that matters: in a narrow bar the note, then the
+    # unit, then "(log)" go first (the map's title and the status line say them too)
+    tails = [f" {unit}" + (f" {note}" if note else "") + log, f" {unit}{log}", log, ""]
+    right = next(hi + t for t in tails if len(lo) + 1 + len(hi + t) <= width or not t)
     return Group(bar, Text(tick_line(width, lo, mid, right)))
 
 

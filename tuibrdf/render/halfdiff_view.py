@@ -35,7 +35,7 @@ from .braille import NULL_STYLE, BrailleCanvas, curve_layers, draw_legend, nice_
 from .colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize, fmt_value
 from .halfblock import HalfBlockImage
 from .polar import channel_curves, curve_color
-from .text import title
+from .text import first_fitting
 
 #: width of the y tick labels and the space after them
 MARGIN = 8
@@ -88,15 +88,19 @@ def axis_line(width: int, positions: list[float], labels: list[str], name: str) 
     return Text(head + "".join(line).rstrip(), no_wrap=True, overflow="crop")
 
 
-def scale_note(f: np.ndarray, valid: np.ndarray, vmax: float) -> list[tuple[str, int]]:
-    """Title parts: ``max 0.65 sr⁻¹``, or ``scale 0.65 sr⁻¹ (θ≤85°)`` and (less important)
-    ``max 1e+32`` when grazing values clip."""
+def scale_note(f: np.ndarray, valid: np.ndarray, vmax: float) -> list[list[tuple[str, int]]]:
+    """Title parts, in wordings from the longest: ``max 0.65 sr⁻¹``, or when grazing values
+    clip ``scale 0.65 sr⁻¹ (θ≤85°)`` and (less important) ``max 1e+32``.  A clipped scale is
+    kept (without its unit in a narrow view) rather than dropped: a curve leaving the top of
+    the plot must say where the axis stops and why."""
     v = f[valid] if f.ndim == valid.ndim else f[valid].max(axis=-1)
     peak = float(v.max()) if v.size else 0.0
     if peak > vmax * (1 + 1e-9):
-        return [(f"scale {fmt_value(vmax)} sr⁻¹ (θ≤{SCALE_LIMIT_DEG:g}°)", 1),
-                (f"max {fmt_value(peak)}", 3)]
-    return [(f"max {fmt_value(peak)} sr⁻¹", 1)]
+        top, limit = fmt_value(vmax), f"(θ≤{SCALE_LIMIT_DEG:g}°)"
+        rest = (f"max {fmt_value(peak)}", 3)
+        return [[(f"scale {top} sr⁻¹ {limit}", 0), rest], [(f"scale {top} {limit}", 0), rest],
+                [(f"scale {top} sr⁻¹ {limit}", 1), rest]]
+    return [[(f"max {fmt_value(peak)} sr⁻¹", 1)]]
 
 
 def slice_view(
@@ -170,9 +174,9 @@ def slice_picture(name: str, f: np.ndarray, valid: np.ndarray, th: np.ndarray, t
     axis = axis_line(img_w, pos, [f"{t}°" for t in ticks], "θh")
     bar_cmap = "grey" if (data.ndim == 3 and rgb_mode == "color") else cmap
     bar = colorbar(col.scale, bar_cmap, int(width), levels=levels, color_system=color)
-    head = title([(name, 2), (f"θh×θd at φd={phi_d_deg:g}°", 0),
-                  *scale_note(f, valid, vmax),
-                  ("√θh axis" if sqrt_h else "linear θh", 3)], int(width))
+    head = first_fitting([[(name, 2), (f"θh×θd at φd={phi_d_deg:g}°", 0), *note,
+                           ("√θh axis" if sqrt_h else "linear θh", 3)]
+                          for note in scale_note(f, valid, vmax)], int(width))
     return Group(head, LeftLabelled(image, labels, color), axis, bar)
 
 
@@ -232,7 +236,7 @@ def line_view(
         ys = [v for _, _, v in curves]
         ylim = (0.0, vmax * 1.05)
         ticks = nice_ticks(0.0, ylim[1], 4)
-        tick_labels = [fmt_value(t) for t in ticks]
+        tick_labels = [fmt_value(t + 0.0) for t in ticks]  # + 0.0: a tick of −0.0 reads "0"
     canvas = BrailleCanvas(plot_w, rows, (0.0, 90.0), ylim, color=color, charset=charset)
     guide = canvas.layer(GUIDE, "sparse", ".")
     for t in ticks:
@@ -248,14 +252,16 @@ def line_view(
     labels = [""] * rows
     for t, s in zip(ticks, tick_labels, strict=True):
         r = int((ylim[1] - t) / (ylim[1] - ylim[0]) * rows)  # ylim[1] > ylim[0]
+        if t >= ylim[0]:  # the axis's lower end (0, or the lowest decade) labels the last row
+            r = min(r, rows - 1)
         if 0 <= r < rows:
             labels[r] = s
     axis = axis_line(plot_w, [t / 90.0 for t in TICKS_DEG], [f"{t}°" for t in TICKS_DEG],
                      xlabel)
-    parts = [*title_parts, *scale_note(f_raw, valid, scale)]
-    if log:
-        parts.append((f"log, {decades:g} decades", 4))
-    return Group(title(parts, int(width)), LeftLabelled(canvas, labels), axis)
+    tail = [(f"log, {decades:g} decades", 4)] if log else []
+    head = first_fitting([[*title_parts, *note, *tail] for note in scale_note(f_raw, valid, scale)],
+                         int(width))
+    return Group(head, LeftLabelled(canvas, labels), axis)
 
 
 def theta_h_view(model: Model, values: dict[str, Any], width: int, height: int, *,

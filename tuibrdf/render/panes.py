@@ -35,12 +35,23 @@ from .halfblock import HalfBlockImage, Mark
 from .polar import caption_parts, plot_body, side_curves
 from .polar_braille import fwhm_text, polar_canvas
 from .solid import solid_image
-from .text import INCIDENT_MARK, MIRROR_MARK, RING_RGB, mark_legend, title, where
+from .text import (
+    INCIDENT_MARK,
+    MIRROR_MARK,
+    RING_RGB,
+    first_fitting,
+    mark_legend,
+    title,
+    where,
+)
 
 #: the probe's mark on the map (issue 13 §4)
 PROBE_MARK = dict(glyph="+", ascii="+", rgb=(0, 230, 230))
 
 SIDE_LABELS = ("A", "B")
+#: how a section's caption names the curves of an RGB model (Look.channel): Y the luminance,
+#: as the status line's "(Y)" peak
+CHANNEL_TAGS = {"lum": "Y"}
 #: diverging palette of the difference map: blue (B larger) – grey – red (A larger)
 DIVERGING = ((59, 76, 192), (221, 221, 221), (180, 4, 38))
 
@@ -173,15 +184,15 @@ def diff_pane(res: FrameResult, w: int, h: int, look: Look) -> Group:
     va, vb = (s.map[0] for s in res.sides)
     d = (luminance(va) if va.ndim == 3 else va) - (luminance(vb) if vb.ndim == 3 else vb)
     finite = np.isfinite(d)
-    m = float(np.max(np.abs(d[finite]))) if finite.any() else 0.0
-    m = m if m > 0 else 1.0  # identical sides: all mid-grey, no division by zero
+    largest = float(np.max(np.abs(d[finite]))) if finite.any() else 0.0
+    m = largest if largest > 0 else 1.0  # identical sides: all mid-grey, no division by zero
     t = np.clip(d / m * 0.5 + 0.5, 0.0, 1.0)
     levels = min(look.levels, 32)
     idx = np.where(finite, np.rint(np.nan_to_num(t) * (levels - 1)), -1).astype(np.int64)
     stops = np.array(DIVERGING, dtype=float)
     x = np.linspace(0, 1, levels)
     pal = np.stack([np.interp(x, [0, 0.5, 1], stops[:, c]) for c in range(3)], -1)
-    head = title([("A − B", 1), (f"max |Δ| {fmt_value(m)}", 0)], w)
+    head = title([("A − B", 1), (f"max |Δ| {fmt_value(largest)}", 0)], w)  # not the guard
     if look.color == "none":  # no colour to tell the sign: characters that say it
         return Group(head, signed_text(np.where(finite, t - 0.5, np.nan)),
                      title([("+# A>B  -= B>A  . same", 0)], w))
@@ -228,13 +239,15 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
     if plane == "perpendicular":
         pk = res.sides[0].peak
         name = "perp." if az == 90.0 else f"ψ={az:g}°"
-        what = (f"{name} through peak θ={round(pk.theta_deg, 1):g}° "
-                f"φ={round(pk.phi_deg) % 360:g}°")
+        # where the plane passes may go (the map's title has the peak's direction): a narrow
+        # pane keeps "section max …" whole rather than cropping it to "sec"
+        whats = [(f"{name} through peak θ={round(pk.theta_deg, 1):g}° "
+                  f"φ={round(pk.phi_deg) % 360:g}°"), name]
     else:
-        what = plane
+        whats = [plane]
     if compare:
         a, b = (s.material.label for s in res.sides)
-        parts = [(what, 0), (f"A {a} vs B {b}", 2)]
+        parts = [(None, 0), (f"A {a} vs B {b}", 2)]
     else:
         fn = "f·cosθr" if res.request.cosine else "f"
         if plane == "perpendicular":
@@ -242,13 +255,22 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
             width_s = fwhm_text(SECTION_THETAS, luminance(v) if v.ndim == 2 else v)
             # the width across the lobe is the point of this view (issue 13 §1): it goes
             # before the model's name (which the panel shows) when the title is cropped
-            parts = [(res.sides[0].material.label, 2), (f"θi={t:g}°", 4), (what, 0),
+            parts = [(res.sides[0].material.label, 2), (f"θi={t:g}°", 4), (None, 0),
                      (width_s, 1), (fn, 5)]
         else:
-            parts = [(res.sides[0].material.label, 2), (f"θi={t:g}°", 3), (plane, 0),
+            parts = [(res.sides[0].material.label, 2), (f"θi={t:g}°", 3), (None, 0),
                      (f"(φ {res.request.phi_i:g}°|{(res.request.phi_i + 180) % 360:g}°)", 4),
                      (fn, 1)]
-    return Group(title([*parts, *caption_parts(caption)], w), canvas)
+    cap = caption_parts(caption)
+    if look.channel != "rgb" and any(s.sections[key].ndim == 2 for s in res.sides):
+        # an RGB model's curves are its luminance or one channel (C): say which, or
+        # "section max" reads as a disagreement with the map's "(R)" peak
+        cap[0] = (f"{cap[0][0]} ({CHANNEL_TAGS.get(look.channel, look.channel)})", 0)
+    # narrower: "max 0.113" (the pane's title says it is a section) before any crop
+    short = [(cap[0][0].replace("section max", "max", 1), 0), *cap[1:]]
+    variants = [[(what if s is None else s, r) for s, r in parts] + c
+                for c, what in [*((cap, x) for x in whats), (short, whats[-1])]]
+    return Group(first_fitting(variants, w), canvas)
 
 
 # ---------------------------------------------------------------- lit, half/difference

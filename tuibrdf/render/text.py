@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from rich.cells import cell_len, set_cell_size
+from rich.cells import cell_len
 from rich.text import Text
 
 SEP = "  "
@@ -28,12 +28,33 @@ def fit_parts(parts: Sequence[tuple[str, int]], width: int) -> str:
             break
         del kept[worst]
     line = SEP.join(s for _, s, _ in kept)
-    return line if cell_len(line) <= width else set_cell_size(line, max(width, 0)).rstrip()
+    if cell_len(line) <= width:
+        return line
+    n = used = 0
+    while n < len(line) and used + cell_len(line[n]) <= width:
+        used += cell_len(line[n])
+        n += 1
+    head = line[:n]
+    # a cut inside a word would show a wrong number ("0.113" as "0.11"): the word goes whole
+    if not line[n].isspace() and " " in head:
+        head = head[:head.rindex(" ")]
+    return head.rstrip()
 
 
 def title(parts: Sequence[tuple[str, int]], width: int, style: str = "") -> Text:
     """:func:`fit_parts` as a one-row Rich ``Text``."""
     return Text(fit_parts(parts, width), style=style, no_wrap=True, overflow="crop")
+
+
+def first_fitting(variants: Sequence[Sequence[tuple[str, int]]], width: int,
+                  style: str = "") -> Text:
+    """:func:`title` of the first variant whose rank 0 parts fit ``width`` whole (a longer
+    wording first, a shorter one after), else of the last: the shorter wording goes before
+    :func:`fit_parts` crops a number's label."""
+    for parts in variants:
+        if cell_len(SEP.join(s for s, r in parts if s and r == 0)) <= width:
+            return title(parts, width, style)
+    return title(variants[-1], width, style)
 
 
 # -------------------------------------------------------------------- guides and marks
