@@ -238,3 +238,20 @@ def test_guides_drawn_once_are_the_guides_drawn_each_time():
         drawn.append(fresh == 0)
     assert not np.array_equal(drawn[0], drawn[3])  # other circles in their window
     assert np.array_equal(drawn[0], drawn[4])
+
+
+def test_points_on_the_limits_are_drawn_in_the_edge_dots():
+    """The canvas covers the data window with both ends included: f = 0 on a y axis from 0
+    and θ = 90° on an x axis to 90° are the bottom row and the last column of dots (they fell
+    one dot past the edge and were dropped, so a curve reaching 0 seemed to stop); a point
+    beyond the window is still dropped."""
+    cv = BrailleCanvas(10, 3, (0.0, 90.0), (0.0, 1.0))
+    a = cv.layer("red")
+    cv.polyline(np.array([2.25, 87.75]), np.array([0.0, 0.0]), a)  # first to last dot centre
+    assert (cv.owner[-1] == a).all()  # the whole bottom row of dots
+    cv.points(np.array([90.0]), np.array([1.0]), a)
+    assert cv.owner[0, -1] == a  # the top-right dot
+    b = cv.layer("cyan")
+    just_out = 90.0 * (1 + 1e-9)
+    cv.points(np.array([just_out, 45.0]), np.array([0.5, -1e-9]), b)
+    assert not (cv.owner == b).any()

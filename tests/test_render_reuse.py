@@ -160,7 +160,7 @@ def test_changed_rows_know_their_changed_cells_and_hold_no_chain():
               for t in (30.0, 31.0, 35.0, 35.5) for v in ("map",)]
     frames += [render_view("incidence", "phong", {}, t, 78, 40) for t in (30.0, 31.0, 40.0)]
     checked = 0
-    for a, b in zip(frames, frames[1:]):
+    for a, b in zip(frames, frames[1:], strict=False):
         if type(a) is not type(b) or len(a.renderables) != len(b.renderables):
             continue
         ra = pane_lines(a, con, 78, 40)

@@ -133,10 +133,14 @@ class BrailleCanvas:
 
     # -- drawing -------------------------------------------------------------------------------
     def _set(self, cols: np.ndarray, rows: np.ndarray, layer: int) -> None:
-        c = np.rint(cols).astype(np.int64)
-        r = np.rint(rows).astype(np.int64)
-        ok = (c >= 0) & (c < self.dot_w) & (r >= 0) & (r < self.dot_h)
-        self.owner[r[ok], c[ok]] = layer
+        # the canvas covers dot coordinates [−½, dot_w − ½] × [−½, dot_h − ½], both ends
+        # included: a point on the limits (f = 0 on a y axis from 0, θ = 90° on one to 90°)
+        # is drawn in the edge dot, not dropped (rint of dot_w − ½ is dot_w, one past it)
+        ok = ((cols >= -0.5) & (cols <= self.dot_w - 0.5)
+              & (rows >= -0.5) & (rows <= self.dot_h - 0.5))
+        c = np.minimum(np.rint(cols[ok]).astype(np.int64), self.dot_w - 1)
+        r = np.minimum(np.rint(rows[ok]).astype(np.int64), self.dot_h - 1)
+        self.owner[r, c] = layer
 
     def points(self, x: np.ndarray, y: np.ndarray, layer: int) -> None:
         """One dot per finite point."""
