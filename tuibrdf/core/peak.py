@@ -201,6 +201,20 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
                 else incident(90.0, float(phi_i_deg) + 180.0))
     cand = np.concatenate([hemisphere(level).vertices, [s_dir, h_mirror, NORMAL]])
     sc = scores(radiance(model, values, wi, cand, cosine))
+    val, at, _ = _climb(model, values, wi, cosine, cand, sc, level)
+    labels = ("",) if len(val) == 1 else ("Y", "R", "G", "B")
+    return tuple(Peak(v, *_angles(w), lab) for v, w, lab in zip(val, at, labels, strict=True))
+
+
+def _climb(model: Model, values: Mapping[str, Any], wi: np.ndarray, cosine: bool,
+           cand: np.ndarray, sc: np.ndarray,
+           level: int) -> tuple[list[float], list[np.ndarray], list[str]]:
+    """The 2-D searches (steps 2–4 of the module's docstring) from the candidates ``cand``
+    (the mesh, then S, the mirror side's horizon and the normal) and their scores ``sc``: each
+    column's largest value, where, and how its search ended: ``"smooth"`` (the fit's test for
+    a smooth maximum), ``"flat"`` (the grid's span), ``"idle"`` (rounds without gain) or
+    ``""`` (out of rounds, or stopped below its column's other search)."""
+    s_dir = cand[-3]
     k = sc.shape[1]
     first = np.argmax(sc, axis=0)
     i_mirror = len(cand) - 3
@@ -219,6 +233,7 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
     rows: list = []
     res7: list = []
     kinky = [0] * (2 * k)  # fitted vertices that proved lower
+    ended = [""] * (2 * k)  # how the search ended (see the docstring)
     live = list(range(k)) + [i + k for i in range(k) if first[i] != i_mirror]
     for _ in range(PEAK_ROUNDS):
         n = len(live)
@@ -294,6 +309,7 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
             if inside and sp <= PEAK_FLAT * scale and up >= -PEAK_FLAT * scale:
                 # the maximum is between the grid's best point and its neighbours, and
                 # exceeds it by at most the grid's span: done (a flat or zero function too)
+                ended[i] = "flat"
                 continue
             if spec[i] and v49[r] < val[i] - PEAK_FLAT * scale:
                 kinky[i] += 1  # a vertex that proved lower (3 times: no more fits here)
@@ -311,6 +327,7 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
             resolved = onr or min(vr[x] for x in _NEAR) >= top - 0.25 * sp
             idle[i] = idle[i] + 1 if up <= 0.01 * PEAK_TOL * scale and resolved else 0
             if idle[i] >= PEAK_PATIENCE:
+                ended[i] = "idle"
                 continue
             on_row = onr and jk == 0
             a, kappa, pred, on = _vertex(cfs[r], rows[r] if on_row else None)
@@ -322,6 +339,7 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
                 # residual (its error at the vertex), if the grid's best point is inside it
                 if inside and sp * max(pred, 0.0) <= PEAK_TOL * scale \
                         and sp * rr <= PEAK_NOISE * scale:
+                    ended[i] = "smooth"
                     continue
                 # the next grid: about the vertex's error, fine enough for the fit to reach
                 # the tolerance (the guard: a perfect fit); it covers the best point when
@@ -391,13 +409,14 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
         # only a search at its column's best keeps the rounds going; the others go on with it
         if not any(val[i] >= max(val[col[i]], val[col[i] + k]) for i in live):
             break
-    labels = ("",) if k == 1 else ("Y", "R", "G", "B")
-    out = []
+    out_v, out_w, out_e = [], [], []
     for c in range(k):
         a, b = c, c + k
         w = a if val[a] >= val[b] else b
-        out.append(Peak(float(val[w]), *_angles(best[w]), labels[c]))
-    return tuple(out)
+        out_v.append(float(val[w]))
+        out_w.append(best[w])
+        out_e.append(ended[w])
+    return out_v, out_w, out_e
 
 
 def peak_of(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
