@@ -51,9 +51,10 @@ and ~0.2 µs a point, so the finder spends points to save rounds.
    about its best sample, lines through the samples either side of a crease meet at it
    (superlinear on a crease) and a parabola's vertex (on a smooth maximum), each sampled
    with points at ±d/3 and ±d; it stops when the bracket is narrower than ``PLANE_NARROW``
-   and the crease lines leave ≤ ``PEAK_TOL`` to gain, or when it cannot reach the 2-D
-   searches' value: 2–5 rounds where it runs.  Its maximum replaces theirs when higher by
-   more than ``PEAK_TOL``.
+   and the crease lines leave ≤ ``PEAK_TOL`` to gain, when a neighbour is as high as its
+   best (a plateau: a table's nearest bin), or when it cannot reach the 2-D searches'
+   value: 1–6 rounds where it runs (at most ``PLANE_ROUNDS``, which a tabulated lobe's
+   jumps can use up).  Its maximum replaces theirs when higher by more than ``PEAK_TOL``.
 
 An RGB model gets four peaks, each with its own direction: the Rec.709 luminance ``Y`` and
 each channel ``R``, ``G``, ``B``; a scalar model one.  ``Peak.label`` says which.
@@ -202,17 +203,17 @@ def _crease(x, y: list[float], i: int, mid: float,
     return at, min(max(3.0 * abs(at - x[i]), half / 27.0), half), True
 
 
-#: the plane of incidence's check (both sides of the normal; an isotropic lobe is symmetric
-#: about it, so its maximum there bounds the peak from below): a grid of PLANE_STEP_DEG inside
-#: (−90°, 90°), the horizon left to the 2-D searches; at most PLANE_STARTS brackets per column
-#: refined, each for at most PLANE_ROUNDS rounds
+#: the plane of incidence's check (step 5 of the module's docstring): a grid of PLANE_STEP_DEG
+#: inside (−90°, 90°), the horizon left to the 2-D searches; at most PLANE_STARTS brackets per
+#: column refined, each for at most PLANE_ROUNDS rounds, until narrower than PLANE_NARROW rad
 PLANE_STEP_DEG = 1.0
 PLANE_STARTS = 2
-PLANE_ROUNDS = 10
+PLANE_ROUNDS = 6
 PLANE_NARROW = 1e-5
 _PLANE_T = np.radians(np.arange(-90.0 + PLANE_STEP_DEG, 90.0 - 0.5 * PLANE_STEP_DEG,
                                 PLANE_STEP_DEG))
-_PLANE_SIN = np.sin(_PLANE_T)[:, None]  # the grid's _along, but for the axis
+# the grid's directions, _along(_PLANE_T, axis), are _PLANE_SIN * axis + _PLANE_UP
+_PLANE_SIN = np.sin(_PLANE_T)[:, None]
 _PLANE_UP = np.cos(_PLANE_T)[:, None] * NORMAL
 
 
@@ -256,19 +257,19 @@ def _parabola(xs: list[float], ys: list[float], i: int) -> list[tuple[float, flo
     return [(xv, y0 + d1 * (xv - x0) + c2 * (xv - x0) * (xv - x1))]
 
 
-def _plane_starts(sl: np.ndarray, val: list[float], at: list[np.ndarray], ended: list[str],
+def _plane_starts(gs: np.ndarray, val: list[float], at: list[np.ndarray], ended: list[str],
                   axis: np.ndarray, normal: bool) -> list[tuple[int, list[float], list[float]]]:
     """The brackets of the plane's grid worth refining: about a local maximum of the grid
-    (``sl``, its scores) that could exceed the 2-D searches' value ``val``: by a rise as large
+    (``gs``, its scores) that could exceed the 2-D searches' value ``val``: by a rise as large
     as its larger step to a neighbour (a crease or a smooth maximum between grid points rises
     less); but not the bracket holding a 2-D search's point ``at`` that ended in the plane
     (to 1e-6) on one of its tests (``ended``, not out of rounds): that maximum is the
     search's.  At most PLANE_STARTS per column, the highest first, each as ``(column, t,
     values)``: the 5 grid points about the maximum.  ``normal``: the light is at the normal,
     where every vertical plane is one of incidence (the point's own plane)."""
-    g = sl[1:-1]
-    bound = 2.0 * g - np.minimum(sl[:-2], sl[2:])
-    ok = (g >= np.maximum(sl[:-2], sl[2:])) & (bound > [x + PEAK_TOL * abs(x) for x in val])
+    g = gs[1:-1]
+    bound = 2.0 * g - np.minimum(gs[:-2], gs[2:])
+    ok = (g >= np.maximum(gs[:-2], gs[2:])) & (bound > [x + PEAK_TOL * abs(x) for x in val])
     if not np.count_nonzero(ok):  # (count_nonzero: a tenth of any's cost here)
         return []
     n = len(_PLANE_T)
@@ -295,7 +296,7 @@ def _plane_starts(sl: np.ndarray, val: list[float], at: list[np.ndarray], ended:
         js = js[np.argsort(-bound[js - 1, c], kind="stable")][:PLANE_STARTS]
         for j in js.tolist():
             lo, hi = max(j - 2, 0), min(j + 3, n)
-            starts.append((c, t[lo:hi], sl[lo:hi, c].tolist()))
+            starts.append((c, t[lo:hi], gs[lo:hi, c].tolist()))
     return starts
 
 
@@ -304,7 +305,8 @@ def _plane_next(xs: list[float], ys: list[float], floor: float) -> list[float]:
     either side of the best sample, and about each crease and vertex estimate next to it
     points at 0, ±d/3 and ±d from it (d its move from the best sample, at least 1/1000 of
     the best's bracket).  None when the bracket is narrower than PLANE_NARROW and what is
-    left to gain by the crease estimates is ≤ PEAK_TOL of the value; when the search cannot
+    left to gain by the crease estimates is ≤ PEAK_TOL of the value; when a neighbour is as
+    high as the best (a plateau, as a table's nearest-bin lookup gives); when the search cannot
     reach ``floor`` (the 2-D searches' value) by a rise as large as the steeper of its
     neighbours' slopes over its wider gap (the test of :func:`_plane_starts`); or when the
     best is at the search's end (rising past its bracket: another search's, or the 2-D
@@ -313,6 +315,8 @@ def _plane_next(xs: list[float], ys: list[float], floor: float) -> list[float]:
     if i == 0 or i == len(xs) - 1:
         return []
     y = ys[i]
+    if ys[i - 1] == y or ys[i + 1] == y:
+        return []  # flat at the best sample (a table's nearest bin): its value is reached
     lo, x0, hi = xs[i - 1], xs[i], xs[i + 1]
     # the xs are distinct
     slope = max((y - ys[i - 1]) / (x0 - lo), (y - ys[i + 1]) / (hi - x0))
@@ -383,11 +387,12 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
     h_mirror = (np.array([s_dir[0] / r, s_dir[1] / r, 0.0]) if r > 1e-100  # r ≠ 0
                 else incident(90.0, float(phi_i_deg) + 180.0))
     cand = np.concatenate([hemisphere(level).vertices, [s_dir, h_mirror, NORMAL]])
-    line = _PLANE_SIN * h_mirror + _PLANE_UP  # _along(_PLANE_T, h_mirror)
+    # one kernel call for the candidates and the plane's grid
+    line = _PLANE_SIN * h_mirror + _PLANE_UP
     sc = scores(radiance(model, values, wi, np.concatenate([cand, line]), cosine))
-    sc, sl = sc[:len(cand)], sc[len(cand):]
+    sc, gs = sc[:len(cand)], sc[len(cand):]
     val, at, ended = _climb(model, values, wi, cosine, cand, sc, level)
-    starts = _plane_starts(sl, val, at, ended, h_mirror, r <= 1e-100)
+    starts = _plane_starts(gs, val, at, ended, h_mirror, r <= 1e-100)
     if starts:
         for c, v, t in _plane_refine(model, values, wi, cosine, h_mirror, starts, val):
             # higher by more than the searches' own tolerance (a tie would move the place of a
