@@ -37,10 +37,24 @@ and ~0.2 µs a point, so the finder spends points to save rounds.
    lobe: 5e-7 below the maximum of cook-torrance m = 0.001 at 30°, 5e-5 below phong
    n = 10⁴ with f·cos θr), or after
    ``PEAK_ROUNDS`` rounds.  A search below its channel's best does not keep the rounds going.
-
-Not within 1e-10: a crease running across the grid's axes near the maximum (rough
-cook-torrance, m > 0.3, within ~3° of normal incidence: the V-cavity crease crosses the plane
-of incidence there) is crept along, up to 3e-5 below the maximum after ``PEAK_ROUNDS``.
+5. The plane of incidence, both sides of the normal (an isotropic lobe is symmetric about
+   it, so its maximum there bounds the peak from below).  The 2-D searches can stop short of
+   it on a crease running across their grid's axes (rough cook-torrance, m ≥ 0.3: the
+   V-cavity crease crosses the plane there; up to 3e-5 below near normal incidence) or climb
+   a lower local maximum (up to 4.2e-3 below; scripts/scan_peak_creases.py).  The plane is
+   sampled every ``PLANE_STEP_DEG`` (1°) inside (−90°, 90°) in the candidates' call (179
+   directions; the horizon is left to the 2-D searches, which keep its rows exact).  A grid
+   maximum is refined only where it could beat the 2-D searches' value by a rise as large
+   as its larger step to a neighbour, and not where a 2-D search ended in the plane on one
+   of its tests (its bracket's maximum is that search's): most lobes refine nothing, and
+   the check costs those points and no call.  A refinement is a 1-D search in extra rounds:
+   about its best sample, lines through the samples either side of a crease meet at it
+   (superlinear on a crease) and a parabola's vertex (on a smooth maximum), each sampled
+   with points at ±d/3 and ±d; it stops when the bracket is narrower than ``PLANE_NARROW``
+   and the crease lines leave ≤ ``PEAK_TOL`` to gain, when a neighbour is as high as its
+   best (a plateau: a table's nearest bin), or when it cannot reach the 2-D searches'
+   value: 1–6 rounds where it runs (at most ``PLANE_ROUNDS``, which a tabulated lobe's
+   jumps can use up).  Its maximum replaces theirs when higher by more than ``PEAK_TOL``.
 
 An RGB model gets four peaks, each with its own direction: the Rec.709 luminance ``Y`` and
 each channel ``R``, ``G``, ``B``; a scalar model one.  ``Peak.label`` says which.
@@ -49,10 +63,14 @@ A kernel whose value grows without bound toward the horizon (a microfacet lobe a
 exactly: ``1/cos θo`` is not cancelled there) has no maximum; the finder then returns the
 largest value it reached in ``PEAK_ROUNDS`` rounds, ≈ 1e-11° above the horizon for
 cook-torrance and ggx defaults, deterministically (the same input gives the same output).
+The plane check's samples stay 1° or more from the horizon, so it changes nothing there (a
+sample at its end, t = 90°, is the horizon only to rounding, cos(π/2) = 6e-17, where
+cook-torrance's value is 2.7e10 times the 2-D searches').
 """
 
 from __future__ import annotations
 
+import bisect
 import math
 from collections.abc import Mapping
 from typing import Any, NamedTuple
@@ -185,6 +203,175 @@ def _crease(x, y: list[float], i: int, mid: float,
     return at, min(max(3.0 * abs(at - x[i]), half / 27.0), half), True
 
 
+#: the plane of incidence's check (step 5 of the module's docstring): a grid of PLANE_STEP_DEG
+#: inside (−90°, 90°), the horizon left to the 2-D searches; at most PLANE_STARTS brackets per
+#: column refined, each for at most PLANE_ROUNDS rounds, until narrower than PLANE_NARROW rad
+PLANE_STEP_DEG = 1.0
+PLANE_STARTS = 2
+PLANE_ROUNDS = 6
+PLANE_NARROW = 1e-5
+_PLANE_T = np.radians(np.arange(-90.0 + PLANE_STEP_DEG, 90.0 - 0.5 * PLANE_STEP_DEG,
+                                PLANE_STEP_DEG))
+# the grid's directions, _along(_PLANE_T, axis), are _PLANE_SIN * axis + _PLANE_UP
+_PLANE_SIN = np.sin(_PLANE_T)[:, None]
+_PLANE_UP = np.cos(_PLANE_T)[:, None] * NORMAL
+
+
+def _along(t: np.ndarray, axis: np.ndarray) -> np.ndarray:
+    """The directions at angles ``t`` (radians) from the normal toward ``axis``, a horizontal
+    unit vector (the mirror side's horizon; t < 0 on the light's side): ``(n, 3)``."""
+    return np.sin(t)[:, None] * axis + np.cos(t)[:, None] * NORMAL
+
+
+def _lines_meet(xs: list[float], ys: list[float], i: int) -> list[tuple[float, float]]:
+    """Where lines through the two samples either side of a crease next to ``xs[i]`` meet,
+    and how high: for a crease left of it, samples (i−2, i−1) and (i, i+1); right of it,
+    (i−1, i) and (i+1, i+2); each pair rising to meet inside its interval."""
+    out = []
+    for l0, r0 in ((i - 2, i), (i - 1, i + 1)):
+        if l0 < 0 or r0 + 1 >= len(xs):
+            continue
+        sl = (ys[l0 + 1] - ys[l0]) / (xs[l0 + 1] - xs[l0])  # the xs are distinct
+        sr = (ys[r0 + 1] - ys[r0]) / (xs[r0 + 1] - xs[r0])
+        if not sl > 0.0 > sr:
+            continue
+        xm = (ys[r0] - ys[l0] + sl * xs[l0] - sr * xs[r0]) / (sl - sr)  # sl − sr > 0
+        if xs[l0 + 1] <= xm <= xs[r0]:
+            out.append((xm, ys[l0] + sl * (xm - xs[l0])))
+    return out
+
+
+def _parabola(xs: list[float], ys: list[float], i: int) -> list[tuple[float, float]]:
+    """The vertex of the parabola through samples i − 1, i, i + 1 and its height, when it is
+    concave (none otherwise)."""
+    if i < 1 or i + 1 >= len(xs):
+        return []
+    x0, x1, x2 = xs[i - 1:i + 2]
+    y0, y1, y2 = ys[i - 1:i + 2]
+    d1 = (y1 - y0) / (x1 - x0)  # the xs are distinct
+    d2 = (y2 - y1) / (x2 - x1)
+    c2 = (d2 - d1) / (x2 - x0)
+    if not c2 < 0.0:
+        return []
+    xv = 0.5 * (x0 + x1) - d1 / (2.0 * c2)  # c2 < 0
+    return [(xv, y0 + d1 * (xv - x0) + c2 * (xv - x0) * (xv - x1))]
+
+
+def _plane_starts(gs: np.ndarray, val: list[float], at: list[np.ndarray], ended: list[str],
+                  axis: np.ndarray, normal: bool) -> list[tuple[int, list[float], list[float]]]:
+    """The brackets of the plane's grid worth refining: about a local maximum of the grid
+    (``gs``, its scores) that could exceed the 2-D searches' value ``val``: by a rise as large
+    as its larger step to a neighbour (a crease or a smooth maximum between grid points rises
+    less); but not the bracket holding a 2-D search's point ``at`` that ended in the plane
+    (to 1e-6) on one of its tests (``ended``, not out of rounds): that maximum is the
+    search's.  At most PLANE_STARTS per column, the highest first, each as ``(column, t,
+    values)``: the 5 grid points about the maximum.  ``normal``: the light is at the normal,
+    where every vertical plane is one of incidence (the point's own plane)."""
+    g = gs[1:-1]
+    bound = 2.0 * g - np.minimum(gs[:-2], gs[2:])
+    ok = (g >= np.maximum(gs[:-2], gs[2:])) & (bound > [x + PEAK_TOL * abs(x) for x in val])
+    if not np.count_nonzero(ok):  # (count_nonzero: a tenth of any's cost here)
+        return []
+    n = len(_PLANE_T)
+    t0, dt = float(_PLANE_T[0]), float(_PLANE_T[1] - _PLANE_T[0])
+    ax, ay, _ = axis.tolist()
+    for c in range(len(val)):
+        x, y, z = at[c].tolist()
+        if not ended[c] or not (normal or abs(ay * x - ax * y) <= 1e-6):
+            continue
+        own = math.acos(min(z, 1.0)) if normal else math.atan2(ax * x + ay * y, z)
+        for o in (own, -own) if normal else (own,):
+            # the brackets [t_{j−1}, t_{j+1}] holding o: |t_j − o| ≤ dt
+            p = (o - t0) / dt
+            for j in range(max(math.ceil(p - 1.0), 1), min(math.floor(p + 1.0), n - 2) + 1):
+                ok[j - 1, c] = False
+    if not np.count_nonzero(ok):
+        return []
+    t = _PLANE_T.tolist()
+    starts = []
+    for c in range(len(val)):
+        js = np.flatnonzero(ok[:, c]) + 1
+        if not len(js):
+            continue
+        js = js[np.argsort(-bound[js - 1, c], kind="stable")][:PLANE_STARTS]
+        for j in js.tolist():
+            lo, hi = max(j - 2, 0), min(j + 3, n)
+            starts.append((c, t[lo:hi], gs[lo:hi, c].tolist()))
+    return starts
+
+
+def _plane_next(xs: list[float], ys: list[float], floor: float) -> list[float]:
+    """The next samples of a search along the plane (``xs`` sorted, radians): the midpoints
+    either side of the best sample, and about each crease and vertex estimate next to it
+    points at 0, ±d/3 and ±d from it (d its move from the best sample, at least 1/1000 of
+    the best's bracket).  None when the bracket is narrower than PLANE_NARROW and what is
+    left to gain by the crease estimates is ≤ PEAK_TOL of the value; when a neighbour is as
+    high as the best (a plateau, as a table's nearest-bin lookup gives); when the search cannot
+    reach ``floor`` (the 2-D searches' value) by a rise as large as the steeper of its
+    neighbours' slopes over its wider gap (the test of :func:`_plane_starts`); or when the
+    best is at the search's end (rising past its bracket: another search's, or the 2-D
+    searches' near the horizon)."""
+    i = max(range(len(ys)), key=ys.__getitem__)
+    if i == 0 or i == len(xs) - 1:
+        return []
+    y = ys[i]
+    if ys[i - 1] == y or ys[i + 1] == y:
+        return []  # flat at the best sample (a table's nearest bin): its value is reached
+    lo, x0, hi = xs[i - 1], xs[i], xs[i + 1]
+    # the xs are distinct
+    slope = max((y - ys[i - 1]) / (x0 - lo), (y - ys[i + 1]) / (hi - x0))
+    if y + slope * max(x0 - lo, hi - x0) <= floor:
+        return []
+    meet = _lines_meet(xs, ys, i)
+    if hi - lo <= PLANE_NARROW and max([y] + [h for _, h in meet]) - y <= PEAK_TOL * abs(y):
+        return []
+    new = [0.5 * (lo + x0), 0.5 * (x0 + hi)]
+    for x, _ in meet + _parabola(xs, ys, i):
+        d = max(abs(x - x0), 1e-3 * (hi - lo))
+        for u in (0.0, -1.0, 1.0, -1.0 / 3.0, 1.0 / 3.0):
+            p = x + u * d
+            if lo < p < hi:
+                new.append(p)
+    return new
+
+
+def _plane_refine(model: Model, values: Mapping[str, Any], wi: np.ndarray, cosine: bool,
+                  axis: np.ndarray, starts: list,
+                  val: list[float]) -> list[tuple[int, float, float]]:
+    """Each start's search along the plane (``axis``: the mirror side's horizon), to beat its
+    column's value ``val``: ``(column, value, t)``."""
+    live = [(c, list(xs), list(ys)) for c, xs, ys in starts]
+    done = []
+    for _ in range(PLANE_ROUNDS):
+        asks = []
+        keep = []
+        for c, xs, ys in live:
+            floor = val[c] + PEAK_TOL * abs(val[c])
+            new = sorted(set(_plane_next(xs, ys, floor)) - set(xs))
+            if new:
+                asks.append(new)
+                keep.append((c, xs, ys))
+            else:
+                done.append((c, xs, ys))
+        live = keep
+        if not live:
+            break
+        tt = np.array([x for new in asks for x in new])
+        st = scores(radiance(model, values, wi, _along(tt, axis), cosine))
+        k = 0
+        for (c, xs, ys), new in zip(live, asks, strict=True):
+            for x, v in zip(new, st[k:k + len(new), c].tolist(), strict=True):
+                j = bisect.bisect(xs, x)
+                xs.insert(j, x)
+                ys.insert(j, v)
+            k += len(new)
+    out = []
+    for c, xs, ys in done + live:
+        i = max(range(len(ys)), key=ys.__getitem__)
+        out.append((c, ys[i], xs[i]))
+    return out
+
+
 def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
                cosine: bool = False, level: int = PEAK_LEVEL,
                phi_i_deg: float = 180.0) -> tuple[Peak, ...]:
@@ -200,7 +387,31 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
     h_mirror = (np.array([s_dir[0] / r, s_dir[1] / r, 0.0]) if r > 1e-100  # r ≠ 0
                 else incident(90.0, float(phi_i_deg) + 180.0))
     cand = np.concatenate([hemisphere(level).vertices, [s_dir, h_mirror, NORMAL]])
-    sc = scores(radiance(model, values, wi, cand, cosine))
+    # one kernel call for the candidates and the plane's grid
+    line = _PLANE_SIN * h_mirror + _PLANE_UP
+    sc = scores(radiance(model, values, wi, np.concatenate([cand, line]), cosine))
+    sc, gs = sc[:len(cand)], sc[len(cand):]
+    val, at, ended = _climb(model, values, wi, cosine, cand, sc, level)
+    starts = _plane_starts(gs, val, at, ended, h_mirror, r <= 1e-100)
+    if starts:
+        for c, v, t in _plane_refine(model, values, wi, cosine, h_mirror, starts, val):
+            # higher by more than the searches' own tolerance (a tie would move the place of a
+            # flat maximum for nothing)
+            if v > val[c] + PEAK_TOL * abs(val[c]):
+                val[c], at[c] = v, _along(np.array([t]), h_mirror)[0]
+    labels = ("",) if len(val) == 1 else ("Y", "R", "G", "B")
+    return tuple(Peak(v, *_angles(w), lab) for v, w, lab in zip(val, at, labels, strict=True))
+
+
+def _climb(model: Model, values: Mapping[str, Any], wi: np.ndarray, cosine: bool,
+           cand: np.ndarray, sc: np.ndarray,
+           level: int) -> tuple[list[float], list[np.ndarray], list[str]]:
+    """The 2-D searches (steps 2–4 of the module's docstring) from the candidates ``cand``
+    (the mesh, then S, the mirror side's horizon and the normal) and their scores ``sc``: each
+    column's largest value, where, and how its search ended: ``"smooth"`` (the fit's test for
+    a smooth maximum), ``"flat"`` (the grid's span), ``"idle"`` (rounds without gain) or
+    ``""`` (out of rounds, or stopped below its column's other search)."""
+    s_dir = cand[-3]
     k = sc.shape[1]
     first = np.argmax(sc, axis=0)
     i_mirror = len(cand) - 3
@@ -219,6 +430,7 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
     rows: list = []
     res7: list = []
     kinky = [0] * (2 * k)  # fitted vertices that proved lower
+    ended = [""] * (2 * k)  # how the search ended (see the docstring)
     live = list(range(k)) + [i + k for i in range(k) if first[i] != i_mirror]
     for _ in range(PEAK_ROUNDS):
         n = len(live)
@@ -294,6 +506,7 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
             if inside and sp <= PEAK_FLAT * scale and up >= -PEAK_FLAT * scale:
                 # the maximum is between the grid's best point and its neighbours, and
                 # exceeds it by at most the grid's span: done (a flat or zero function too)
+                ended[i] = "flat"
                 continue
             if spec[i] and v49[r] < val[i] - PEAK_FLAT * scale:
                 kinky[i] += 1  # a vertex that proved lower (3 times: no more fits here)
@@ -311,6 +524,7 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
             resolved = onr or min(vr[x] for x in _NEAR) >= top - 0.25 * sp
             idle[i] = idle[i] + 1 if up <= 0.01 * PEAK_TOL * scale and resolved else 0
             if idle[i] >= PEAK_PATIENCE:
+                ended[i] = "idle"
                 continue
             on_row = onr and jk == 0
             a, kappa, pred, on = _vertex(cfs[r], rows[r] if on_row else None)
@@ -322,6 +536,7 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
                 # residual (its error at the vertex), if the grid's best point is inside it
                 if inside and sp * max(pred, 0.0) <= PEAK_TOL * scale \
                         and sp * rr <= PEAK_NOISE * scale:
+                    ended[i] = "smooth"
                     continue
                 # the next grid: about the vertex's error, fine enough for the fit to reach
                 # the tolerance (the guard: a perfect fit); it covers the best point when
@@ -391,13 +606,14 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
         # only a search at its column's best keeps the rounds going; the others go on with it
         if not any(val[i] >= max(val[col[i]], val[col[i] + k]) for i in live):
             break
-    labels = ("",) if k == 1 else ("Y", "R", "G", "B")
-    out = []
+    out_v, out_w, out_e = [], [], []
     for c in range(k):
         a, b = c, c + k
         w = a if val[a] >= val[b] else b
-        out.append(Peak(float(val[w]), *_angles(best[w]), labels[c]))
-    return tuple(out)
+        out_v.append(float(val[w]))
+        out_w.append(best[w])
+        out_e.append(ended[w])
+    return out_v, out_w, out_e
 
 
 def peak_of(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
