@@ -37,9 +37,11 @@ from .polar import (
     nice_step,
     radius,
 )
+from .text import LIGHT_RGB
 
 GUIDE = "color(244)"
-INCIDENT = "yellow"
+#: the light in the sections: the colour of its mark on the map and of its line in the solid
+INCIDENT = "#{:02x}{:02x}{:02x}".format(*LIGHT_RGB)
 #: samples along a section (1° steps, as :func:`.polar.section_curves`)
 N_SAMPLES = 181
 
