@@ -156,6 +156,10 @@ class QuietStatic(Static):
         self._rows = None  # the next text is laid out at the new width
 
 
+#: the parameter panel's label column: at least, at most (cells)
+LABEL_WIDTH = (7, 16)
+
+
 class ParamPanel(QuietStatic):
     """The parameter rows of one side: value, range, unit; the selected row highlighted."""
 
@@ -184,11 +188,16 @@ class ParamPanel(QuietStatic):
             self.border_title, self.border_subtitle = title, subtitle
         text = Text(no_wrap=True, overflow="ellipsis")
         rows = side.rows()
+        # one label column for every row: as wide as the longest label (a .brdf file's
+        # "clearcoatGloss"), within LABEL_WIDTH; a longer one ends in "…"
+        lw = min(max((len(r.label) for r in rows), default=0), LABEL_WIDTH[1])
+        lw = max(lw, LABEL_WIDTH[0])
         for i, row in enumerate(rows):
             sel = active and i == min(side.selected, len(rows) - 1)
             v = state.row_value(row, side)
             p = row.param
-            line = Text(f"{'▶' if sel else ' '} {row.label:<7}", style="bold" if sel else "")
+            label = row.label if len(row.label) <= lw else row.label[:lw - 1] + "…"
+            line = Text(f"{'▶' if sel else ' '} {label:<{lw}}", style="bold" if sel else "")
             shown = os.path.basename(str(v)) if p.kind == "path" else _fmt(v)
             line.append(f"{shown:>8}", style="bold reverse" if sel else "bold")
             unit = p.unit if p.unit not in ("", None) else ""
