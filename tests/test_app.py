@@ -454,3 +454,23 @@ async def test_compare_mode_below_its_minimum_says_so_and_c_returns():
         assert not app.screen.has_class("small")
         # at 18 rows one section is shown, with the rows both would share
         assert app.query_one("#incidence").display and not app.query_one("#perpendicular").display
+
+
+async def test_panel_columns_line_up_with_long_labels():
+    """A .brdf file's parameters have long names (baseColor.r, clearcoatGloss): every row's
+    value must still start in the same column (they were padded to 7 cells only, so each
+    long name pushed its own row's value right)."""
+    from pathlib import Path
+
+    path = str(Path(__file__).parent / "data" / "brdf" / "disney.brdf")
+    app = BrdfApp(ViewerState(sides=[Side(path)]), sync=True)
+    async with app.run_test(size=(160, 48)) as pilot:
+        await pilot.pause()
+        lines = str(app.query_one("#panel-a").render()).splitlines()
+        assert len(lines) >= 10
+        labels = [r.label for r in app.state.side.rows()]
+        assert max(len(x) for x in labels) > 7  # the case this is about
+        width = min(max(len(x) for x in labels), 16)
+        # "▶ " or "  ", the label column, then the value right-aligned in 8 cells
+        ends = {len(line[:2 + width + 8].rstrip()) for line in lines}
+        assert ends == {2 + width + 8}, lines

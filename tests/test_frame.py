@@ -265,3 +265,25 @@ def test_model_gaining_energy_is_flagged():
         side = res.sides[0]
         assert side.albedo_exceeds_one() and side.curve_exceeds_one()
         assert "NOT energy-conserving" in panes.stats_text(res, "map", panes.Look()).plain
+
+
+ANGLES = [0.0, -0.0, 90.0, 180.0, 270.0, 360.0, 720.0, -90.0, -180.0, -270.0, -360.0, 45.0,
+          30.0, 60.0, 89.9, 89.999999, 90.000001, -1e-20, 1e-300, 1e-20, 1234.5678, -987.654,
+          1e15, 0.5, 359.9999999]
+
+
+@pytest.mark.parametrize("t", ANGLES + list(np.random.default_rng(5).uniform(-720, 720, 40)))
+def test_sincos_deg_of_one_angle_is_the_array_path_to_the_bit(t):
+    """One float takes a path without numpy's 0-d arrays (θi and φi every frame); it must give
+    the numbers the array path gives for the same angle, to the last bit, exact at multiples
+    of 90° (independent check: the values at those angles, written here)."""
+    from tuibrdf.core.frame import sincos_deg
+
+    s1, c1 = sincos_deg(float(t))
+    s2, c2 = sincos_deg(np.array([t]))
+    assert np.float64(s1).tobytes() == s2[0].tobytes()
+    assert np.float64(c1).tobytes() == c2[0].tobytes()
+    if float(t) % 90.0 == 0.0:
+        k = round(float(t) % 360.0 / 90.0) % 4
+        assert (float(s1), float(c1)) == ((0.0, 1.0), (1.0, 0.0), (0.0, -1.0), (-1.0, 0.0))[k]
+

@@ -215,3 +215,43 @@ def test_points_far_outside_are_clipped_not_sampled():
     cv2 = BrailleCanvas(1, 2, (0.0, 2.0), (0.0, 8.0), color="none")
     cv2.polyline(np.array([5.0, 9.0]), np.array([1e10, 1e30]), cv2.layer(None))
     assert lit_dots(cv2) == set()
+
+
+
+def test_guides_drawn_once_are_the_guides_drawn_each_time():
+    """The guide circles are drawn once per window (``guide_dots``, cached) and copied onto
+    each canvas: every canvas must carry the guides drawn afresh for its own window (the
+    function without its cache), whatever window came before."""
+    from tuibrdf.render.polar_braille import guide_dots, plot_window, polar_canvas
+
+    t = np.linspace(-90.0, 90.0, 181)
+    drawn = []
+    for vmax in (1.0, 1.0, 2.5, 0.37, 1.0):
+        curve = [("f", t, vmax * np.cos(np.radians(t)) ** 8)]
+        got, caption = polar_canvas(curve, 60, 18, theta_i_deg=30.0)
+        step = float(caption.split("every ")[1])
+        guides = tuple(step * np.arange(1, int(np.floor(vmax / step + 1e-9)) + 1))
+        rmax = max(vmax, guides[-1])
+        fresh = guide_dots.__wrapped__(60, 18, *plot_window(60, 18, rmax), rmax, guides)
+        covered = got.owner > 0  # the light line and the curve drawn over the guides
+        assert np.array_equal(got.owner == 0, (fresh == 0) & ~covered)
+        drawn.append(fresh == 0)
+    assert not np.array_equal(drawn[0], drawn[3])  # other circles in their window
+    assert np.array_equal(drawn[0], drawn[4])
+
+
+def test_points_on_the_limits_are_drawn_in_the_edge_dots():
+    """The canvas covers the data window with both ends included: f = 0 on a y axis from 0
+    and θ = 90° on an x axis to 90° are the bottom row and the last column of dots (they fell
+    one dot past the edge and were dropped, so a curve reaching 0 seemed to stop); a point
+    beyond the window is still dropped."""
+    cv = BrailleCanvas(10, 3, (0.0, 90.0), (0.0, 1.0))
+    a = cv.layer("red")
+    cv.polyline(np.array([2.25, 87.75]), np.array([0.0, 0.0]), a)  # first to last dot centre
+    assert (cv.owner[-1] == a).all()  # the whole bottom row of dots
+    cv.points(np.array([90.0]), np.array([1.0]), a)
+    assert cv.owner[0, -1] == a  # the top-right dot
+    b = cv.layer("cyan")
+    just_out = 90.0 * (1 + 1e-9)
+    cv.points(np.array([just_out, 45.0]), np.array([0.5, -1e-9]), b)
+    assert not (cv.owner == b).any()

@@ -18,6 +18,7 @@ from textual.widgets import Static
 
 from ..core.params import _fmt
 from ..render.lines import BLANK, fit_rows, pane_lines, render_rows
+from ..render.rowdiff import ChangedRow
 from .state import Side, ViewerState
 
 
@@ -64,11 +65,16 @@ class Rows(Widget):
         regions = []
         strips = []
         for y, (a, a_line, line) in enumerate(zip(old, old_lines, lines, strict=True)):
-            if a_line == line:
+            if a_line is line:  # the same row: the picture lent it
+                strips.append(a)
+                continue
+            # a row drawn against this very row knows its changed cells (render.rowdiff)
+            known = line.span if type(line) is ChangedRow and line.against is a_line else None
+            if known is None and a_line == line:
                 strips.append(a)
                 continue
             strips.append(Strip(line, w))
-            x0, x1 = changed_span(a_line, line, w)
+            x0, x1 = known or changed_span(a_line, line, w)
             if x1 > x0:
                 regions.append(Region(x0, y, x1 - x0, 1))
         self._strips = strips
@@ -96,11 +102,14 @@ class Picture(Rows):
         super().__init__(**kw)
         self.pane = pane
         self.shown_for: object = None  # what the strips were made from (the app's key)
+        #: the renderable shown: the next one takes the rows they share from it
+        self._shown: RenderableType | None = None
 
     def show(self, renderable: RenderableType, key: object = None) -> None:
         w, h = self.size.width, self.size.height
         self.shown_for = key
-        self._set(pane_lines(renderable, self.app.console, w, h), w, h)
+        like, self._shown = self._shown, renderable
+        self._set(pane_lines(renderable, self.app.console, w, h, like), w, h)
 
     def on_resize(self, event) -> None:
         self.shown_for = None
@@ -147,6 +156,10 @@ class QuietStatic(Static):
         self._rows = None  # the next text is laid out at the new width
 
 
+#: the parameter panel's label column: at least, at most (cells)
+LABEL_WIDTH = (7, 16)
+
+
 class ParamPanel(QuietStatic):
     """The parameter rows of one side: value, range, unit; the selected row highlighted."""
 
@@ -156,9 +169,15 @@ class ParamPanel(QuietStatic):
     ParamPanel.active { border: round $accent; }
     """
 
+    _for: tuple | None = None  # what the panel shows now (:meth:`show`)
+
     def show(self, state: ViewerState, side_index: int) -> None:
         side: Side = state.sides[side_index]
         active = side_index == state.active
+        key = (side.material, side.selected, active, state.compare)
+        if key == self._for:  # every key of the viewer shows the panels: most change nothing
+            return
+        self._for = key
         self.set_class(active and state.compare, "active")
         label = "AB"[side_index] + ": " if state.compare else ""
         name = side.spec.title
@@ -169,11 +188,16 @@ class ParamPanel(QuietStatic):
             self.border_title, self.border_subtitle = title, subtitle
         text = Text(no_wrap=True, overflow="ellipsis")
         rows = side.rows()
+        # one label column for every row: as wide as the longest label (a .brdf file's
+        # "clearcoatGloss"), within LABEL_WIDTH; a longer one ends in "…"
+        lw = min(max((len(r.label) for r in rows), default=0), LABEL_WIDTH[1])
+        lw = max(lw, LABEL_WIDTH[0])
         for i, row in enumerate(rows):
             sel = active and i == min(side.selected, len(rows) - 1)
             v = state.row_value(row, side)
             p = row.param
-            line = Text(f"{'▶' if sel else ' '} {row.label:<7}", style="bold" if sel else "")
+            label = row.label if len(row.label) <= lw else row.label[:lw - 1] + "…"
+            line = Text(f"{'▶' if sel else ' '} {label:<{lw}}", style="bold" if sel else "")
             shown = os.path.basename(str(v)) if p.kind == "path" else _fmt(v)
             line.append(f"{shown:>8}", style="bold reverse" if sel else "bold")
             unit = p.unit if p.unit not in ("", None) else ""

@@ -36,6 +36,8 @@ from rich.measure import Measurement
 from rich.segment import Segment
 from rich.style import Style
 
+from .rowdiff import mark_changed
+
 BRAILLE_BASE = 0x2800
 #: bit of the dot at (row 0..3, column 0..1) of a cell (Unicode braille numbering 1-8)
 DOT_BITS = np.array([[0x01, 0x08], [0x02, 0x10], [0x04, 0x20], [0x40, 0x80]], dtype=np.int64)
@@ -66,6 +68,15 @@ class Layer:
 @lru_cache(maxsize=256)
 def _style(color: str | None) -> Style:
     return Style(color=color) if color else NULL_STYLE
+
+
+_COLOUR_IDS: dict[str | None, int] = {None: 0}
+
+
+def _colour_id(color: str | None) -> int:
+    """A number per colour name, the same on every canvas (rows of two canvases compare by
+    it; a canvas's own colour ids index its own list of layer and overlay colours)."""
+    return _COLOUR_IDS.setdefault(color or None, len(_COLOUR_IDS))
 
 
 class BrailleCanvas:
@@ -100,6 +111,9 @@ class BrailleCanvas:
         self.owner = np.full((self.dot_h, self.dot_w), -1, dtype=np.int16)
         self.layers: list[Layer] = []
         self.overlays: list[tuple[int, int, str, str | None]] = []
+        #: what :meth:`rows` drew: per cell its character and colour (:func:`_colour_id`), and
+        #: the rows of segments
+        self._drawn: tuple[np.ndarray, np.ndarray, list[list[Segment]]] | None = None
 
     # -- coordinates ---------------------------------------------------------------------------
     def to_dots(self, x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -119,10 +133,14 @@ class BrailleCanvas:
 
     # -- drawing -------------------------------------------------------------------------------
     def _set(self, cols: np.ndarray, rows: np.ndarray, layer: int) -> None:
-        c = np.rint(cols).astype(np.int64)
-        r = np.rint(rows).astype(np.int64)
-        ok = (c >= 0) & (c < self.dot_w) & (r >= 0) & (r < self.dot_h)
-        self.owner[r[ok], c[ok]] = layer
+        # the canvas covers dot coordinates [−½, dot_w − ½] × [−½, dot_h − ½], both ends
+        # included: a point on the limits (f = 0 on a y axis from 0, θ = 90° on one to 90°)
+        # is drawn in the edge dot, not dropped (rint of dot_w − ½ is dot_w, one past it)
+        ok = ((cols >= -0.5) & (cols <= self.dot_w - 0.5)
+              & (rows >= -0.5) & (rows <= self.dot_h - 0.5))
+        c = np.minimum(np.rint(cols[ok]).astype(np.int64), self.dot_w - 1)
+        r = np.minimum(np.rint(rows[ok]).astype(np.int64), self.dot_h - 1)
+        self.owner[r, c] = layer
 
     def points(self, x: np.ndarray, y: np.ndarray, layer: int) -> None:
         """One dot per finite point."""
@@ -212,8 +230,14 @@ class BrailleCanvas:
                 np.maximum(top, o, out=top)
         return codes, top
 
-    def rows(self) -> list[list[Segment]]:
-        """Segments per cell row, each row exactly :attr:`width` cells."""
+    def rows(self, like: BrailleCanvas | None = None) -> list[list[Segment]]:
+        """Segments per cell row, each row exactly :attr:`width` cells.  ``like``: the canvas
+        shown before in the same place; a row whose characters and colours are the same as its
+        row is that row's list itself, not built again."""
+        self._drawn = self._build(like)
+        return self._drawn[2]
+
+    def _build(self, like: BrailleCanvas | None) -> tuple:
         codes, top = self.cells()
         if self.charset == "ascii":
             markers = np.array([ly.marker for ly in self.layers] + [" "])
@@ -241,18 +265,36 @@ class BrailleCanvas:
         cols = np.where(blank, 0, np.arange(self.width)[None, :])
         np.maximum.accumulate(cols, axis=1, out=cols)
         cid = np.take_along_axis(cid, cols, axis=1)
-        starts_all = np.ones(cid.shape, dtype=bool)
-        starts_all[:, 1:] = cid[:, 1:] != cid[:, :-1]
-        # one character per cell: each row of the contiguous U1 array read as one string
-        lines = chars.view(f"<U{self.width}")[:, 0].tolist()
-        out: list[list[Segment]] = []
-        for r in range(self.height):
-            line = lines[r]
-            starts = np.flatnonzero(starts_all[r]).tolist() + [self.width]
-            row_ids = cid[r].tolist()
-            out.append([Segment(line[a:b], _style(palette[row_ids[a]]))
-                        for a, b in zip(starts[:-1], starts[1:], strict=True)])
-        return out
+        out: list[list[Segment]] = [[] for _ in range(self.height)]
+        # each cell's colour as a number that means the same colour on every canvas
+        colour = np.array([_colour_id(c) for c in palette])[cid]
+        old = None if like is None else like._drawn
+        same = np.zeros(self.height, dtype=bool)
+        diff = None
+        if old is not None and old[0].shape == chars.shape:
+            diff = (old[0] != chars) | (old[1] != colour)
+            same = ~diff.any(axis=1)
+            for r in np.flatnonzero(same).tolist():
+                out[r] = old[2][r]
+        starts = np.ones(cid.shape, dtype=bool)
+        starts[:, 1:] = cid[:, 1:] != cid[:, :-1]
+        starts[same] = False  # only the runs of the rows that changed
+        # every run of every row at once (as the half-block rows): a run ends where the next
+        # begins in the flat cell order, or at the end of its row
+        rows, cols = np.nonzero(starts)
+        flat = rows * self.width + cols
+        ends = np.minimum(np.append(flat[1:], self.height * self.width),
+                          (rows + 1) * self.width)
+        styles = [_style(c) for c in palette]
+        run_styles = [styles[i] for i in cid[rows, cols].tolist()]
+        # one character per cell: the rows of the contiguous U1 array as one string
+        text = "".join(chars.view(f"<U{self.width}")[:, 0].tolist())
+        for r, a, b, st in zip(rows.tolist(), flat.tolist(), ends.tolist(), run_styles,
+                               strict=True):
+            out[r].append(Segment(text[a:b], st))
+        if diff is not None:
+            mark_changed(out, old[2], ~same, diff)
+        return chars, colour, out
 
     def lines(self) -> list[str]:
         """The characters of each row (for tests and plain output)."""

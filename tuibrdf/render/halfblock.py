@@ -31,6 +31,7 @@ Every segment has a non-None ``Style`` (Textual 8.2's ``NO_COLOR`` filter crashe
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
@@ -44,6 +45,7 @@ from rich.segment import Segment
 from rich.style import Style
 
 from ..core.conventions import REC709  # here applied to 8-bit values: a luma
+from .rowdiff import mark_changed
 
 ColorSystem = Literal["truecolor", "256", "none"]
 COLOR_SYSTEMS: tuple[str, ...] = ("truecolor", "256", "none")
@@ -56,6 +58,11 @@ ASCII_RAMP = " .:-=+*#%@"
 RING_CHAR = "~"
 #: index of a pixel that shows the terminal's own background
 TRANSPARENT = -1
+#: styles kept across frames, one per (foreground, background) pair: a map's 32 levels make
+#: at most 33² pairs, and a frame that meets a pair again takes the same ``Style`` object,
+#: whose ANSI codes Rich has already worked out (a new Style per pair per frame was ≈ 40 % of
+#: drawing a map)
+STYLE_CACHE = 8192
 
 
 @dataclass(frozen=True)
@@ -116,6 +123,7 @@ def luma(rgb: np.ndarray) -> np.ndarray:
 
 
 @lru_cache(maxsize=1 << 16)
+@lru_cache(maxsize=STYLE_CACHE)
 def cell_style(fg: int | tuple[int, int, int] | None, bg: int | tuple[int, int, int] | None):
     """The ``Style`` for a foreground/background pair: an int is an xterm index, a tuple an RGB
     colour, ``None`` the terminal default.  Never returns ``None`` (see module docstring).
@@ -165,6 +173,29 @@ def split_halves(index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return index[0::2], index[1::2]
 
 
+#: the code tables kept across frames (:func:`_code_table`): a few palettes at a time (the
+#: colour maps in use; a lit picture's palette is its own distinct colours, new each frame)
+TABLES_KEPT = 8
+_TABLES: OrderedDict[tuple, dict] = OrderedDict()
+
+
+def _code_table(system: str, ring: int | None, palette: np.ndarray) -> dict:
+    """``code → (character, style)`` of a palette's cells in ``system`` (the codes of
+    :meth:`HalfBlockImage._build`; a mark's look is keyed by the mark and its two pixels),
+    filled as codes are met and kept for the next frame with the same palette: a map's frame
+    meets the same few hundred colour pairs again, and working each out anew was ≈ 40 % of
+    drawing it."""
+    key = (system, ring, palette.tobytes())
+    table = _TABLES.get(key)
+    if table is None:
+        table = _TABLES[key] = {}
+        if len(_TABLES) > TABLES_KEPT:
+            _TABLES.popitem(last=False)
+    else:
+        _TABLES.move_to_end(key)
+    return table
+
+
 # ---------------------------------------------------------------------------------------------
 # the renderable
 
@@ -208,6 +239,7 @@ class HalfBlockImage:
         self.width = int(index.shape[1])
         self.height = (int(index.shape[0]) + 1) // 2
         self._rows: dict[str, list[list[Segment]]] = {}
+        self._codes: dict[str, np.ndarray] = {}  # each system's cell codes (:meth:`_build`)
 
     @classmethod
     def from_rgb(
@@ -233,15 +265,33 @@ class HalfBlockImage:
 
     # -- segments ------------------------------------------------------------------------------
 
-    def rows(self, system: ColorSystem = "truecolor") -> list[list[Segment]]:
-        """One list of segments per cell row (cached per colour system)."""
+    def rows(self, system: ColorSystem = "truecolor",
+             like: HalfBlockImage | None = None) -> list[list[Segment]]:
+        """One list of segments per cell row (cached per colour system).  ``like``: the image
+        shown before in the same place; a row whose cells are the same as its row is that
+        row's list itself, not built again (a θi step changes ≈ 20 of a map's 45 rows)."""
         if system not in COLOR_SYSTEMS:
             raise ValueError(f"color system {system!r}: expected one of {COLOR_SYSTEMS}")
         if system not in self._rows:
-            self._rows[system] = self._build(system)
+            self._rows[system] = self._build(system, like)
         return self._rows[system]
 
-    def _build(self, system: str) -> list[list[Segment]]:
+    def _differ(self, codes: np.ndarray, system: str,
+                like: HalfBlockImage | None) -> np.ndarray | None:
+        """Cells that may differ from ``like``'s (None: all of them): the codes differ, under
+        the same palette, or a mark of either is there (a mark's code names a mark, not the
+        colours under it)."""
+        old = None if like is None else like._codes.get(system)
+        if (old is None or old.shape != codes.shape or like.ring != self.ring
+                or not np.array_equal(like.palette, self.palette)):
+            return None
+        diff = codes != old
+        for m in (*self.marks, *like.marks):
+            if 0 <= m.row < self.height and 0 <= m.col < self.width:
+                diff[m.row, m.col] = True
+        return diff
+
+    def _build(self, system: str, like: HalfBlockImage | None = None) -> list[list[Segment]]:
         top, bottom = split_halves(self.index)
         if system == "none":
             codes, make = self._plain_codes(top, bottom)
@@ -251,29 +301,46 @@ class HalfBlockImage:
         for k, m in enumerate(self.marks):
             if 0 <= m.row < self.height and 0 <= m.col < self.width:
                 codes[m.row, m.col] = -(k + 1)
+        self._codes[system] = codes
+        diff = self._differ(codes, system, like)
+        same = np.zeros(self.height, dtype=bool) if diff is None else ~diff.any(axis=1)
         out: list[list[Segment]] = [[] for _ in range(self.height)]
-        cache: dict[int, tuple[str, Style]] = {}
+        for r in np.flatnonzero(same).tolist():
+            out[r] = like._rows[system][r]
+        table = _code_table(system, self.ring, self.palette)
         rows, starts, lengths = find_runs(codes)
+        if same.any():  # only the runs of the rows that changed
+            keep = ~same[rows]
+            rows, starts, lengths = rows[keep], starts[keep], lengths[keep]
         run_codes = codes[rows, starts].tolist()
         for r, c, n, code in zip(rows.tolist(), starts.tolist(), lengths.tolist(), run_codes,
                                  strict=True):
-            if code < 0:
-                char, style = self._mark(self.marks[-code - 1], top[r, c], bottom[r, c], system)
+            if code < 0:  # a mark's look: its glyph and colour over the two pixels' mean
+                m = self.marks[-code - 1]
+                key = (m.glyph, m.ascii, m.rgb, int(top[r, c]), int(bottom[r, c]))
+                got = table.get(key)
+                if got is None:
+                    got = table[key] = self._mark(m, key[3], key[4], system)
+                char, style = got
             else:
-                if code not in cache:
-                    cache[code] = make(code)
-                char, style = cache[code]
+                got = table.get(code)
+                if got is None:
+                    got = table[code] = make(code)
+                char, style = got
             out[r].append(Segment(char * n, style))
+        if diff is not None:
+            mark_changed(out, like._rows[system], ~same, diff)
         return out
 
     def _color_codes(self, top, bottom, system):
         if system == "256":
             xi = np.append(to_xterm(self.palette), -1)  # index -1 picks the appended -1
             top, bottom = xi[top], xi[bottom]
+            base = 257
             colors: list = list(range(256))
         else:
-            colors = [tuple(int(v) for v in c) for c in self.palette]
-        base = len(colors) + 1
+            base = len(self.palette) + 1
+            colors = [tuple(c) for c in self.palette.tolist()]
 
         def make(code: int) -> tuple[str, Style]:
             t, b = divmod(code, base)

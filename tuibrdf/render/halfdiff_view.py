@@ -31,7 +31,7 @@ from ..core.halfdiff import (
     theta_h_curve,
 )
 from ..core.params import Model
-from .braille import BrailleCanvas, curve_layers, draw_legend, nice_ticks
+from .braille import NULL_STYLE, BrailleCanvas, curve_layers, draw_legend, nice_ticks
 from .colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize, fmt_value
 from .halfblock import HalfBlockImage
 from .polar import channel_curves, curve_color
@@ -60,8 +60,8 @@ class LeftLabelled:
             body = self.body.rows(self.system or "truecolor")
         else:
             body = self.body.rows()
-        return [[Segment(self.labels[k].rjust(MARGIN - 1)[: MARGIN - 1] + " "), *row]
-                for k, row in enumerate(body)]
+        return [[Segment(self.labels[k].rjust(MARGIN - 1)[: MARGIN - 1] + " ", NULL_STYLE),
+                 *row] for k, row in enumerate(body)]
 
     def __rich_console__(self, console: Console, options: ConsoleOptions) -> RenderResult:
         for row in self.rows():

@@ -44,32 +44,45 @@ def _fit(row: list[Segment], own: int, width: int) -> list[Segment]:
     return Segment.adjust_line_length(row, width, BLANK)
 
 
-def render_rows(part: RenderableType, console: Console, width: int) -> list[list[Segment]]:
-    """Every row of ``part`` at ``width`` cells (its own height, not cropped or padded)."""
+def render_rows(part: RenderableType, console: Console, width: int,
+                like: RenderableType | None = None) -> list[list[Segment]]:
+    """Every row of ``part`` at ``width`` cells (its own height, not cropped or padded).
+    ``like``: what was drawn before in the same place; a picture in it at the same position
+    lends ``part``'s picture the rows they share (:meth:`HalfBlockImage.rows`,
+    :meth:`BrailleCanvas.rows`), so an unchanged row is the same list as before."""
     if isinstance(part, Group):
-        return [row for p in part.renderables for row in render_rows(p, console, width)]
+        same = (isinstance(like, Group) and len(like.renderables) == len(part.renderables))
+        olds = like.renderables if same else [None] * len(part.renderables)
+        return [row for p, o in zip(part.renderables, olds, strict=True)
+                for row in render_rows(p, console, width, o)]
     if isinstance(part, HalfBlockImage):
-        rows = part.rows(part.color_system or console_system(console))
+        prev = like if isinstance(like, HalfBlockImage) else None
+        rows = part.rows(part.color_system or console_system(console), prev)
         return [_fit(r, part.width, width) for r in rows]
-    if isinstance(part, BrailleCanvas | LeftLabelled):
+    if isinstance(part, BrailleCanvas):
+        rows = part.rows(like if isinstance(like, BrailleCanvas) else None)
+        return [_fit(r, part.width, width) for r in rows]
+    if isinstance(part, LeftLabelled):
         return [_fit(r, part.width, width) for r in part.rows()]
     if isinstance(part, Text) and _plain_line(part, width):  # a title: one style, one line
         style = console.get_style(part.style) if part.style else BLANK
         text = part.plain
         return [_fit([Segment(text, style)] if text else [], len(text), width)]
-    return console.render_lines(part, console.options.update(width=width, height=None),
+    rows = console.render_lines(part, console.options.update(width=width, height=None),
                                 style=BLANK, pad=True)
-
-
-def fit_rows(rows: list[list[Segment]], width: int, height: int) -> list[list[Segment]]:
-    """``rows`` of ``width`` cells as ``height`` rows (cropped, or padded with blank rows), no
-    segment with a ``None`` style."""
-    rows = rows[:height] + [[Segment(" " * width, BLANK)] for _ in range(height - len(rows))]
+    # Rich may leave a segment's style None; the pictures above never do
     return [[s if s.style is not None else Segment(s.text, BLANK) for s in row]
             for row in rows]
 
 
-def pane_lines(renderable: RenderableType, console: Console, width: int,
-               height: int) -> list[list[Segment]]:
-    """``height`` rows of ``width`` cells of ``renderable`` (:func:`fit_rows`)."""
-    return fit_rows(render_rows(renderable, console, width), width, height)
+def fit_rows(rows: list[list[Segment]], width: int, height: int) -> list[list[Segment]]:
+    """``rows`` of ``width`` cells as ``height`` rows (cropped, or padded with blank rows); the
+    rows kept are the same lists."""
+    return rows[:height] + [[Segment(" " * width, BLANK)] for _ in range(height - len(rows))]
+
+
+def pane_lines(renderable: RenderableType, console: Console, width: int, height: int,
+               like: RenderableType | None = None) -> list[list[Segment]]:
+    """``height`` rows of ``width`` cells of ``renderable`` (:func:`fit_rows`); ``like`` as
+    :func:`render_rows`."""
+    return fit_rows(render_rows(renderable, console, width, like), width, height)

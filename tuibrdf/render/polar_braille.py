@@ -23,6 +23,7 @@ own dot pattern as well as its colour, so plain text still tells the curves apar
 from __future__ import annotations
 
 from collections.abc import Sequence
+from functools import lru_cache
 
 import numpy as np
 
@@ -36,9 +37,11 @@ from .polar import (
     nice_step,
     radius,
 )
+from .text import LIGHT_RGB
 
 GUIDE = "color(244)"
-INCIDENT = "yellow"
+#: the light in the sections: the colour of its mark on the map and of its line in the solid
+INCIDENT = "#{:02x}{:02x}{:02x}".format(*LIGHT_RGB)
 #: samples along a section (1° steps, as :func:`.polar.section_curves`)
 N_SAMPLES = 181
 
@@ -70,6 +73,25 @@ def angle_at(col: int, row: int, width: int, height: int) -> float | None:
     return float(np.degrees(np.arctan2(x, y)))
 
 
+@lru_cache(maxsize=16)
+def guide_dots(width: int, height: int, xr: float, y0: float, y1: float, rmax: float,
+               guides: tuple[float, ...]) -> np.ndarray:
+    """The dots of the guides (horizon line and circles) as layer 0 of an empty canvas: the
+    same for every frame whose window and circles are the same (a θi step of a model whose
+    peak does not change), so drawn once (read-only: copied onto each canvas)."""
+    canvas = BrailleCanvas(width, height, (-xr, xr), (y0, y1))
+    guide = canvas.layer(GUIDE, "sparse", ".")
+    # every guide in one polyline call (NaN between pieces): one pass of numpy, not one each
+    xs, ys = [np.array([-rmax, rmax])], [np.zeros(2)]
+    for g in guides:
+        x, y = canvas.arc_points(0.0, 0.0, float(g), -90.0, 90.0)
+        xs += [np.array([np.nan]), x]
+        ys += [np.array([np.nan]), y]
+    canvas.polyline(np.concatenate(xs), np.concatenate(ys), guide)
+    canvas.owner.flags.writeable = False
+    return canvas.owner
+
+
 def polar_canvas(
     curves: Sequence[Curve],
     width: int,
@@ -98,14 +120,8 @@ def polar_canvas(
         caption = f"section max {fmt_value(own)} · circles every {fmt_value(step)}"
     xr, y0, y1 = plot_window(width, height, rmax)
     canvas = BrailleCanvas(width, height, (-xr, xr), (y0, y1), color=color, charset=charset)
-    guide = canvas.layer(GUIDE, "sparse", ".")
-    # every guide in one polyline call (NaN between pieces): one pass of numpy, not one each
-    xs, ys = [np.array([-rmax, rmax])], [np.zeros(2)]
-    for g in guides:
-        x, y = canvas.arc_points(0.0, 0.0, float(g), -90.0, 90.0)
-        xs += [np.array([np.nan]), x]
-        ys += [np.array([np.nan]), y]
-    canvas.polyline(np.concatenate(xs), np.concatenate(ys), guide)
+    canvas.layer(GUIDE, "sparse", ".")  # layer 0
+    canvas.owner[...] = guide_dots(width, height, xr, y0, y1, rmax, tuple(guides))
     if theta_i_deg is not None:
         s, c = sincos_deg(float(theta_i_deg))
         light = canvas.layer(INCIDENT, "solid", "#")
