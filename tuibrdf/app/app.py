@@ -12,7 +12,6 @@ from functools import partial
 
 import numpy as np
 from textual.app import App, ComposeResult, SystemCommand
-from textual.containers import Container, Horizontal, Vertical
 from textual.css.query import NoMatches
 from textual.widgets import Footer, Static
 from textual.worker import Worker
@@ -28,11 +27,13 @@ from . import keys
 from .frames import GC_IDLE_S, GC_YOUNG, FrameDelivery
 from .layout import CSS, arrange
 from .loading import MeasuredData
+from .paint import ViewerScreen
 from .presets import PresetError, apply_loaded, list_presets, load_preset, preset_dir, save_preset
 from .screens import HelpScreen, SafeCommandPalette, SaveScreen, ValueScreen
 from .state import ViewerState
 from .text import PANES
-from .widgets import ParamPanel, Picture, QuietStatic, StatusLine
+from .widgets import (BlankContainer, BlankHorizontal, BlankVertical, ParamPanel, Picture,
+                      QuietStatic, StatusLine)
 
 #: after start-up (Textual, numpy, the models: ≈ 10⁵ objects kept for the whole session) the
 #: collector stops scanning what exists then: a full collection took 23–48 ms here, a stall
@@ -98,15 +99,18 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self._loop_context = None
 
     # -- layout ------------------------------------------------------------------------------
+    def get_default_screen(self) -> ViewerScreen:
+        return ViewerScreen(id="_default")
+
     def compose(self) -> ComposeResult:
-        with Vertical(id="root"):
-            with Horizontal(id="body"):
-                with Container(id="main"):
+        with BlankVertical(id="root"):
+            with BlankHorizontal(id="body"):
+                with BlankContainer(id="main"):
                     for pane in ("map-a", "map-b", "diff", "solid-a", "solid-b", "albedo",
                                  "extra-a", "extra-b"):
                         yield Picture(pane, id=pane)
                     yield Static(id="legend")
-                with Vertical(id="side"):
+                with BlankVertical(id="side"):
                     yield ParamPanel(id="panel-a")
                     yield ParamPanel(id="panel-b")
                     yield Picture("incidence", id="incidence")
