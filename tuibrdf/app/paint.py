@@ -61,7 +61,7 @@ class ViewerCompositor(Compositor):
                 continue
             row = cuts[y]
             line = need.setdefault(y, {})
-            for x, end in zip(row, row[1:]):
+            for x, end in zip(row, row[1:], strict=False):
                 if x < x2 and end > x1:
                     line[x] = end
                 elif x == x2 and chops[y][x] is None:
@@ -89,7 +89,7 @@ class ViewerCompositor(Compositor):
                 inside = [x for x in cuts[y] if first <= x <= last]
                 pieces = strips[y - y0].divide([x - x0 for x in inside[1:]])
                 line, chop = need[y], chops[y]
-                for x, piece in zip(inside, pieces):
+                for x, piece in zip(inside, pieces, strict=False):  # the last edge ends a piece
                     if x in line:  # else filled by a widget in front, or not written
                         chop[x] = piece
                         del line[x]
@@ -98,10 +98,52 @@ class ViewerCompositor(Compositor):
         return ChopsUpdate(chops, spans, [row[1:] for row in cuts])
 
 
+#: what a widget or screen has pending besides a repaint (then Textual paints, as always)
+_PENDING = ("_layout_required", "_scroll_required", "_recompose_required")
+
+
+#: the screen's update-timer tick that :meth:`ViewerScreen.paint_now` runs (Textual 8.2)
+PAINT_NOW = SUPPORTED and callable(getattr(Screen, "_on_timer_update", None))
+
+
 class ViewerScreen(Screen):
-    """The viewer's main screen: :class:`ViewerCompositor` when Textual has what it uses."""
+    """The viewer's main screen: :class:`ViewerCompositor` when Textual has what it uses,
+    and :meth:`paint_now`."""
 
     def __init__(self, *args, **kw) -> None:
         super().__init__(*args, **kw)
         if SUPPORTED:
             self._compositor = ViewerCompositor()
+
+    def paint_now(self) -> bool:
+        """Paint the widgets waiting for a repaint now, as the screen's update timer would
+        on its next tick, when a repaint is all that waits (no layout, scroll, style or
+        recompose pending anywhere on the screen, no message in its queue).  Otherwise, or
+        without what it needs from Textual (:data:`PAINT_NOW`), Textual paints as always.
+
+        Textual's own way from ``Widget.refresh`` to the terminal takes a round of the event
+        loop per widget (each sees it is idle and posts ``Update`` to the screen), one for the
+        screen (idle: it resumes its update timer) and one for the timer's task: ≈ 1 ms a
+        key after the frame is drawn (docs/app.md).  Returns whether it painted."""
+        app = self.app
+        try:
+            if not (PAINT_NOW and self.is_current and not app._batch_count
+                    and not app.is_inline and self._message_queue.empty()
+                    and not self._repaint_required
+                    and not any(getattr(self, name) for name in _PENDING)):
+                return False
+            dirty = []
+            for widget in self.walk_children(with_self=False):
+                if widget._refresh_styles_required or any(getattr(widget, n) for n in _PENDING):
+                    return False
+                if widget._repaint_required and widget.display:  # as Widget._check_refresh
+                    dirty.append(widget)
+        except AttributeError:  # not the Textual this was written for: Textual paints
+            return False
+        if not dirty:
+            return False
+        for widget in dirty:  # each one's Update, as Screen._on_update takes it
+            widget._repaint_required = False
+            self._dirty_widgets.add(widget)
+        self._on_timer_update()
+        return True
