@@ -12,6 +12,7 @@ from functools import partial
 
 import numpy as np
 from textual.app import App, ComposeResult, SystemCommand
+from textual.containers import Container, Horizontal, Vertical
 from textual.css.query import NoMatches
 from textual.widgets import Footer, Static
 from textual.worker import Worker
@@ -32,15 +33,7 @@ from .presets import PresetError, apply_loaded, list_presets, load_preset, prese
 from .screens import HelpScreen, SafeCommandPalette, SaveScreen, ValueScreen
 from .state import ViewerState
 from .text import PANES
-from .widgets import (
-    BlankContainer,
-    BlankHorizontal,
-    BlankVertical,
-    ParamPanel,
-    Picture,
-    QuietStatic,
-    StatusLine,
-)
+from .widgets import ParamPanel, Picture, QuietStatic, StatusLine
 
 #: after start-up (Textual, numpy, the models: ≈ 10⁵ objects kept for the whole session) the
 #: collector stops scanning what exists then: a full collection took 23–48 ms here, a stall
@@ -110,14 +103,14 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         return ViewerScreen(id="_default")
 
     def compose(self) -> ComposeResult:
-        with BlankVertical(id="root"):
-            with BlankHorizontal(id="body"):
-                with BlankContainer(id="main"):
+        with Vertical(id="root"):
+            with Horizontal(id="body"):
+                with Container(id="main"):
                     for pane in ("map-a", "map-b", "diff", "solid-a", "solid-b", "albedo",
                                  "extra-a", "extra-b"):
                         yield Picture(pane, id=pane)
                     yield Static(id="legend")
-                with BlankVertical(id="side"):
+                with Vertical(id="side"):
                     yield ParamPanel(id="panel-a")
                     yield ParamPanel(id="panel-b")
                     yield Picture("incidence", id="incidence")
