@@ -12,7 +12,11 @@ the keys, the first two left out as warm-up):
 * ``compute>`` / ``compute<``: the worker's ``compute_frame`` calls, from the first's start
   (maps, sections, peak) to the last's end (the albedo); ``fast<``: the first call's end (the
   frame without its albedo); ``ready>``: that part reaches the event loop (``frame_ready``);
-* ``show>`` / ``show<``: ``show_frame`` draws every pane, the panels and the status line;
+* ``show>`` / ``show<``: ``show_frame`` draws every pane, the panels and the status line
+  (and, where the viewer's screen paints at once, paints them: ``show<`` then follows
+  ``paint<``);
+* ``drawn``: the frame is drawn and the viewer's screen starts its paint (``paint_now``;
+  absent from trees without it, where Textual paints a round of idle events later);
 * ``paint>`` / ``paint<``: Textual's compositor turns the dirty regions into output;
 * ``flush``: Textual's writer thread flushes it; ``read``: the last byte reaches the driver.
 
@@ -33,8 +37,8 @@ import termios
 import time
 
 KEYS = {"right": b"\x1b[C", "left": b"\x1b[D", "+": b"+", "-": b"-", "m": b"m"}
-PHASES = ("key", "update>", "compute>", "fast<", "ready>", "compute<", "show>", "show<", "paint>",
-          "paint<", "flush", "read")
+PHASES = ("key", "update>", "compute>", "fast<", "ready>", "compute<", "show>", "drawn", "show<",
+          "paint>", "paint<", "flush", "read")
 
 
 def child(out: str, argv: list[str]) -> None:
@@ -69,6 +73,18 @@ def child(out: str, argv: list[str]) -> None:
     wrap(frames.FrameDelivery, "frame_ready", "ready")
     wrap(screen.Screen, "_compositor_refresh", "paint")
     wrap(scene, "compute_frame", "compute")
+    try:
+        from tuibrdf.app import paint
+    except ImportError:  # a tree before the viewer's own screen
+        pass
+    else:
+        now = paint.ViewerScreen.paint_now
+
+        def paint_now(self):
+            marks.append((clock(), "drawn"))
+            return now(self)
+
+        paint.ViewerScreen.paint_now = paint_now
 
     dispatch = pump.MessagePump._dispatch_message
 

@@ -202,7 +202,7 @@ class FrameDelivery:
             if not res.complete and not worker.is_cancelled:
                 res = scene.compute_frame(req, check=lambda: not worker.is_cancelled)
                 if res is not None:
-                    post(self.show_frame, res)
+                    hand(self.show_frame, res)
         except DRAW_ERRORS as e:  # a data file that vanished or changed on disk
             post(self._failed, req, e)
 

@@ -156,10 +156,6 @@ class ViewerCompositor(Compositor):
         return SpansUpdate(chops, spans, [row[1:] for row in cuts])
 
 
-#: what a widget or screen has pending besides a repaint (then Textual paints, as always)
-_PENDING = ("_layout_required", "_scroll_required", "_recompose_required")
-
-
 #: the screen's update-timer tick that :meth:`ViewerScreen.paint_now` runs (Textual 8.2)
 PAINT_NOW = SUPPORTED and callable(getattr(Screen, "_on_timer_update", None))
 
@@ -188,11 +184,13 @@ class ViewerScreen(Screen):
             if not (PAINT_NOW and self.is_current and not app._batch_count
                     and not app.is_inline and self in self._compositor
                     and self._message_queue.empty() and not self._repaint_required
-                    and not any(getattr(self, name) for name in _PENDING)):
+                    and not (self._layout_required or self._scroll_required
+                             or self._recompose_required)):
                 return False
             dirty = []
             for widget in self.walk_children(with_self=False):
-                if widget._refresh_styles_required or any(getattr(widget, n) for n in _PENDING):
+                if (widget._layout_required or widget._scroll_required
+                        or widget._recompose_required or widget._refresh_styles_required):
                     return False
                 if widget._repaint_required and widget.display and not widget._closing:
                     # (as Widget._check_refresh posts it)
