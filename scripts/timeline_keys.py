@@ -20,6 +20,10 @@ the keys, the first two left out as warm-up):
 * ``paint>`` / ``paint<``: Textual's compositor turns the dirty regions into output;
 * ``flush``: Textual's writer thread flushes it; ``read``: the last byte reaches the driver.
 
+Then the viewer's CPU time per key over the keys (``/proc/PID/task/*/schedstat``): all its
+threads, and its main thread (the event loop) alone: what a loaded machine inflates far less
+than the times above.
+
 Not a test: timings depend on the machine (docs/app.md has the numbers and their command).
 """
 
@@ -27,6 +31,7 @@ from __future__ import annotations
 
 import argparse
 import fcntl
+import glob
 import os
 import pty
 import select
@@ -124,7 +129,23 @@ def child(out: str, argv: list[str]) -> None:
     main()
 
 
-def drive(model: str, key: str, n: int, w: int, h: int) -> tuple[list[float], list, list]:
+def cpu_seconds(pid: int) -> tuple[float, float]:
+    """CPU seconds used so far by every thread of ``pid``, and by its main thread."""
+    total = main = 0
+    for task in glob.glob(f"/proc/{pid}/task/*/schedstat"):
+        try:
+            with open(task) as f:
+                ns = int(f.read().split()[0])
+        except (OSError, ValueError, IndexError):  # a thread that just ended
+            continue
+        total += ns
+        if task == f"/proc/{pid}/task/{pid}/schedstat":
+            main = ns
+    return total * 1e-9, main * 1e-9
+
+
+def drive(model: str, key: str, n: int, w: int,
+          h: int) -> tuple[list[float], list, list, tuple[float, float]]:
     out = tempfile.mktemp(suffix=".marks")
     env = dict(os.environ, TERM="xterm-256color", COLORTERM="truecolor")
     env.pop("NO_COLOR", None)
@@ -147,17 +168,19 @@ def drive(model: str, key: str, n: int, w: int, h: int) -> tuple[list[float], li
                 reads.append(time.perf_counter())
 
     drain(3.0)
+    cpu0 = cpu_seconds(pid)
     for _ in range(n):
         sends.append(time.perf_counter())
         os.write(fd, KEYS[key])
         drain(0.15)
+    cpu = tuple((b - a) / n for a, b in zip(cpu0, cpu_seconds(pid), strict=True))
     os.write(fd, b"q")
     drain(1.5)
     os.waitpid(pid, 0)
     with open(out) as f:
         marks = [(float(t), tag) for t, tag in (line.split() for line in f)]
     os.unlink(out)
-    return sends, marks, reads
+    return sends, marks, reads, cpu
 
 
 def table(sends: list[float], marks: list, reads: list[float]) -> str:
@@ -195,7 +218,9 @@ def main() -> int:
     args = ap.parse_args()
     w, h = (int(v) for v in args.size.split("x"))
     print(f"{args.model}, key {args.key!r} × {args.keys}, {w}×{h}, truecolor")
-    print(table(*drive(args.model, args.key, args.keys, w, h)))
+    sends, marks, reads, cpu = drive(args.model, args.key, args.keys, w, h)
+    print(table(sends, marks, reads))
+    print("CPU per key ms: all threads {:.2f}, event loop {:.2f}".format(*(t * 1e3 for t in cpu)))
     return 0
 
 
