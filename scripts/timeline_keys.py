@@ -17,12 +17,15 @@ the keys, the first two left out as warm-up):
   ``paint<``);
 * ``drawn``: the frame is drawn and the viewer's screen starts its paint (``paint_now``;
   absent from trees without it, where Textual paints a round of idle events later);
-* ``paint>`` / ``paint<``: Textual's compositor turns the dirty regions into output;
+* ``paint>`` / ``paint<``: the screen's compositor turns the dirty regions into output
+  (``Screen._compositor_refresh``: Textual's compositor, or the viewer's screen's);
 * ``flush``: Textual's writer thread flushes it; ``read``: the last byte reaches the driver.
 
-Then the viewer's CPU time per key over the keys (``/proc/PID/task/*/schedstat``): all its
-threads, and its main thread (the event loop) alone: what a loaded machine inflates far less
-than the times above.
+Then the steps between some of them, timed key by key (``drawn → paint``: from the frame
+drawn to the compositor's start, from ``show<`` where the tree has no ``drawn``), and the
+viewer's CPU time per key over the keys (``/proc/PID/task/*/schedstat``): all its threads,
+and its main thread (the event loop) alone: what a loaded machine inflates far less than the
+times above.
 
 Not a test: timings depend on the machine (docs/app.md has the numbers and their command).
 """
@@ -206,6 +209,40 @@ def table(sends: list[float], marks: list, reads: list[float]) -> str:
     return "\n".join(lines)
 
 
+#: the steps between the phases, each timed key by key: (name, from, to); "a|b" is the first of
+#: a and b present (a tree that paints at once marks ``drawn``, one that does not ``show<``)
+STEPS = (("key → update", "key", "update>"), ("update → worker", "update>", "compute>"),
+         ("albedo → show", "compute<", "show>"), ("drawn → paint", "drawn|show<", "paint>"),
+         ("paint", "paint>", "paint<"), ("paint → flush", "paint<", "flush"))
+
+
+def steps(sends: list[float], marks: list) -> str:
+    """The hand-offs and the paint, key by key: p50 / p95 of each step over the keys."""
+    per: dict[str, list[float]] = {name: [] for name, _, _ in STEPS}
+    for i, s in enumerate(sends[2:], start=2):
+        end = sends[i + 1] if i + 1 < len(sends) else s + 0.15
+        seen = [(t, tag) for t, tag in marks if s <= t < end]
+
+        def at(tags: str, last: bool = False, seen=seen) -> float | None:
+            for tag in tags.split("|"):
+                ts = [t for t, got in seen if got == tag]
+                if ts:
+                    return ts[-1] if last else ts[0]
+            return None
+
+        for name, a, b in STEPS:
+            t0, t1 = at(a, last=a == "compute<"), at(b)
+            if t0 is not None and t1 is not None and t1 >= t0:
+                per[name].append((t1 - t0) * 1e3)
+    lines = ["step              keys  p50 ms  p95 ms"]
+    for name, v in per.items():
+        if v:
+            v.sort()
+            lines.append(f"{name:16s} {len(v):5d} {v[len(v) // 2]:7.2f} "
+                         f"{v[min(len(v) - 1, int(len(v) * 0.95))]:7.2f}")
+    return "\n".join(lines)
+
+
 def main() -> int:
     if len(sys.argv) > 2 and sys.argv[1] == "--child":
         child(sys.argv[2], sys.argv[3:])
@@ -220,6 +257,7 @@ def main() -> int:
     print(f"{args.model}, key {args.key!r} × {args.keys}, {w}×{h}, truecolor")
     sends, marks, reads, cpu = drive(args.model, args.key, args.keys, w, h)
     print(table(sends, marks, reads))
+    print(steps(sends, marks))
     print("CPU per key ms: all threads {:.2f}, event loop {:.2f}".format(*(t * 1e3 for t in cpu)))
     return 0
 
