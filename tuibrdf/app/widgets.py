@@ -85,14 +85,14 @@ class Rows(Widget):
     #: (the styles' keys of the widget and its ancestors, the side padding or None, its
     #: style): :meth:`_sides`, computed again when any of those styles changed
     _direct: tuple | None = None
-    _padded: dict[int, tuple[Strip, Strip]] | None = None  # id(row) → (row, padded row)
+    _padded: dict[int, tuple[Strip, Style, Strip]] | None = None  # id(row) → (row, pad, padded)
 
     def _sides(self) -> tuple[tuple[int, int] | None, Style | None]:
         """The side padding when nothing else of Textual's styling touches the rows (no
-        border, outline, padding above or below, tint, text opacity, hatch or opacity, here
-        or in an ancestor), and the padding's style, as Textual's styles cache pads a line
-        with it; ``(None, None)`` otherwise.  Kept until a style of the widget or an ancestor
-        changes (looking them up costs ≈ 50 µs, more than the rows' own way)."""
+        border, outline, padding above or below, tint, text opacity or hatch, no opacity
+        here or in an ancestor), else ``None``; and the padding's style, as Textual's styles
+        cache pads a line.  Kept until a style of the widget or an ancestor changes (looking
+        them up costs ≈ 50 µs, more than handing the rows over)."""
         nodes = self.ancestors_with_self
         key = tuple(node.styles._cache_key for node in nodes)
         if self._direct is None or self._direct[0] != key:
@@ -130,10 +130,10 @@ class Rows(Widget):
                     [Segment(" " * right, pad)] if right else [])
             for i, row in enumerate(lines):
                 done = old.get(id(row))
-                if done is None or done[0] is not row or done[1]._segments[0].style != pad:
-                    done = row, Strip([*ends[0], *row, *ends[1]], outer.width)
+                if done is None or done[0] is not row or done[1] != pad:
+                    done = row, pad, Strip([*ends[0], *row, *ends[1]], outer.width)
                 new[id(row)] = done
-                lines[i] = done[1]
+                lines[i] = done[2]
             self._padded = new
         if crop.x or crop.right != outer.width:
             lines = [line.crop(crop.x, crop.right) for line in lines]
@@ -304,4 +304,3 @@ class StatusLine(Rows):
             return  # a new height for rows already drawn at this width
         self._key = None
         self.show_text(self._source)
-
