@@ -8,6 +8,7 @@ terminal model written here (cursor moves, SGR, text).  No timings.
 
 from __future__ import annotations
 
+import dataclasses
 import re
 import threading
 import unicodedata
@@ -211,7 +212,6 @@ async def test_a_frame_is_painted_before_show_frame_returns(monkeypatch):
         await pilot.pause(0.3)
         for theta, layout in ((31.0, False), (32.0, True)):
             req = app.frame_request()
-            import dataclasses
             res = scene.compute_frame(dataclasses.replace(req, theta_i=theta))
             app.state.theta_i, app.request = theta, res.request
             if layout:
