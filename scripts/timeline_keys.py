@@ -12,9 +12,20 @@ the keys, the first two left out as warm-up):
 * ``compute>`` / ``compute<``: the worker's ``compute_frame`` calls, from the first's start
   (maps, sections, peak) to the last's end (the albedo); ``fast<``: the first call's end (the
   frame without its albedo); ``ready>``: that part reaches the event loop (``frame_ready``);
-* ``show>`` / ``show<``: ``show_frame`` draws every pane, the panels and the status line;
-* ``paint>`` / ``paint<``: Textual's compositor turns the dirty regions into output;
+* ``show>`` / ``show<``: ``show_frame`` draws every pane, the panels and the status line
+  (and, where the viewer's screen paints at once, paints them: ``show<`` then follows
+  ``paint<``);
+* ``drawn``: the frame is drawn and the viewer's screen starts its paint (``paint_now``;
+  absent from trees without it, where Textual paints a round of idle events later);
+* ``paint>`` / ``paint<``: the screen's compositor turns the dirty regions into output
+  (``Screen._compositor_refresh``: Textual's compositor, or the viewer's screen's);
 * ``flush``: Textual's writer thread flushes it; ``read``: the last byte reaches the driver.
+
+Then the steps between some of them, timed key by key (``drawn → paint``: from the frame
+drawn to the compositor's start, from ``show<`` where the tree has no ``drawn``), and the
+viewer's CPU time per key over the keys (``/proc/PID/task/*/schedstat``): all its threads,
+and its main thread (the event loop) alone: what a loaded machine inflates far less than the
+times above.
 
 Not a test: timings depend on the machine (docs/app.md has the numbers and their command).
 """
@@ -23,6 +34,7 @@ from __future__ import annotations
 
 import argparse
 import fcntl
+import glob
 import os
 import pty
 import select
@@ -33,8 +45,8 @@ import termios
 import time
 
 KEYS = {"right": b"\x1b[C", "left": b"\x1b[D", "+": b"+", "-": b"-", "m": b"m"}
-PHASES = ("key", "update>", "compute>", "fast<", "ready>", "compute<", "show>", "show<", "paint>",
-          "paint<", "flush", "read")
+PHASES = ("key", "update>", "compute>", "fast<", "ready>", "compute<", "show>", "drawn", "show<",
+          "paint>", "paint<", "flush", "read")
 
 
 def child(out: str, argv: list[str]) -> None:
@@ -69,6 +81,18 @@ def child(out: str, argv: list[str]) -> None:
     wrap(frames.FrameDelivery, "frame_ready", "ready")
     wrap(screen.Screen, "_compositor_refresh", "paint")
     wrap(scene, "compute_frame", "compute")
+    try:
+        from tuibrdf.app import paint
+    except ImportError:  # a tree before the viewer's own screen
+        pass
+    else:
+        now = paint.ViewerScreen.paint_now
+
+        def paint_now(self):
+            marks.append((clock(), "drawn"))
+            return now(self)
+
+        paint.ViewerScreen.paint_now = paint_now
 
     dispatch = pump.MessagePump._dispatch_message
 
@@ -108,7 +132,23 @@ def child(out: str, argv: list[str]) -> None:
     main()
 
 
-def drive(model: str, key: str, n: int, w: int, h: int) -> tuple[list[float], list, list]:
+def cpu_seconds(pid: int) -> tuple[float, float]:
+    """CPU seconds used so far by every thread of ``pid``, and by its main thread."""
+    total = main = 0
+    for task in glob.glob(f"/proc/{pid}/task/*/schedstat"):
+        try:
+            with open(task) as f:
+                ns = int(f.read().split()[0])
+        except (OSError, ValueError, IndexError):  # a thread that just ended
+            continue
+        total += ns
+        if task == f"/proc/{pid}/task/{pid}/schedstat":
+            main = ns
+    return total * 1e-9, main * 1e-9
+
+
+def drive(model: str, key: str, n: int, w: int,
+          h: int) -> tuple[list[float], list, list, tuple[float, float]]:
     out = tempfile.mktemp(suffix=".marks")
     env = dict(os.environ, TERM="xterm-256color", COLORTERM="truecolor")
     env.pop("NO_COLOR", None)
@@ -131,17 +171,19 @@ def drive(model: str, key: str, n: int, w: int, h: int) -> tuple[list[float], li
                 reads.append(time.perf_counter())
 
     drain(3.0)
+    cpu0 = cpu_seconds(pid)
     for _ in range(n):
         sends.append(time.perf_counter())
         os.write(fd, KEYS[key])
         drain(0.15)
+    cpu = tuple((b - a) / n for a, b in zip(cpu0, cpu_seconds(pid), strict=True))
     os.write(fd, b"q")
     drain(1.5)
     os.waitpid(pid, 0)
     with open(out) as f:
         marks = [(float(t), tag) for t, tag in (line.split() for line in f)]
     os.unlink(out)
-    return sends, marks, reads
+    return sends, marks, reads, cpu
 
 
 def table(sends: list[float], marks: list, reads: list[float]) -> str:
@@ -167,6 +209,40 @@ def table(sends: list[float], marks: list, reads: list[float]) -> str:
     return "\n".join(lines)
 
 
+#: the steps between the phases, each timed key by key: (name, from, to); "a|b" is the first of
+#: a and b present (a tree that paints at once marks ``drawn``, one that does not ``show<``)
+STEPS = (("key → update", "key", "update>"), ("update → worker", "update>", "compute>"),
+         ("albedo → show", "compute<", "show>"), ("drawn → paint", "drawn|show<", "paint>"),
+         ("paint", "paint>", "paint<"), ("paint → flush", "paint<", "flush"))
+
+
+def steps(sends: list[float], marks: list) -> str:
+    """The hand-offs and the paint, key by key: p50 / p95 of each step over the keys."""
+    per: dict[str, list[float]] = {name: [] for name, _, _ in STEPS}
+    for i, s in enumerate(sends[2:], start=2):
+        end = sends[i + 1] if i + 1 < len(sends) else s + 0.15
+        seen = [(t, tag) for t, tag in marks if s <= t < end]
+
+        def at(tags: str, last: bool = False, seen=seen) -> float | None:
+            for tag in tags.split("|"):
+                ts = [t for t, got in seen if got == tag]
+                if ts:
+                    return ts[-1] if last else ts[0]
+            return None
+
+        for name, a, b in STEPS:
+            t0, t1 = at(a, last=a == "compute<"), at(b)
+            if t0 is not None and t1 is not None and t1 >= t0:
+                per[name].append((t1 - t0) * 1e3)
+    lines = ["step              keys  p50 ms  p95 ms"]
+    for name, v in per.items():
+        if v:
+            v.sort()
+            lines.append(f"{name:16s} {len(v):5d} {v[len(v) // 2]:7.2f} "
+                         f"{v[min(len(v) - 1, int(len(v) * 0.95))]:7.2f}")
+    return "\n".join(lines)
+
+
 def main() -> int:
     if len(sys.argv) > 2 and sys.argv[1] == "--child":
         child(sys.argv[2], sys.argv[3:])
@@ -179,7 +255,10 @@ def main() -> int:
     args = ap.parse_args()
     w, h = (int(v) for v in args.size.split("x"))
     print(f"{args.model}, key {args.key!r} × {args.keys}, {w}×{h}, truecolor")
-    print(table(*drive(args.model, args.key, args.keys, w, h)))
+    sends, marks, reads, cpu = drive(args.model, args.key, args.keys, w, h)
+    print(table(sends, marks, reads))
+    print(steps(sends, marks))
+    print("CPU per key ms: all threads {:.2f}, event loop {:.2f}".format(*(t * 1e3 for t in cpu)))
     return 0
 
 

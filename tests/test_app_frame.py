@@ -97,10 +97,24 @@ async def test_status_follows_parameter_keys_and_compare_mode():
         assert await wait_for(pilot, lambda: app.state.side.values["kd"] == pytest.approx(0.28))
         want = fmt_value(albedo("phong", {"kd": 0.28, "ks": 0.3}, 30.0))
         assert await wait_for(pilot, lambda: f"a(θi)={want} " in status(app))
-        burst(app, "c", "tab", "minus", "minus")  # compare; B's kd 0.28 → 0.26
+        burst(app, "c", "minus", "minus")  # compare (keys act on B); B's kd 0.28 → 0.26
         want_b = fmt_value(albedo("phong", {"kd": 0.26, "ks": 0.3}, 30.0))
         assert await wait_for(pilot, lambda: f"A: a={want}" in status(app)
                               and f"B: a={want_b}" in status(app))
+
+
+async def test_keys_typed_together_act_in_the_order_typed():
+    # c turns compare mode on with the keys acting on B (ViewerState.toggle_compare), tab
+    # then switches them to A, so both minus keys lower A's kd; a key handled out of order
+    # (tab before c: "press c" and nothing switched) would lower B's instead
+    app = BrdfApp(ViewerState(sides=[Side.of("phong", {"kd": 0.2, "ks": 0.3})]))
+    async with app.run_test(size=(120, 36)) as pilot:
+        await pilot.pause()
+        burst(app, "c", "tab", "minus", "minus", "greater_than_sign", "left")
+        assert await wait_for(pilot, lambda: app.state.theta_i == 29.0)
+        a, b = (side.values["kd"] for side in app.state.sides)
+        assert (a, b) == (pytest.approx(0.18), pytest.approx(0.2))
+        assert app.state.active == 0 and app.state.phi_i == 195.0
 
 
 async def test_each_visible_pane_is_evaluated_once_per_frame(monkeypatch):

@@ -28,6 +28,7 @@ from . import keys
 from .frames import GC_IDLE_S, GC_YOUNG, FrameDelivery
 from .layout import CSS, arrange
 from .loading import MeasuredData
+from .paint import ViewerScreen
 from .presets import PresetError, apply_loaded, list_presets, load_preset, preset_dir, save_preset
 from .screens import HelpScreen, SafeCommandPalette, SaveScreen, ValueScreen
 from .state import ViewerState
@@ -98,6 +99,9 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self._loop_context = None
 
     # -- layout ------------------------------------------------------------------------------
+    def get_default_screen(self) -> ViewerScreen:
+        return ViewerScreen(id="_default")
+
     def compose(self) -> ComposeResult:
         with Vertical(id="root"):
             with Horizontal(id="body"):
@@ -164,13 +168,20 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         return w
 
     # -- one frame ---------------------------------------------------------------------------
-    def _changed(self, message: str | None = None, relayout: bool = False) -> None:
+    def _changed(self, message: str | None = None, relayout: bool = False,
+                 at_once: bool = False) -> None:
         """After any change: the screen follows once the events already queued are handled
-        (a burst of keys costs one update, for the last state)."""
+        (a burst of keys costs one update, for the last state).  ``at_once`` (a key): with
+        no event queued, the update runs now rather than as a message behind an empty queue
+        (≈ 0.2 ms a key, docs/app.md)."""
         self.message = message or ""
         self._relayout = self._relayout or relayout
         self._changes += 1
-        self.call_later(self._update, self._changes)
+        queue = getattr(self, "_message_queue", None)
+        if at_once and queue is not None and queue.empty():
+            self._update(self._changes)
+        else:
+            self.call_later(self._update, self._changes)
 
     def _update(self, change: int) -> None:
         """The frame at once when computed before, else from the worker (the panels and the
@@ -219,7 +230,8 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
     # -- actions -----------------------------------------------------------------------------
     def action_state(self, method: str, args: tuple = ()) -> None:
         """A :class:`ViewerState` transition named in the key table."""
-        self._changed(getattr(self.state, method)(*args), relayout=method in keys.RELAYOUT)
+        self._changed(getattr(self.state, method)(*args), relayout=method in keys.RELAYOUT,
+                      at_once=True)
 
     def action_help(self) -> None:
         self.push_screen(HelpScreen())

@@ -64,6 +64,34 @@ class FrameDelivery:
     """The frame half of :class:`~tuibrdf.app.app.BrdfApp` (a mixin: it uses the app's
     ``state``, ``look``, ``one``, ``sync``, ``frame``, ``request`` and ``message``)."""
 
+    #: the timers of the frame on its way (:meth:`_after`): its panels going ahead
+    #: (:data:`PENDING_S`), its pictures no longer waiting for the albedo (:data:`HOLD_S`)
+    _pending_at: asyncio.TimerHandle | None = None
+    _hold_at: asyncio.TimerHandle | None = None
+
+    def _after(self, delay: float, callback, *args) -> asyncio.TimerHandle | None:
+        """``callback(*args)`` on the event loop in ``delay`` s, as a timer of the loop itself
+        (a Textual timer is a task of its own: creating, waking and ending it cost the loop
+        ≈ 0.2 ms on every key, docs/app.md); a bug in it ends the app as in a Textual timer.
+        Before the loop is known (tests in sync mode), a Textual timer."""
+        if self._event_loop is None:
+            self.set_timer(delay, partial(callback, *args))
+            return None
+        return self._event_loop.call_later(delay, self._guarded, callback, args,
+                                           context=self._loop_context)
+
+    def _guarded(self, callback, args: tuple) -> None:
+        try:
+            callback(*args)
+        except Exception as error:  # a bug: the viewer stops with status 1, as Textual does
+            self._handle_exception(error)
+
+    def _cancel_timers(self) -> None:
+        for handle in (self._pending_at, self._hold_at):
+            if handle is not None:
+                handle.cancel()
+        self._pending_at = self._hold_at = None
+
     def _panels(self) -> None:
         for i in range(len(self.state.sides)):
             self.one(f"panel-{'ab'[i]}").show(self.state, i)
@@ -133,12 +161,15 @@ class FrameDelivery:
         if done is not None:
             self.frame_ready(done)
         else:
-            self.set_timer(PENDING_S, partial(self._pending, req))
+            if self._pending_at is not None:
+                self._pending_at.cancel()
+            self._pending_at = self._after(PENDING_S, self._pending, req)
         busy = self._worker is not None and self._worker.is_running
         if (done is None or not done.complete) and not (busy and self._worker_for == req):
             self._worker, self._worker_for = self.compute(req), req
 
-    @work(exclusive=True, thread=True, group="frame")
+    @work(exclusive=True, thread=True, group="frame", description="frame")  # (Textual would
+    # otherwise describe the worker by the repr of its request on every key: ≈ 0.1 ms)
     def compute(self, req: FrameRequest) -> None:
         """The frame of ``req`` off the event loop: the fast part, then the albedo (and the
         albedo curve); each posted unless a newer request cancelled this worker."""
@@ -151,15 +182,27 @@ class FrameDelivery:
                 except RuntimeError:  # the app has closed meanwhile
                     pass
 
+        def hand(callback, *args) -> None:
+            """``post`` without waiting for the loop to run it: the albedo starts at once
+            (≈ 0.4 ms sooner a key: the loop first has to wake up, docs/app.md)."""
+            if self._event_loop is None:
+                post(callback, *args)
+            elif not worker.is_cancelled:
+                try:
+                    self._event_loop.call_soon_threadsafe(self._guarded, callback, args,
+                                                          context=self._loop_context)
+                except RuntimeError:  # the app (and its loop) has closed meanwhile
+                    pass
+
         if worker.is_cancelled:
             return
         try:
             res = scene.compute_frame(req, slow=False)
-            post(self.frame_ready, res)
+            hand(self.frame_ready, res)
             if not res.complete and not worker.is_cancelled:
                 res = scene.compute_frame(req, check=lambda: not worker.is_cancelled)
                 if res is not None:
-                    post(self.show_frame, res)
+                    hand(self.show_frame, res)
         except DRAW_ERRORS as e:  # a data file that vanished or changed on disk
             post(self._failed, req, e)
 
@@ -184,7 +227,9 @@ class FrameDelivery:
         if res.complete or res.request != self.request:
             self.show_frame(res)
         else:
-            self.set_timer(HOLD_S, partial(self._show_partial, res))
+            if self._hold_at is not None:
+                self._hold_at.cancel()
+            self._hold_at = self._after(HOLD_S, self._show_partial, res)
 
     def _show_partial(self, res: FrameResult) -> None:
         if self.frame is None or self.frame.request != res.request:
@@ -197,8 +242,9 @@ class FrameDelivery:
         if res.request != self.request or not self.is_running:
             return  # a newer request is on its way, or the app is closing
         if self._writer_busy():  # trailing edge: try again when the terminal has caught up
-            self.set_timer(RETRY_S, partial(self.show_frame, res))
+            self._after(RETRY_S, self.show_frame, res)
             return
+        self._cancel_timers()  # this request's frame is shown: its panels and pictures with it
         self.frame = res
         self.frames += 1
         for pane in visible_panes(self.state):
@@ -207,6 +253,9 @@ class FrameDelivery:
             self.one("legend").update(legend_text(self.state))
         self._panels()
         self._status()
+        paint_now = getattr(self.screen, "paint_now", None)  # the viewer's screen (paint.py)
+        if paint_now is not None:
+            paint_now()  # to the terminal now, not after a round of idle events
         if self._event_loop is not None:  # not in sync mode (tests)
             self._event_loop.call_later(GC_AFTER_S, self._collect_young,
                                         context=self._loop_context)

@@ -25,7 +25,6 @@ class Key:
     help: str  # help screen and command palette
     display: str | None = None  # how the key is written (default: the first key name)
     footer: bool = False
-    priority: bool = False
 
     @property
     def shown(self) -> str:
@@ -95,7 +94,7 @@ KEYS: tuple[Key, ...] = (
     Key("C", _s("cycle_channel"), "channel",
         "curves of RGB models: R,G,B → luminance → R → G → B"),
     Key("c", _s("toggle_compare"), "compare", "compare two models (B starts as A)", footer=True),
-    Key("tab", _s("switch_side"), "side", "compare: keys act on A or B", priority=True),
+    Key("tab", _s("switch_side"), "side", "compare: keys act on A or B"),
     Key("p", _s("next_preset"), "preset",
         "next seed comparison (diffuse, specular, then back to your own settings)",
         footer=True),
@@ -110,8 +109,14 @@ KEYS: tuple[Key, ...] = (
 RELAYOUT = frozenset({"cycle_model", "cycle_view", "toggle_compare", "switch_side",
                       "next_preset"})
 
+#: the viewer's keys are priority bindings: the app acts on a key when it first reaches
+#: it, not after Textual has forwarded it to the screen and it has bubbled back (≈ 0.5 ms a
+#: key, docs/app.md), and keys typed together act in the order typed (a priority key no
+#: longer overtakes the ones still bubbling).  While a modal screen is open
+#: ``BrdfApp.check_action`` refuses them and the key goes on to that screen as before; quit
+#: stays an ordinary binding (q closes the help screen, and types a q in a text field).
 BINDINGS = [Binding(k.keys, k.action, k.short, show=k.footer, key_display=k.display,
-                    priority=k.priority) for k in KEYS]
+                    priority=k.action != "quit") for k in KEYS]
 
 
 #: the help screen's key column

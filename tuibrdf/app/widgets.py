@@ -8,11 +8,13 @@ from os.path import commonprefix
 from rich.cells import cell_len
 from rich.console import RenderableType
 from rich.segment import Segment
+from rich.style import Style
 from rich.text import Text
 from textual.css.scalar import Unit
 from textual.filter import ANSIToTruecolor
 from textual.geometry import Region
 from textual.strip import Strip
+from textual.style import Style as TextualStyle
 from textual.widget import Widget
 from textual.widgets import Static
 
@@ -85,6 +87,63 @@ class Rows(Widget):
         if y < len(self._strips):
             return self._strips[y]
         return Strip([Segment(" " * self.size.width, BLANK)], self.size.width)
+
+    #: (the styles' keys of the widget and its ancestors, the side padding or None, its
+    #: style): :meth:`_sides`, computed again when any of those styles changed
+    _direct: tuple | None = None
+    _padded: dict[int, tuple[Strip, Style, Strip]] | None = None  # id(row) → (row, pad, padded)
+
+    def _sides(self) -> tuple[tuple[int, int] | None, Style | None]:
+        """The side padding when nothing else of Textual's styling touches the rows (no
+        border, outline, padding above or below, tint, text opacity or hatch, no opacity
+        here or in an ancestor), else ``None``; and the padding's style, as Textual's styles
+        cache pads a line.  Kept until a style of the widget or an ancestor changes (looking
+        them up costs ≈ 50 µs, more than handing the rows over)."""
+        nodes = self.ancestors_with_self
+        key = tuple(node.styles._cache_key for node in nodes)
+        if self._direct is None or self._direct[0] != key:
+            s = self.styles
+            g, p = s.gutter, s.padding
+            plain = (not (g.top or g.bottom) and (g.left, g.right) == (p.left, p.right)
+                     and not any(s.outline.spacing) and not s.tint.a
+                     and s.text_opacity == 1.0 and not (s.has_rule("hatch") and s.hatch != "none")
+                     and self.opacity == 1.0)
+            base, background = self.background_colors
+            pad = TextualStyle(background=base + background).rich_style  # StylesCache's inner
+            self._direct = key, ((p.left, p.right) if plain else None), pad
+        return self._direct[1], self._direct[2]
+
+    def render_lines(self, crop: Region) -> list[Strip]:
+        """The stored strips as they are when Textual would not change them (:meth:`_sides`,
+        no line filter, no hovered link), with Textual's side padding: a changed line costs
+        the compositor no new strip, an unchanged one no cache look-up (≈ 1 ms a 160×48
+        frame, docs/app.md).  Otherwise Textual's own way."""
+        sides, pad = self._sides()
+        hover = self.hover_style
+        if (sides is None or self.get_line_filters()
+                or (self.auto_links and hover._link_id and hover._meta
+                    and "@click" in hover.meta)):
+            return super().render_lines(crop)
+        (left, right), outer, strips = sides, self.outer_size, self._strips
+        width = outer.width - left - right
+        if (len(strips) != outer.height or crop.bottom > len(strips)
+                or any(row.cell_length != width for row in strips)):
+            return super().render_lines(crop)
+        lines = strips[crop.y:crop.bottom]
+        if left or right:  # as Textual's StylesCache.render_line pads a content line
+            old, new = self._padded or {}, {}
+            ends = ([Segment(" " * left, pad)] if left else [],
+                    [Segment(" " * right, pad)] if right else [])
+            for i, row in enumerate(lines):
+                done = old.get(id(row))
+                if done is None or done[0] is not row or done[1] != pad:
+                    done = row, pad, Strip([*ends[0], *row, *ends[1]], outer.width)
+                new[id(row)] = done
+                lines[i] = done[2]
+            self._padded = new
+        if crop.x or crop.right != outer.width:
+            lines = [line.crop(crop.x, crop.right) for line in lines]
+        return lines
 
     def get_line_filters(self):
         # ANSIToTruecolor costs ≈ 10 ms per 160×48 frame and our colours are RGB already;

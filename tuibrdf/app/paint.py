@@ -1,0 +1,206 @@
+"""The viewer's screen: Textual's partial update doing only the work whose result reaches the
+terminal, each change written from its first cell, and the paint done as soon as a frame is
+drawn.
+
+Textual 8's compositor repaints the dirty regions of a frame like this
+(``Compositor.render_partial_update``): every visible widget whose clip overlaps the bounding
+box of all dirty regions renders all its lines; every line holding a dirty span then divides
+every such widget's strip at every widget edge on that line (the frontmost widget's piece of
+each interval between two edges wins); ``ChopsUpdate.render_segments`` then writes, per dirty
+span, every piece it overlaps from the piece's first cell to the span's end.  A θi key at
+160×48 dirties the map, both sections and the status line, whose bounding box is the whole
+screen: the screen, its four containers, the parameter panel and the footer were rendered and
+divided on every dirty line for nothing, and a change in the middle of a map row was written
+from the map's left edge.
+
+:class:`ViewerCompositor` fills only the pieces that overlap a span, front to back, so a widget
+renders only when one of its pieces is written and no widget in front has filled it;
+:class:`SpansUpdate` writes each span from its first cell.  The cells on the terminal are the
+same as with Textual's own update after every paint (tests/test_paint.py replays both into a
+terminal model); the bytes are fewer.  :meth:`ViewerScreen.paint_now` runs the screen's paint
+right after a frame is drawn instead of a round of idle events later.  The Textual internals
+this relies on are checked once (:data:`SUPPORTED`, :data:`PAINT_NOW`); without them the
+screen is Textual's, unchanged.
+"""
+
+from __future__ import annotations
+
+from rich.cells import cell_len
+from rich.color import ColorSystem
+from rich.console import Console
+from rich.segment import Segment
+from textual._compositor import ChopsUpdate, Compositor
+from textual.geometry import Region
+from textual.screen import Screen
+from textual.strip import Strip
+
+
+def _supported() -> bool:
+    """Textual's compositor has what :class:`ViewerCompositor` uses (Textual 8.2)."""
+    probe = Compositor()
+    return all(hasattr(probe, name) for name in
+               ("_dirty_regions", "_regions_to_spans", "cuts", "visible_widgets",
+                "render_partial_update", "size")) and hasattr(ChopsUpdate, "render_segments")
+
+
+SUPPORTED = _supported()
+
+
+def _cells(strip: Strip, start: int, stop: int, system: ColorSystem) -> tuple[int, str]:
+    """The terminal text of ``strip``'s cells ``[start, stop)`` (as Textual's
+    ``strip.crop(start, stop).render(...)``, without the new strip), and the cell it starts at:
+    ``start``, or the first cell of a segment holding a character more than one cell wide
+    that ``start`` falls in (cut there, it would be written as spaces)."""
+    render = Strip.render_style
+    out: list[str] = []
+    pos, first = 0, -1
+    for text, style, _ in strip:
+        n = cell_len(text)
+        if first < 0:
+            if pos + n <= start:
+                pos += n
+                continue
+            if pos < start and len(text) == n:  # one cell a character: cut at start
+                text, n, pos = text[start - pos:], n - (start - pos), start
+            first = pos
+        if pos + n > stop:  # the end cut as Textual's crop makes it
+            text = Segment(text, style).split_cells(stop - pos)[0].text
+        if text:
+            out.append(text if style is None else render(style, text, system))
+        pos += n
+        if pos >= stop:
+            break
+    return (start if first < 0 else first), "".join(out)
+
+
+class SpansUpdate(ChopsUpdate):
+    """Textual's partial update, each span written from its first cell.  Textual writes a
+    span from the start of the widget's piece it falls in (``ChopsUpdate.render_segments``
+    crops only its end: "TODO: crop to x extents"), so a change in the middle of a map row
+    re-sent the row from the map's left edge; the cells before the span did not change."""
+
+    def render_segments(self, console: Console) -> str:
+        system = console._color_system or ColorSystem.TRUECOLOR  # as Strip.render
+        sequences: list[str] = []
+        append = sequences.append
+        chops, chop_ends = self.chops, self.chop_ends
+        last_y = self.spans[-1][0]
+        for y, x1, x2 in self.spans:
+            for end, (x, strip) in zip(chop_ends[y], chops[y].items(), strict=False):
+                if strip is None or x >= x2 or end <= x1:
+                    continue
+                if x >= x1 and end <= x2:  # the whole piece (its text cached in the strip)
+                    append(f"\x1b[{y + 1};{x + 1}H")  # Rich's Control.move_to(x, y)
+                    append(strip.render(console))
+                    continue
+                first, text = _cells(strip, max(x1 - x, 0), min(end, x2) - x, system)
+                append(f"\x1b[{y + 1};{x + first + 1}H")
+                append(text)
+            if y != last_y:
+                append("\n")
+        return "".join(sequences)
+
+
+class ViewerCompositor(Compositor):
+    """Textual's compositor; its partial update renders and divides only what is written."""
+
+    def render_partial_update(self) -> ChopsUpdate | None:
+        regions = self._dirty_regions.copy()
+        self._dirty_regions.clear()
+        if not regions:
+            return None
+        height = self.size.height
+        spans = [span for span in self._regions_to_spans(regions) if 0 <= span[0] < height]
+        if not spans:
+            return None
+        cuts = self.cuts
+        chops: list[dict[int, Strip | None]] = [dict.fromkeys(row[:-1]) for row in cuts]
+        # per line, the pieces that overlap a span ({cut: end}) and are not yet filled
+        need: dict[int, dict[int, int]] = {}
+        for y, x1, x2 in spans:
+            row = cuts[y]
+            line = need.setdefault(y, {})
+            for x, end in zip(row, row[1:], strict=False):
+                if x < x2 and end > x1:
+                    line[x] = end
+            if not line:
+                del need[y]
+        for widget, (region, clip) in self.visible_widgets.items():
+            if not need:
+                break
+            render = region.intersection(clip)
+            if not (render.width and render.height):
+                continue
+            x0, y0 = render.x, render.y
+            first, last = render.column_span
+            lines = [y for y in range(y0, y0 + render.height)
+                     if (line := need.get(y)) and any(first <= x < last for x in line)]
+            if not lines:
+                continue
+            if clip.contains_region(region):
+                strips = widget.render_lines(Region(0, 0, region.width, region.height))
+            else:
+                strips = widget.render_lines(Region(x0 - region.x, y0 - region.y,
+                                                    render.width, render.height))
+            for y in lines:
+                inside = [x for x in cuts[y] if first <= x <= last]
+                strip = strips[y - y0]
+                pieces = [strip] if len(inside) == 2 else strip.divide([x - x0 for x in inside[1:]])
+                line, chop = need[y], chops[y]
+                for x, piece in zip(inside, pieces, strict=False):  # the last edge ends a piece
+                    if x in line:  # else filled by a widget in front, or not written
+                        chop[x] = piece
+                        del line[x]
+                if not line:
+                    del need[y]
+        return SpansUpdate(chops, spans, [row[1:] for row in cuts])
+
+
+#: the screen's update-timer tick that :meth:`ViewerScreen.paint_now` runs (Textual 8.2)
+PAINT_NOW = SUPPORTED and callable(getattr(Screen, "_on_timer_update", None))
+
+
+class ViewerScreen(Screen):
+    """The viewer's main screen: :class:`ViewerCompositor` when Textual has what it uses,
+    and :meth:`paint_now`."""
+
+    def __init__(self, *args, **kw) -> None:
+        super().__init__(*args, **kw)
+        if SUPPORTED:
+            self._compositor = ViewerCompositor()
+
+    def paint_now(self) -> bool:
+        """Paint the widgets waiting for a repaint now, as the screen's update timer would
+        on its next tick, when a repaint is all that waits (no layout, scroll, style or
+        recompose pending anywhere on the screen, no message in its queue).  Otherwise, or
+        without what it needs from Textual (:data:`PAINT_NOW`), Textual paints as always.
+
+        Textual's own way from ``Widget.refresh`` to the terminal takes a round of the event
+        loop per widget (each sees it is idle and posts ``Update`` to the screen), one for the
+        screen (idle: it resumes its update timer) and one for the timer's task: ≈ 1 ms a
+        key after the frame is drawn (docs/app.md).  Returns whether it painted."""
+        app = self.app
+        try:
+            if not (PAINT_NOW and self.is_current and not app._batch_count
+                    and not app.is_inline and self in self._compositor
+                    and self._message_queue.empty() and not self._repaint_required
+                    and not (self._layout_required or self._scroll_required
+                             or self._recompose_required)):
+                return False
+            dirty = []
+            for widget in self.walk_children(with_self=False):
+                if (widget._layout_required or widget._scroll_required
+                        or widget._recompose_required or widget._refresh_styles_required):
+                    return False
+                if widget._repaint_required and widget.display and not widget._closing:
+                    # (as Widget._check_refresh posts it)
+                    dirty.append(widget)
+        except AttributeError:  # not the Textual this was written for: Textual paints
+            return False
+        if not dirty:
+            return False
+        for widget in dirty:  # each one's Update, as Screen._on_update takes it
+            widget._repaint_required = False
+            self._dirty_widgets.add(widget)
+        self._on_timer_update()
+        return True
