@@ -186,20 +186,10 @@ def _crease(x, y: list[float], i: int, mid: float,
     (i−1, i) and (i+1, i+2)) that rise to meet inside its interval.  Then the next bracket
     is about where they meet, 3× the move wide (at least 1/27 of the bracket); the third
     value says whether it was narrowed."""
-    at, height = None, -math.inf
-    for l0, r0 in ((i - 2, i), (i - 1, i + 1)):
-        if l0 < 0 or r0 > 5:
-            continue
-        sl = (y[l0 + 1] - y[l0]) / (x[l0 + 1] - x[l0])  # the x are distinct
-        sr = (y[r0 + 1] - y[r0]) / (x[r0 + 1] - x[r0])
-        if not sl > 0.0 > sr:
-            continue
-        xm = (y[r0] - y[l0] + sl * x[l0] - sr * x[r0]) / (sl - sr)  # sl − sr > 0
-        ym = y[l0] + sl * (xm - x[l0])
-        if x[l0 + 1] <= xm <= x[r0] and ym > height:
-            at, height = float(xm), ym
-    if at is None:
+    meet = _lines_meet(x, y, i)
+    if not meet:
         return mid, half, False
+    at = float(max(meet, key=lambda p: p[1])[0])  # the higher meeting (the first on a tie)
     return at, min(max(3.0 * abs(at - x[i]), half / 27.0), half), True
 
 
