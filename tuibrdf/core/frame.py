@@ -33,6 +33,10 @@ def from_degrees(theta_deg, phi_deg) -> np.ndarray:
     return np.stack(np.broadcast_arrays(st * cp, st * sp, ct), axis=-1)
 
 
+_EXACT_SIN = (0.0, 1.0, 0.0, -1.0)  # at 0°, 90°, 180°, 270°
+_EXACT_COS = (1.0, 0.0, -1.0, 0.0)
+
+
 def sincos_deg(t) -> tuple[np.ndarray, np.ndarray]:
     """``(sin t, cos t)`` for ``t`` in degrees, exact at multiples of 90°."""
     if type(t) is float and math.isfinite(t):  # one angle (θi, φi): the same numbers without
@@ -51,10 +55,6 @@ def sincos_deg(t) -> tuple[np.ndarray, np.ndarray]:
     s = np.where(exact, np.array(_EXACT_SIN)[k], s)
     c = np.where(exact, np.array(_EXACT_COS)[k], c)
     return s, c
-
-
-_EXACT_SIN = (0.0, 1.0, 0.0, -1.0)  # at 0°, 90°, 180°, 270°
-_EXACT_COS = (1.0, 0.0, -1.0, 0.0)
 
 
 def incident(theta_i_deg: float, phi_i_deg: float = 180.0) -> np.ndarray:

@@ -58,11 +58,6 @@ ASCII_RAMP = " .:-=+*#%@"
 RING_CHAR = "~"
 #: index of a pixel that shows the terminal's own background
 TRANSPARENT = -1
-#: styles kept across frames, one per (foreground, background) pair: a map's 32 levels make
-#: at most 33² pairs, and a frame that meets a pair again takes the same ``Style`` object,
-#: whose ANSI codes Rich has already worked out (a new Style per pair per frame was ≈ 40 % of
-#: drawing a map)
-STYLE_CACHE = 8192
 
 
 @dataclass(frozen=True)
@@ -123,7 +118,6 @@ def luma(rgb: np.ndarray) -> np.ndarray:
 
 
 @lru_cache(maxsize=1 << 16)
-@lru_cache(maxsize=STYLE_CACHE)
 def cell_style(fg: int | tuple[int, int, int] | None, bg: int | tuple[int, int, int] | None):
     """The ``Style`` for a foreground/background pair: an int is an xterm index, a tuple an RGB
     colour, ``None`` the terminal default.  Never returns ``None`` (see module docstring).
@@ -315,18 +309,15 @@ class HalfBlockImage:
         run_codes = codes[rows, starts].tolist()
         for r, c, n, code in zip(rows.tolist(), starts.tolist(), lengths.tolist(), run_codes,
                                  strict=True):
-            if code < 0:  # a mark's look: its glyph and colour over the two pixels' mean
+            key = code
+            if code < 0:  # a mark: its glyph and colour over its two pixels' mean colour
                 m = self.marks[-code - 1]
                 key = (m.glyph, m.ascii, m.rgb, int(top[r, c]), int(bottom[r, c]))
-                got = table.get(key)
-                if got is None:
-                    got = table[key] = self._mark(m, key[3], key[4], system)
-                char, style = got
-            else:
-                got = table.get(code)
-                if got is None:
-                    got = table[code] = make(code)
-                char, style = got
+            got = table.get(key)
+            if got is None:
+                got = table[key] = (make(code) if code >= 0
+                                    else self._mark(m, key[3], key[4], system))
+            char, style = got
             out[r].append(Segment(char * n, style))
         if diff is not None:
             mark_changed(out, like._rows[system], ~same, diff)
