@@ -142,3 +142,19 @@ def test_log_scale_of_subnormal_values_warns_nothing(capsys, view):
                        "--color", "none")
     assert rc == 0, err
     assert err == ""
+
+
+def test_view_options_without_the_view_command(monkeypatch, capsys):
+    """`tuibrdf` alone opens the viewer, so `tuibrdf --color none` is the viewer in no colour
+    (it said "unknown command 'none'"); a misspelt option is the viewer's one-line error."""
+    import tuibrdf.cli.view as view
+
+    seen = []
+    monkeypatch.setattr(view, "check_terminal", lambda: None)
+    monkeypatch.setattr(view, "open_viewer", lambda state, color: seen.append(color))
+    assert main(["--color", "none"]) == 0
+    assert seen == ["none"]
+    assert main(["--colr", "none"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--colr" in err and "Traceback" not in err
+    assert main(["--version"]) == 0

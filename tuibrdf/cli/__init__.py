@@ -78,11 +78,17 @@ def main(argv: list[str] | None = None) -> int:
         return 70
 
 
+#: the options of ``tuibrdf`` itself; any other before a command belongs to ``view``
+TOP_OPTIONS = ("-h", "--help", "--version")
+
+
 def _main(argv: list[str] | None) -> int:
     parser = build_parser()
     argv = sys.argv[1:] if argv is None else list(argv)
     if not argv and isatty(sys.stdin) and isatty(sys.stdout):
         argv = ["view"]  # plain `tuibrdf` in a terminal opens the viewer (else: the help)
+    if argv and argv[0].startswith("-") and argv[0] not in TOP_OPTIONS:
+        argv = ["view", *argv]  # `tuibrdf --color none`: options of the default command
     commands = [name for name, _, _ in SUBCOMMANDS]
     first = next((a for a in argv if not a.startswith("-")), None)
     if first is not None and first not in commands:  # a typo gets a close match
