@@ -152,6 +152,9 @@ def test_view_options_without_the_view_command(monkeypatch, capsys):
     seen = []
     monkeypatch.setattr(view, "check_terminal", lambda: None)
     monkeypatch.setattr(view, "open_viewer", lambda state, color: seen.append(color))
+    # view.run sets NO_COLOR itself: setenv first, so monkeypatch restores "unset" afterwards
+    monkeypatch.setenv("NO_COLOR", "")
+    monkeypatch.delenv("NO_COLOR")
     assert main(["--color", "none"]) == 0
     assert seen == ["none"]
     assert main(["--colr", "none"]) == 2
