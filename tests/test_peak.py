@@ -271,3 +271,13 @@ def test_plane_check_keeps_off_the_horizon_at_90(monkeypatch, cosine):
                                                                           else 1.0)
     assert edge > 1e16  # the value a sample on the horizon to rounding gives
     assert math.isfinite(pk.value) and pk.value < edge * 1e-3
+
+
+def test_crease_a_few_hundredths_of_a_degree_above_the_horizon():
+    """Found by the hypothesis test: sharp cook-torrance (m = 0.001) at θi = 89.898°, whose
+    maximum is a V-cavity crease at θ ≈ 89.966°, beyond the plane check's grid; the 2-D
+    search's fit took it for a smooth maximum and stopped 3.9e-7 below it."""
+    params = {"kd": 0.0, "m": 0.001}
+    pk = peak("cook-torrance", params, 89.8984375)[0]
+    assert pk.value >= both_sides_max("cook-torrance", params, 89.8984375) * (1.0 - 1e-10)
+    assert 89.9 < pk.theta_deg < 90.0
