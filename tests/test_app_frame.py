@@ -419,6 +419,54 @@ async def test_status_line_grows_and_shrinks_with_its_text():
         assert st.size.height == 2
 
 
+async def test_a_parameter_key_repaints_one_row_of_the_panel(monkeypatch):
+    # the parameter panel draws rows: a new value repaints the cells of its own row (the
+    # selected one, Kd: the panel's first), a new model of as many rows or fewer keeps the
+    # panel's height where it is steady (tall terminals, layout.STEADY_PANEL_H) and lays the
+    # screen out again only where its rows set its height
+    from tuibrdf.app.layout import STEADY_PANEL_H
+    from tuibrdf.app.widgets import ParamPanel
+
+    calls: list[tuple] = []
+    refresh = ParamPanel.refresh
+
+    def spy(self, *regions, **kw):
+        calls.append((regions, kw.get("layout", False)))
+        return refresh(self, *regions, **kw)
+
+    monkeypatch.setattr(ParamPanel, "refresh", spy)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), sync=True)
+    async with app.run_test(size=(160, 48)) as pilot:
+        await pilot.pause()
+        panel = app.query_one("#panel-a")
+        assert panel.outer_size.height == STEADY_PANEL_H
+        calls.clear()
+        await pilot.press("minus")
+        await pilot.pause()
+        assert app.state.side.material.values["kd"] == pytest.approx(0.19)
+        assert calls and all(not layout for _, layout in calls)
+        rows = {r.y for regions, _ in calls for r in regions}
+        assert rows == {0}, calls  # Kd's row only, never the whole panel (no region)
+        assert all(regions for regions, _ in calls)
+        line = str(panel.render()).splitlines()[0]
+        assert "0.19" in line and line.startswith("▶")
+        calls.clear()
+        await pilot.press("m")
+        await pilot.pause()
+        assert not any(layout for _, layout in calls)
+        assert panel.outer_size.height == STEADY_PANEL_H
+    app = BrdfApp(ViewerState(sides=[Side.of("lambert")]), sync=True)
+    async with app.run_test(size=(100, 30)) as pilot:  # below BOTH_PANELS_H: rows set it
+        await pilot.pause()
+        panel = app.query_one("#panel-a")
+        assert panel.outer_size.height == 1 + 2  # Kd and the border
+        await pilot.press("m")
+        await pilot.pause()
+        await pilot.pause()
+        assert app.state.side.model == "phong"
+        assert panel.outer_size.height == 3 + 2
+
+
 # ---------------------------------------------------------------- the garbage of each key
 async def test_garbage_is_collected_after_each_frame_and_fully_when_idle(monkeypatch):
     # the young generations after each shown frame's paint, a full collection once frames
