@@ -173,6 +173,11 @@ TABLES_KEPT = 8
 _TABLES: OrderedDict[tuple, dict] = OrderedDict()
 
 
+#: a run's key in a code table: ``code * RUN_KEY + length`` (a row is far shorter)
+RUN_KEY = 1 << 20
+SEGMENTS = "segments"  #: the key of a code table's segments by run (:data:`RUN_KEY`)
+
+
 def _code_table(system: str, ring: int | None, palette: np.ndarray) -> dict:
     """``code → (character, style)`` of a palette's cells in ``system`` (the codes of
     :meth:`HalfBlockImage._build`; a mark's look is keyed by the mark and its two pixels),
@@ -306,19 +311,33 @@ class HalfBlockImage:
         if same.any():  # only the runs of the rows that changed
             keep = ~same[rows]
             rows, starts, lengths = rows[keep], starts[keep], lengths[keep]
-        run_codes = codes[rows, starts].tolist()
-        for r, c, n, code in zip(rows.tolist(), starts.tolist(), lengths.tolist(), run_codes,
-                                 strict=True):
-            key = code
-            if code < 0:  # a mark: its glyph and colour over its two pixels' mean colour
-                m = self.marks[-code - 1]
-                key = (m.glyph, m.ascii, m.rgb, int(top[r, c]), int(bottom[r, c]))
-            got = table.get(key)
-            if got is None:
-                got = table[key] = (make(code) if code >= 0
-                                    else self._mark(m, key[3], key[4], system))
-            char, style = got
-            out[r].append(Segment(char * n, style))
+        run_codes = codes[rows, starts]
+        # a run's segment, kept in the table by code and length (a frame meets the same few
+        # hundred again): one dict look-up a run; a mark's (code < 0) key never matches
+        keys = np.where(run_codes >= 0, run_codes * RUN_KEY + lengths, -1).tolist()
+        segments = table.get(SEGMENTS)
+        if segments is None:
+            segments = table[SEGMENTS] = {}
+        flat = [segments.get(k) for k in keys]
+        if None in flat:
+            for i in [i for i, seg in enumerate(flat) if seg is None]:
+                code, n = int(run_codes[i]), int(lengths[i])
+                key = code
+                if code < 0:  # a mark: its glyph and colour over its two pixels' mean colour
+                    m = self.marks[-code - 1]
+                    r, c = int(rows[i]), int(starts[i])
+                    key = (m.glyph, m.ascii, m.rgb, int(top[r, c]), int(bottom[r, c]))
+                got = table.get(key)
+                if got is None:
+                    got = table[key] = (make(code) if code >= 0
+                                        else self._mark(m, key[3], key[4], system))
+                flat[i] = seg = Segment(got[0] * n, got[1])
+                if code >= 0:
+                    segments[keys[i]] = seg
+        # the runs are in reading order: each changed row's are the next ones
+        ends = np.cumsum(np.bincount(rows, minlength=self.height)).tolist()
+        for r in np.flatnonzero(~same).tolist():
+            out[r] = flat[ends[r - 1] if r else 0:ends[r]]
         if diff is not None:
             mark_changed(out, like._rows[system], ~same, diff)
         return out
