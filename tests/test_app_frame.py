@@ -203,12 +203,16 @@ async def test_a_crash_sets_a_nonzero_return_code():
     assert app.return_code == 1 and "boom from a test" in str(app._exception)
 
 
-async def test_a_crash_in_the_frame_worker_stops_the_app(monkeypatch):
-    # a bug in the core while the frame worker computes (not bad data: a RuntimeError) ends
-    # the app with exit status 1 and its message, as one on the event loop does; bad data
-    # (ValueError) is a message in the panes instead
+@pytest.mark.parametrize("inline_s", [0.0, 10.0], ids=["worker", "event-loop"])
+async def test_a_crash_in_the_frame_worker_stops_the_app(monkeypatch, inline_s):
+    # a bug in the core while a frame is computed (not bad data: a RuntimeError) ends the app
+    # with exit status 1 and its message, in the frame worker as on the event loop (a fast
+    # frame is computed there: frames.INLINE_S); bad data (ValueError) is a message in the
+    # panes instead
+    from tuibrdf.app import frames
     from tuibrdf.core import scene
 
+    monkeypatch.setattr(frames, "INLINE_S", inline_s)
     real = scene.compute_frame
 
     def compute(req, **kw):
@@ -237,6 +241,58 @@ async def test_a_crash_in_the_frame_worker_stops_the_app(monkeypatch):
             for _ in range(40):
                 await pilot.pause(0.05)
     assert app.return_code == 1
+
+
+async def test_a_fast_frame_is_computed_on_the_event_loop_a_slow_one_in_the_worker(
+        monkeypatch):
+    # a frame whose kind took less than INLINE_S lately is computed where the key is handled
+    # (no thread to start and wait for); the first of a kind, a slow kind and a new albedo
+    # curve go to the worker
+    import threading
+    import time
+
+    from tuibrdf.app import frames
+    from tuibrdf.core import scene
+
+    scene.clear_caches()
+    where: list[tuple[float, bool, bool]] = []  # (θi, curve, on the event loop)
+    real = scene.compute_frame
+    slow_from = [90.0]
+
+    def compute(req, **kw):
+        where.append((req.theta_i, req.curve, threading.current_thread() is
+                      threading.main_thread()))
+        if req.theta_i >= slow_from[0]:
+            time.sleep(2 * frames.INLINE_S)
+        return real(req, **kw)
+
+    monkeypatch.setattr(scene, "compute_frame", compute)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))
+    async with app.run_test(size=(120, 36)) as pilot:
+        async def frame_of(theta):
+            assert await wait_for(pilot, lambda: app.frame is not None
+                                  and app.frame.request.theta_i == theta
+                                  and app.frame.complete)
+
+        await frame_of(30.0)
+        assert where and not any(loop for _, _, loop in where)  # the first: the worker
+        theta = 30.0
+        for _ in range(frames.INLINE_KEEP + 1):  # the first of a kind is the slowest (cold)
+            theta += 1.0
+            await pilot.press("right")
+            await frame_of(theta)
+        assert [loop for t, _, loop in where if t == theta] == [True]
+        slow_from[0] = theta + 1.0  # from here: twice INLINE_S
+        await pilot.press("right")  # known fast: on the loop, and now known slow
+        await frame_of(theta + 1.0)
+        assert [loop for t, _, loop in where if t == theta + 1.0] == [True]
+        await pilot.press("right")
+        await frame_of(theta + 2.0)
+        assert not any(loop for t, _, loop in where if t == theta + 2.0)
+        app.state.view = "albedo"  # the albedo curve, never computed: the worker
+        app._changed("", relayout=True)
+        assert await wait_for(pilot, lambda: app.frame.request.curve and app.frame.complete)
+        assert not any(loop for _, curve, loop in where if curve)
 
 
 def test_view_command_exits_nonzero_and_prints_the_error(monkeypatch, capsys):

@@ -24,7 +24,7 @@ from textual.screen import Screen
 from textual.strip import Strip
 from textual.widget import Widget
 
-from tuibrdf.app import paint
+from tuibrdf.app import frames, paint
 from tuibrdf.app.app import BrdfApp
 from tuibrdf.app.paint import ViewerCompositor, _cells
 from tuibrdf.app.state import Side, ViewerState
@@ -230,7 +230,8 @@ async def test_a_frame_is_painted_before_show_frame_returns(monkeypatch):
 
 def held_compute(monkeypatch, slow_only: bool):
     """``scene.compute_frame`` held by an event for θi = 31° (its albedo part only, or the
-    whole frame)."""
+    whole frame), in the frame worker (every frame goes there: none on the event loop)."""
+    monkeypatch.setattr(frames, "INLINE_S", 0.0)
     release = threading.Event()
     real = scene.compute_frame
 

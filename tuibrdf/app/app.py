@@ -90,6 +90,8 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self._loaded = ""  # the saved preset `P` loaded last
         self._worker: Worker | None = None  # the frame worker started last, and its request
         self._worker_for: FrameRequest | None = None
+        #: recent computing times of each kind of frame (frames.FrameDelivery._compute_here)
+        self._costs: dict[tuple, list[float]] = {}
         self._changes = 0  # changes so far; only the last one queued updates the screen
         self._relayout = False  # a change since the last update may show other panes
         self._preset_names: list[str] = []  # the saved presets, for the command palette

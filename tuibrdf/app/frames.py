@@ -53,6 +53,15 @@ DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
 #: (:meth:`FrameDelivery._collect_young`); this threshold only catches what no frame collects
 #: (a burst of keys, a file read).  docs/app.md has the numbers.
 GC_YOUNG = 10_000
+#: a frame whose kind (:meth:`FrameDelivery._kind`) took less than this to compute lately is
+#: computed on the event loop, not in the worker: handing it to a thread and back cost ≈ 2 ms
+#: of a key's ≈ 14 (the thread's start, the loop and the thread taking turns with the
+#: interpreter lock; docs/app.md).  With the drawing, such a frame still leaves the loop
+#: free between two keys of a key held at 30 a second; a slower one (measured data, a
+#: file's model, an albedo curve) keeps the worker, which a newer key cancels
+INLINE_S = 0.012
+#: the computing times kept per kind of frame (the largest decides)
+INLINE_KEEP = 3
 #: after a frame is shown, when its paint is on the terminal: Textual paints it ≈ 2–15 ms
 #: later and its writer thread, which needs the interpreter lock a collection holds, sends it
 #: ≈ 1 ms after that (a collection run right after the paint delayed the last byte by ≈ 2 ms)
@@ -158,6 +167,8 @@ class FrameDelivery:
                 self._failed(req, e)
             return
         done = scene.cached_frame(req)
+        if (done is None or not done.complete) and self._compute_here(req):
+            return
         if done is not None:
             self.frame_ready(done)
         else:
@@ -167,6 +178,40 @@ class FrameDelivery:
         busy = self._worker is not None and self._worker.is_running
         if (done is None or not done.complete) and not (busy and self._worker_for == req):
             self._worker, self._worker_for = self.compute(req), req
+
+    @staticmethod
+    def _kind(req: FrameRequest) -> tuple:
+        """What a frame's computing time depends on, but for the angles and parameter values
+        (the models, the panes and their sizes)."""
+        return (tuple(m.name for m in req.materials), req.map_px, req.solid, req.curve,
+                req.extra, req.extra_px)
+
+    def _took(self, req: FrameRequest, seconds: float) -> None:
+        """Note the time a frame of ``req``'s kind took to compute, none of it cached."""
+        kept = self._costs.setdefault(self._kind(req), [])
+        kept.append(seconds)
+        del kept[:-INLINE_KEEP]
+
+    def _compute_here(self, req: FrameRequest) -> bool:
+        """Compute and show ``req``'s frame now, on the event loop, when frames of its kind
+        took less than :data:`INLINE_S` lately (none yet: the worker, which times them) and it
+        needs no new albedo curve; returns whether it did."""
+        kept = self._costs.get(self._kind(req))
+        if not kept or max(kept) >= INLINE_S or scene.needs_curve(req):
+            return False
+        if self._worker is not None and self._worker.is_running:
+            self._worker.cancel()  # an older request's: its result would be dropped
+        fresh = scene.cached_frame(req) is None
+        start = time.perf_counter()
+        try:
+            res = scene.compute_frame(req)
+        except DRAW_ERRORS as e:
+            self._failed(req, e)
+            return True
+        if fresh:
+            self._took(req, time.perf_counter() - start)
+        self.show_frame(res)
+        return True
 
     @work(exclusive=True, thread=True, group="frame", description="frame")  # (Textual would
     # otherwise describe the worker by the repr of its request on every key: ≈ 0.1 ms)
@@ -196,12 +241,18 @@ class FrameDelivery:
 
         if worker.is_cancelled:
             return
+        fresh = scene.cached_frame(req) is None
+        start = time.perf_counter()
         try:
             res = scene.compute_frame(req, slow=False)
+            if res.complete and fresh:  # its time, kept by the loop (:meth:`_took`)
+                hand(self._took, req, time.perf_counter() - start)
             hand(self.frame_ready, res)
             if not res.complete and not worker.is_cancelled:
                 res = scene.compute_frame(req, check=lambda: not worker.is_cancelled)
                 if res is not None:
+                    if fresh:
+                        hand(self._took, req, time.perf_counter() - start)
                     hand(self.show_frame, res)
         except DRAW_ERRORS as e:  # a data file that vanished or changed on disk
             post(self._failed, req, e)
