@@ -45,6 +45,11 @@ from .peak import PEAK_TOL, Peak, _plane_refine, radiance, scores
 #: the largest value they draw at θ ≤ this angle, and the section through the peak goes
 #: through the peak's direction lowered to it
 HORIZON_DEG = 89.0
+#: a bounded peak above HORIZON_DEG is on the horizon for the pictures when it exceeds f at
+#: 89° below it by more than this factor (a map on the peak's scale would not reach two thirds
+#: of its top colour); a gentler rise (oren-nayar's backscatter, ggx at θi = 60°: 1.05) keeps
+#: the peak as the scale
+HORIZON_RATIO = 1.5
 #: the growth test's distances from the horizon, degrees (10⁰ … 10⁻⁸)
 GROWTH_DELTAS_DEG = tuple(10.0 ** -k for k in range(9))
 #: growth per decade over the last two decades that counts as unbounded (f ~ 1/δ^p, p ≥ 1/2)
@@ -113,10 +118,11 @@ def grows(y: np.ndarray) -> np.ndarray:
 
 def _classify(model: Model, values: Mapping[str, Any], theta_i_deg: float,
               peaks: tuple[Peak, ...], *, cosine: bool = False, phi_i_deg: float = 180.0
-              ) -> tuple[tuple[Peak, ...], list[float | None]]:
-    """The growth test (see the module): ``(peaks, toward)`` with a peak the finder missed next
-    to the horizon put right, and per column the azimuth (degrees) along which f grows without
-    bound toward the horizon, or None when it is bounded there."""
+              ) -> tuple[tuple[Peak, ...], list[float | None], list[float]]:
+    """The growth test (see the module): ``(peaks, toward, below)`` with a peak the finder
+    missed next to the horizon put right, per column the azimuth (degrees) along which f grows
+    without bound toward the horizon (None when it is bounded there), and f at 89° on the
+    azimuth tested nearest the peak's."""
     wi = incident(theta_i_deg, phi_i_deg)
     axes = _axes(wi, phi_i_deg, peaks)
     n = len(_DELTAS)
@@ -133,6 +139,11 @@ def _classify(model: Model, values: Mapping[str, Any], theta_i_deg: float,
             if up[c]:
                 if toward[c] is None or j > 0:  # the peak's own azimuth first
                     toward[c] = _phi(ax)
+                top = float(y[-1, c])
+                if top > peaks[c].value:
+                    # no maximum; the value kept is the largest reached (at 10⁻⁸° here), so
+                    # that the peak stays above every value a picture draws
+                    peaks[c] = Peak(top, 90.0 - GROWTH_DELTAS_DEG[-1], _phi(ax), peaks[c].label)
             elif float(y[:, c].max()) > peaks[c].value * (1.0 + PEAK_TOL):
                 # a higher value next to the horizon: refine it along this azimuth (t from
                 # the normal, ascending: δ descending)
@@ -146,7 +157,14 @@ def _classify(model: Model, values: Mapping[str, Any], theta_i_deg: float,
         for c, v, t in _plane_refine(model, values, wi, cosine, ax, todo, val):
             if v > peaks[c].value * (1.0 + PEAK_TOL):
                 peaks[c] = Peak(v, math.degrees(t), _phi(ax), peaks[c].label)
-    return tuple(peaks), toward
+    # f at 89° below each peak above 89° (on the axis of its azimuth), for the ratio test
+    below = []
+    for p in peaks:
+        a = math.radians(p.phi_deg)
+        j = max(range(len(axes)), key=lambda j: math.cos(a) * axes[j][0]
+                + math.sin(a) * axes[j][1])
+        below.append(float(sc[j * n, len(below)]))
+    return tuple(peaks), toward, below
 
 
 def assess(model: Model, values: Mapping[str, Any], theta_i_deg: float,
@@ -156,11 +174,12 @@ def assess(model: Model, values: Mapping[str, Any], theta_i_deg: float,
     see the module) and per column where it is for the pictures (:class:`Horizon`).  One
     kernel call of 9 directions per azimuth tested (one or two), and a 1-D search where the
     finder missed a peak next to the horizon."""
-    peaks, toward = _classify(model, values, theta_i_deg, peaks, cosine=cosine,
-                              phi_i_deg=phi_i_deg)
+    peaks, toward, below = _classify(model, values, theta_i_deg, peaks, cosine=cosine,
+                                     phi_i_deg=phi_i_deg)
     out = tuple(Horizon("unbounded", t) if t is not None
-                else Horizon("capped") if p.theta_deg > HORIZON_DEG else Horizon()
-                for p, t in zip(peaks, toward, strict=True))
+                else Horizon("capped") if (p.theta_deg > HORIZON_DEG
+                                           and p.value > HORIZON_RATIO * b) else Horizon()
+                for p, t, b in zip(peaks, toward, below, strict=True))
     return peaks, out
 
 

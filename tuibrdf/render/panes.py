@@ -314,8 +314,8 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
         if s0.peaks[0].theta_deg > HORIZON_DEG:
             # the section across a peak on the horizon is the horizon: it goes through the
             # peak's direction lowered to 89° instead, and says so
-            whats = [f"{name} through θ={th:g}° below the peak φ={round(ph) % 360:g}°",
-                     f"{name} through θ={th:g}° below the peak", name]
+            at = f"θ={th:g}° φ={round(ph) % 360:g}°"
+            whats = [f"{name} through {at}, below the peak", f"{name} {at} below peak", name]
         else:
             whats = [f"{name} through peak θ={round(th, 1):g}° φ={round(ph) % 360:g}°", name]
     else:
