@@ -157,13 +157,21 @@ def text(renderable, width=200) -> str:
     return cap.get()
 
 
+#: the number of a scale that is not the peak (core/horizon.py), long or short wording
+SCALE_RE = r"scale(?::? max θ≤89°)? ([0-9.e+-]+)"
+
+
 def numbers(res, view, look, w, h):
-    """(title peak, colour bar top, status peak, status albedo) as printed."""
+    """(title peak, colour bar top, status peak, status albedo) as printed; when the
+    picture's scale is not its peak (the peak above 89° or unbounded), the scale's number in
+    the title and the status line instead of the peak's."""
     out = text(panes.pane(view, res, 0, w, h, look), w).rstrip("\n").split("\n")
-    title = re.search(r"peak ([0-9.e+-]+)", out[0]).group(1)
-    bar = out[-1].split()[-2] if view == "map" else None
+    what = SCALE_RE if panes.shown_scale(res.sides[0], view, look).capped \
+        else r"peak ([0-9.e+-]+)"
+    title = re.search(what, out[0]).group(1)
+    bar = re.findall(r"([0-9.e+-]+) sr⁻¹", out[-1])[-1] if view == "map" else None
     stats = text(panes.stats_text(res, view, look))
-    status = re.search(r"peak ([0-9.e+-]+)", stats).group(1)
+    status = re.search(what, stats).group(1)
     albedo = re.search(r"a\(θi\)=(\S+)", stats).group(1)
     return title, bar, status, albedo
 
@@ -181,7 +189,7 @@ def test_title_colour_bar_and_status_show_one_peak(model, params, theta_i, size,
     req = scene.FrameRequest((mat,), theta_i, map_px=map_pixels(w, h), solid=True)
     res = scene.compute_frame(req)
     look = panes.Look(color="none", cmap=cmap, levels=32)
-    expected = fmt_value(panes.shown_peak(res.sides[0], "map", look).value)
+    expected = fmt_value(panes.shown_scale(res.sides[0], "map", look).value)
     title, bar, status, albedo = numbers(res, "map", look, w, h)
     assert title == bar == status == expected
     # the albedo shown is the core quadrature's at this θi
@@ -191,7 +199,8 @@ def test_title_colour_bar_and_status_show_one_peak(model, params, theta_i, size,
     assert albedo.strip("()").split(",") == [fmt_value(x) for x in a]
     # the solid says the same peak (the luminance for RGB models, labelled)
     sol_title, _, sol_status, _ = numbers(res, "solid", look, w, h)
-    assert sol_title == sol_status == fmt_value(res.sides[0].peak.value)
+    assert sol_title == sol_status == fmt_value(panes.shown_scale(res.sides[0], "solid",
+                                                                  look).value)
     # the sections say "section max", never "peak", and never more than the peak
     sec = text(panes.pane("incidence", res, 0, w, h, look), w).split("\n")[0]
     assert "section max" in sec and "peak" not in sec

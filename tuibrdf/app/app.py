@@ -17,7 +17,7 @@ from textual.css.query import NoMatches
 from textual.widgets import Footer, Static
 from textual.worker import Worker
 
-from ..core import scene
+from ..core.frame import from_degrees
 from ..core.hemimap import dir_to_uv, geometry
 from ..core.params import _fmt
 from ..core.scene import FrameRequest, FrameResult, section_directions
@@ -220,7 +220,8 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
                 if view == "incidence":
                     w = section_directions("incidence", np.array([t]), res.request.phi_i)[0]
                 else:
-                    w, above = great_circle(scene.peak_center(res.sides[0].peak),
+                    # the section's own centre (the peak, lowered to 89° on the horizon)
+                    w, above = great_circle(from_degrees(*res.sides[0].section_center),
                                             np.array([t]), res.request.section_azimuth)
                     w = w[0] if above[0] else None
                 if w is not None:

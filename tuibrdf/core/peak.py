@@ -65,7 +65,8 @@ largest value it reached in ``PEAK_ROUNDS`` rounds, ≈ 1e-11° above the horizo
 cook-torrance and ggx defaults, deterministically (the same input gives the same output).
 The plane check's samples stay 1° or more from the horizon, so it changes nothing there (a
 sample at its end, t = 90°, is the horizon only to rounding, cos(π/2) = 6e-17, where
-cook-torrance's value is 2.7e10 times the 2-D searches').
+cook-torrance's value is 2.7e10 times the 2-D searches').  Whether a peak is unbounded, and
+the scale the pictures use for a peak on the horizon, is :mod:`tuibrdf.core.horizon`'s.
 """
 
 from __future__ import annotations

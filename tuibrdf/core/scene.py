@@ -7,11 +7,16 @@ the cosine toggle, the map's pixel grid (when a map is shown), whether the 3D so
 albedo curve is shown.  Per material the result holds:
 
 ==============  ==================================================================================
-``peaks``       :func:`tuibrdf.core.peak.find_peaks`: the one peak (``(Y, R, G, B)`` for RGB)
+``peaks``       :func:`tuibrdf.core.peak.find_peaks`: the one peak (``(Y, R, G, B)`` for RGB),
+                put right next to the horizon by :func:`tuibrdf.core.horizon.frame_scale`
+``horizons``    per column, whether the peak is above 89° or unbounded
+                (:class:`~tuibrdf.core.horizon.Horizon`): the pictures' scale is then the largest
+                value they draw at θ ≤ 89° (:meth:`SideFrame.scale_for`)
 ``sections``    ``f`` along both planes (θr from −90° to 90°, :data:`SECTION_THETAS`) and, under
-                ``"peak"``, along the great circle through ``peaks[0]`` (the overall peak: the
-                luminance's for RGB) at the request's section azimuth (signed angle from the
-                peak, the same 181 samples; 0 below the horizon): one kernel call for all three
+                ``"peak"``, along the great circle through :attr:`SideFrame.section_center` (the
+                overall peak, the luminance's for RGB; lowered to θ = 89° when it is above 89°)
+                at the request's section azimuth (signed angle from the
+                centre, the same 181 samples; 0 below the horizon): one kernel call for all three
 ``probe``       ``(f, f·cos θr)`` at the request's probe direction (floats, or 3-tuples for RGB),
                 or None when no probe is shown
 ``extra``       the arrays of the request's ``extra`` view, or None (:func:`extra_values`):
@@ -45,8 +50,10 @@ from typing import Any
 
 import numpy as np
 
+from .conventions import luminance
 from .frame import from_degrees, incident, sincos_deg
 from .hemimap import MapInfo, map_values
+from .horizon import HORIZON_DEG, Horizon, PeakScale, assess, drawn_scale
 from .material import Material
 from .peak import Peak, find_peaks, radiance
 from .quadrature import (
@@ -197,6 +204,8 @@ class SideFrame:
     curve_error: np.ndarray | None = None
     extra: tuple | None = None
     probe: tuple | None = None
+    #: per column of ``peaks`` (:mod:`tuibrdf.core.horizon`); None: every peak is ordinary
+    horizons: tuple[Horizon, ...] | None = None
 
     def albedo_exceeds_one(self) -> bool:
         """The energy test on the albedo: above 1 by more than its error estimate."""
@@ -213,13 +222,66 @@ class SideFrame:
         """The scalar peak: the value, or the luminance of an RGB model."""
         return self.peaks[0]
 
-    def peak_for(self, rgb_mode: str) -> Peak:
-        """The peak a picture in ``rgb_mode`` is scaled by: an RGB model in ``"color"`` mode
-        shows every channel on one scale, topped by the largest channel peak; otherwise the
-        luminance (or the scalar value)."""
+    def horizon(self, column: int = 0) -> Horizon:
+        """Where column ``column``'s peak is for the pictures (:class:`Horizon`)."""
+        return Horizon() if self.horizons is None else self.horizons[column]
+
+    def _shown(self, rgb_mode: str) -> int:
+        """The column of :meth:`peak_for`."""
         if len(self.peaks) == 1 or rgb_mode != "color":
-            return self.peaks[0]
-        return max(self.peaks[1:], key=lambda p: p.value)
+            return 0
+        return max(range(1, len(self.peaks)),
+                   key=lambda j: (self.horizon(j).kind == "unbounded", self.peaks[j].value))
+
+    def peak_for(self, rgb_mode: str) -> Peak:
+        """The peak a picture in ``rgb_mode`` shows: an RGB model in ``"color"`` mode shows
+        every channel on one scale, and the largest channel peak (an unbounded one first);
+        otherwise the luminance (or the scalar value)."""
+        return self.peaks[self._shown(rgb_mode)]
+
+    def peak_horizon(self, rgb_mode: str) -> Horizon:
+        """:meth:`horizon` of :meth:`peak_for`'s column."""
+        return self.horizon(self._shown(rgb_mode))
+
+    def scale_for(self, rgb_mode: str, view: str = "map") -> PeakScale | None:
+        """The top of the colour (or radius) scale of ``view`` (``"map"`` or ``"solid"``, whose
+        values the frame holds; the solid in luminance) in ``rgb_mode``: the one number every
+        pane shows.  :meth:`peak_for`'s peak when it is at θ ≤ 89° and bounded; otherwise the
+        largest value the picture draws at θ ≤ 89° (:func:`~tuibrdf.core.horizon.drawn_scale`,
+        every channel in ``"color"`` mode), with the peak's kind.  None when that picture is
+        not in the frame."""
+        mode = "luminance" if view == "solid" else rgb_mode
+        pk, hz = self.peak_for(mode), self.peak_horizon(mode)
+        if hz.kind == "peak":
+            return PeakScale(*pk)
+        if view == "map" and self.map is not None:
+            from .hemimap import geometry
+
+            data = self.map[0]
+            g = geometry(data.shape[1], data.shape[0])
+            v = data[g.inside]
+        elif view == "solid" and self.solid is not None:
+            dirs = solid_samples()[0]
+            g = None
+            v = self.solid[:len(dirs)]
+        else:
+            return None
+        labels = ("",)
+        if v.ndim == 2:
+            if mode == "color":
+                labels = ("R", "G", "B")
+            else:
+                v, labels = luminance(v), ("Y",)
+        s = drawn_scale(v, g.dirs if g is not None else dirs, labels)
+        return s._replace(kind=hz.kind, toward_deg=hz.toward_deg)
+
+    @property
+    def section_center(self) -> tuple[float, float]:
+        """``(θ, φ)`` in degrees of the centre of the section through the peak: the overall
+        peak's direction, lowered to θ = 89° when it is above (the section across a peak on
+        the horizon would be the horizon itself)."""
+        p = self.peaks[0]
+        return min(p.theta_deg, HORIZON_DEG), p.phi_deg
 
     @property
     def section_max(self) -> float:
@@ -271,6 +333,13 @@ def turn(w: np.ndarray, deg: float) -> np.ndarray:
     sp, cp = (float(x) for x in sincos_deg(deg))
     return np.stack([cp * w[..., 0] - sp * w[..., 1], sp * w[..., 0] + cp * w[..., 1],
                      w[..., 2]], axis=-1)
+
+
+def _peaks(m: Material, theta_i: float, cosine: bool, phi_i: float
+           ) -> tuple[tuple[Peak, ...], tuple[Horizon, ...]]:
+    """The frame's peaks and where they are for the pictures (:mod:`tuibrdf.core.horizon`)."""
+    peaks = find_peaks(m.model, m.values, theta_i, cosine=cosine, phi_i_deg=phi_i)
+    return assess(m.model, m.values, theta_i, peaks, cosine=cosine, phi_i_deg=phi_i)
 
 
 def peak_center(peak: Peak) -> np.ndarray:
@@ -393,11 +462,11 @@ def _curve(m: Material, check: Callable[[], bool] | None = None,
 def _side(req: FrameRequest, m: Material, slow: bool,
           check: Callable[[], bool] | None) -> SideFrame | None:
     t, cos, pi = req.theta_i, req.cosine, req.phi_i
-    peaks = _PEAKS.get((m, t, pi, cos), lambda: find_peaks(m.model, m.values, t, cosine=cos,
-                                                           phi_i_deg=pi))
+    peaks, horizons = _PEAKS.get((m, t, pi, cos), lambda: _peaks(m, t, cos, pi))
     az = req.section_azimuth
-    sections = _SECTIONS.get((m, t, pi, cos, peaks[0][1:3], az),
-                             lambda: _sections(m, t, cos, peak_center(peaks[0]), az, pi))
+    ctr = SideFrame(m, peaks, {}).section_center
+    sections = _SECTIONS.get((m, t, pi, cos, ctr, az),
+                             lambda: _sections(m, t, cos, from_degrees(*ctr), az, pi))
     mp = None
     if req.map_px is not None:
         px = req.map_px
@@ -428,7 +497,7 @@ def _side(req: FrameRequest, m: Material, slow: bool,
         curve = _CURVES.peek((m, pi)) if req.curve else None
     a, a_err = albedo if albedo is not None else (None, None)
     c, c_err = curve if curve is not None else (None, None)
-    return SideFrame(m, peaks, sections, mp, solid, a, c, a_err, c_err, extra, probe)
+    return SideFrame(m, peaks, sections, mp, solid, a, c, a_err, c_err, extra, probe, horizons)
 
 
 def compute_frame(req: FrameRequest, *, slow: bool = True,

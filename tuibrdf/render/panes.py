@@ -3,10 +3,12 @@
 Every number a pane shows comes from the result, so the panes agree: the map's title, its
 colour bar's top, the solid's scale and the status line show the same peak
 (:func:`shown_peak`: for an RGB model the luminance ``Y``, or the largest channel when the map
-shows the channels in colour, and the text says which); the cross-sections say "section max"
-(the largest value along the two planes, below the peak when it lies off them).  In compare
-mode both maps share one colour scale topped by the larger of the two peaks, and the bar says
-whose peak that is.
+shows the channels in colour, and the text says which) and the same scale (:func:`shown_scale`:
+the peak, or the largest value the picture draws at θ ≤ 89° when the peak is above 89° or
+unbounded, "f → ∞"; :mod:`tuibrdf.core.horizon`); the cross-sections say "section max" (the
+largest value along the two planes, below the peak when it lies off them).  In compare mode
+both maps share one colour scale topped by the larger of the two scales, and the bar says
+whose it is.
 
 =================  =================================================================
 :func:`pane`       dispatch by view name (``map``, ``incidence``, ``perpendicular``,
@@ -27,6 +29,7 @@ from rich.text import Text
 
 from ..core.conventions import decimals_for, fmt_value, luminance
 from ..core.hemimap import geometry
+from ..core.horizon import HORIZON_DEG, Horizon, PeakScale
 from ..core.peak import Peak
 from ..core.scene import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
 from .albedo_plot import albedo_plot
@@ -81,9 +84,44 @@ class Look:
         return self.rgb_mode
 
 
+#: how the texts name a scale that is not the peak (:mod:`tuibrdf.core.horizon`)
+CAP_TEXT = f"max θ≤{HORIZON_DEG:g}°"
+
+
+def _mode(view: str, look: Look) -> str:
+    return "luminance" if view == "solid" else look.rgb
+
+
 def shown_peak(side: SideFrame, view: str, look: Look) -> Peak:
-    """The peak the pictures of ``view`` are scaled by, and so the one every pane shows."""
-    return side.peaks[0] if view == "solid" else side.peak_for(look.rgb)
+    """The peak the pictures of ``view`` show (the solid: the luminance's)."""
+    return side.peak_for(_mode(view, look))
+
+
+def shown_scale(side: SideFrame, view: str, look: Look) -> PeakScale | None:
+    """The top of the scale the picture of ``view`` (map or solid) is drawn on: the value of
+    :func:`shown_peak`, or the largest value it draws at θ ≤ 89° when that peak is above 89°
+    or unbounded (``capped``); None for a view without one."""
+    return side.scale_for(look.rgb, "solid" if view == "solid" else "map")
+
+
+def peak_horizon(side: SideFrame, view: str, look: Look) -> Horizon:
+    """Where :func:`shown_peak` is (``kind == "unbounded"``: f → ∞)."""
+    return side.peak_horizon(_mode(view, look))
+
+
+def scale_text(scale: PeakScale, short: bool = False) -> str:
+    """``scale: max θ≤89° 513`` (``scale 513 (θ≤89°)`` short), with the channel for RGB: the
+    largest value the picture draws at θ ≤ 89°."""
+    ch = f" ({scale.label})" if scale.label else ""
+    if short:
+        return f"scale {fmt_value(scale.value)}{ch} (θ≤{HORIZON_DEG:g}°)"
+    return f"scale: {CAP_TEXT} {fmt_value(scale.value)}{ch}"
+
+
+def toward_text(hz: Horizon) -> str:
+    """``φ=0°``: the azimuth along which f grows without bound (whole degrees)."""
+    ph = round(hz.toward_deg)
+    return f"φ={ph + 360 if ph <= -180 else ph}°"
 
 
 def _label(res: FrameResult, k: int) -> str:
@@ -96,10 +134,16 @@ def _unit(cosine: bool) -> str:
     return "sr⁻¹"
 
 
-def peak_text(peak: Peak, cosine: bool) -> str:
-    """``f peak 425 sr⁻¹`` (``… (Y)`` or ``(R)`` for an RGB model)."""
+def peak_text(peak: Peak, cosine: bool, ps: Horizon | PeakScale | None = None,
+              short: bool = False) -> str:
+    """``f peak 425 sr⁻¹`` (``… (Y)`` or ``(R)`` for an RGB model); ``f → ∞ toward the
+    horizon`` when ``ps`` (where the peak is) says it is unbounded."""
     what = "f·cosθr" if cosine else "f"
     ch = f" ({peak.label})" if peak.label else ""
+    if ps is not None and ps.kind == "unbounded":
+        return f"{what} → ∞ {'at' if short else 'toward the'} horizon{ch}"
+    if short:
+        return f"{what} peak {fmt_value(peak.value)}{ch}"
     return f"{what} peak {fmt_value(peak.value)} {_unit(cosine)}{ch}"
 
 
@@ -124,6 +168,16 @@ def albedo_text(a, error=None) -> str:
 
 
 # ----------------------------------------------------------------------------------- map
+def _top(values: np.ndarray, rgb_mode: str) -> float:
+    """The largest value a picture of ``values`` draws (its luminance for an RGB picture not
+    in ``"color"`` mode); 0 when none is finite."""
+    v = np.asarray(values, dtype=float)
+    if v.ndim >= 2 and v.shape[-1] == 3 and rgb_mode != "color" and v.ndim == 3:
+        v = luminance(v)
+    finite = v[np.isfinite(v)]
+    return float(finite.max()) if finite.size else 0.0
+
+
 @lru_cache(maxsize=16)
 def ring_mask(px_w: int, px_h: int) -> np.ndarray:
     """Pixels outside the disc that touch it (8-neighbourhood): the horizon ring."""
@@ -146,10 +200,18 @@ def map_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     data, info = side.map
     px_h, px_w = data.shape[:2]
     cosine = res.request.cosine
-    peak = shown_peak(side, "map", look)
-    tops = [shown_peak(s, "map", look).value for s in res.sides]
-    top = max(tops)
-    note = f"({SIDE_LABELS[int(np.argmax(tops))]} peak)" if len(res.sides) > 1 else ""
+    peak, ps = shown_peak(side, "map", look), peak_horizon(side, "map", look)
+    scales = [shown_scale(s, "map", look) for s in res.sides]  # maps: never None
+    k_top = max(range(len(scales)), key=lambda j: scales[j].value)
+    top = scales[k_top].value
+    # the bar's note: whose scale (compare mode), and that values above it are clipped
+    whose = (SIDE_LABELS[k_top] + " " + ("peak" if not scales[k_top].capped else CAP_TEXT)
+             if len(res.sides) > 1 else (CAP_TEXT if scales[k_top].capped else ""))
+    # pixels above a scale that is not the peak (closer to the horizon than 89°: the CLI's
+    # largest maps) take the top colour
+    clipped = any(sc.capped and _top(s.map[0], look.rgb) > sc.value
+                  for s, sc in zip(res.sides, scales, strict=True))
+    note = f"({whose}{', clipped' if clipped else ''})" if whose else ""
     scale = Scale(top if top > 0 else 1.0, look.log)  # an all-zero BRDF: the lowest colour
     col = colorize(data, look.cmap, levels=look.levels, log=look.log, rgb_mode=look.rgb,
                    scale=scale)
@@ -165,17 +227,24 @@ def map_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
         marks = [mk for mk in marks if (mk.row, mk.col) != (r // 2, c)]
         marks.append(Mark(r // 2, c, **PROBE_MARK))
     image = HalfBlockImage(index, pal, marks, color_system=look.color, ring=ring_index)
-    if info.vmin >= peak.value * (1.0 - 1e-12):  # Lambert: no "the" peak
-        what = "f·cosθr" if cosine else "f"
-        head, at = f"{what} = {fmt_value(peak.value)} {_unit(cosine)}", "everywhere"
-    else:
-        head, at = peak_text(peak, cosine), f"at {where(peak.theta_deg, peak.phi_deg)}"
+    own = shown_scale(side, "map", look)
     bar_cmap = "grey" if (data.ndim == 3 and look.rgb == "color") else look.cmap
     bar = colorbar(scale, bar_cmap, w, levels=look.levels, unit=_unit(cosine),
                    color_system=look.color, note=note)
     t = res.request.theta_i
-    head_line = title([(_label(res, k), 2), (f"θi={t:g}°", 3), (head, 0), (at, 1),
-                       (mark_legend(look.color), 4)], w)
+    lead = [(_label(res, k), 2), (f"θi={t:g}°", 3)]
+    if not own.capped and info.vmin >= peak.value * (1.0 - 1e-12):  # Lambert: no "the" peak
+        what = "f·cosθr" if cosine else "f"
+        parts = [[(f"{what} = {fmt_value(peak.value)} {_unit(cosine)}", 0), ("everywhere", 1)]]
+    elif not own.capped:
+        parts = [[(peak_text(peak, cosine), 0), (f"at {where(peak.theta_deg, peak.phi_deg)}", 1)]]
+    else:
+        # the peak above 89° (or none: f → ∞) and the scale the map is drawn on, both named
+        at = (f"at {toward_text(ps)}" if ps.kind == "unbounded"
+              else f"at {where(peak.theta_deg, peak.phi_deg)}")
+        parts = [[(peak_text(peak, cosine, ps, short), 0), (at, 1),
+                  (scale_text(own, short), 0)] for short in (False, True)]
+    head_line = first_fitting([lead + p + [(mark_legend(look.color), 4)] for p in parts], w)
     return Group(head_line, image, bar)
 
 
@@ -237,12 +306,18 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
                                    charset=look.charset)
     az = res.request.section_azimuth
     if plane == "perpendicular":
-        pk = res.sides[0].peak
+        s0 = res.sides[0]
+        th, ph = s0.section_center
         name = "perp." if az == 90.0 else f"ψ={az:g}°"
         # where the plane passes may go (the map's title has the peak's direction): a narrow
         # pane keeps "section max …" whole rather than cropping it to "sec"
-        whats = [(f"{name} through peak θ={round(pk.theta_deg, 1):g}° "
-                  f"φ={round(pk.phi_deg) % 360:g}°"), name]
+        if s0.peaks[0].theta_deg > HORIZON_DEG:
+            # the section across a peak on the horizon is the horizon: it goes through the
+            # peak's direction lowered to 89° instead, and says so
+            at = f"θ={th:g}° φ={round(ph) % 360:g}°"
+            whats = [f"{name} through {at}, below the peak", f"{name} {at} below peak", name]
+        else:
+            whats = [f"{name} through peak θ={round(th, 1):g}° φ={round(ph) % 360:g}°", name]
     else:
         whats = [plane]
     if compare:
@@ -302,8 +377,8 @@ def extra_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Renderab
 def solid_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     """Title and the photometric solid as half blocks, its radius scale the frame's peak."""
     side = res.sides[k]
-    peak = shown_peak(side, "solid", look)
-    index, pal = solid_image(side.solid, res.request.theta_i, w, 2 * (h - 1), rmax=peak.value,
+    peak, sc = shown_peak(side, "solid", look), shown_scale(side, "solid", look)
+    index, pal = solid_image(side.solid, res.request.theta_i, w, 2 * (h - 1), rmax=sc.value,
                              phi_i_deg=res.request.phi_i,
                              cmap=look.cmap, log=look.log, azimuth_deg=look.azimuth,
                              elevation_deg=look.elevation)
@@ -311,8 +386,15 @@ def solid_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     if look.log:
         what += f" (log, {LOG_DECADES:g} decades)"
     ch = f" ({peak.label})" if peak.label else ""
-    head = title([(_label(res, k), 2), (f"θi={res.request.theta_i:g}°", 3),
-                  (f"solid {what}, peak {fmt_value(peak.value)}{ch}", 0),
+    if sc.capped:  # the radius scale is not the peak: say which it is, and that it clips
+        ps = peak_horizon(side, "solid", look)
+        solid = np.asarray(side.solid, dtype=float)
+        over = _top(luminance(solid) if solid.ndim == 2 else solid, "color") > sc.value
+        num = [(f"solid {what}, {scale_text(sc)}{', clipped' if over else ''}", 0),
+               (peak_text(peak, res.request.cosine, ps, short=True), 1)]
+    else:
+        num = [(f"solid {what}, peak {fmt_value(peak.value)}{ch}", 0)]
+    head = title([(_label(res, k), 2), (f"θi={res.request.theta_i:g}°", 3), *num,
                   (f"az {look.azimuth:g}° el {look.elevation:g}°", 4)], w)
     return Group(head, HalfBlockImage(index, pal, color_system=look.color))
 
@@ -370,11 +452,20 @@ def stats_text(res: FrameResult, view: str, look: Look) -> Text:
         line.append(f"{tag} {'a' if compare else 'a(θi)'}={a}")
         if side.albedo_exceeds_one():
             line.append(" >1 NOT energy-conserving", style="bold red")
-        pk = shown_peak(side, view, look)
+        pk, ps = shown_peak(side, view, look), peak_horizon(side, view, look)
+        sc = shown_scale(side, view, look) if view in ("map", "solid") else None
         what = "f·cos peak" if res.request.cosine else "peak"
         ch = f" ({pk.label})" if pk.label else ""
-        at = where(pk.theta_deg, pk.phi_deg)
-        at = f"({at.replace('θ=', '').replace(' φ=', ',')})" if compare else f"at {at}"
-        line.append(f"  {what} {fmt_value(pk.value)}{ch} {at}")
+        if ps.kind == "unbounded":  # no maximum: the finder's value would be an artefact
+            fn = "f·cos" if res.request.cosine else "f"
+            at = toward_text(ps)
+            at = f"({at})" if compare else f"at {at}"
+            line.append(f"  {fn} → ∞ toward the horizon{ch} {at}")
+        else:
+            at = where(pk.theta_deg, pk.phi_deg)
+            at = f"({at.replace('θ=', '').replace(' φ=', ',')})" if compare else f"at {at}"
+            line.append(f"  {what} {fmt_value(pk.value)}{ch} {at}")
+        if sc is not None and sc.capped:
+            line.append(f" · {scale_text(sc, short=compare)}")
     return line
 

@@ -3,7 +3,8 @@
 - Directions: :func:`tuibrdf.core.scene.solid_samples`, the triangles of a hemisphere mesh,
   each sampled on a barycentric grid, so the surface stays closed where a sharp lobe stretches
   it; the values come with the frame (one kernel call).  RGB models use their Rec.709
-  luminance for the radius, and the radius scale is the frame's peak.
+  luminance for the radius, and the radius scale is the frame's scale (its peak, or the largest
+  value at θ ≤ 89° when the peak is above 89° or unbounded: larger radii are clipped).
 - View: orthographic, camera at ``azimuth`` (from +x, the mirror side, toward +y) and
   ``elevation`` above the surface; screen right = ``(−sin az, cos az, 0)``, screen up =
   camera direction × right.
@@ -125,13 +126,17 @@ def solid_image(
 
     ``values``: :func:`tuibrdf.core.scene.solid_values` (at the samples, then at the face
     corners; RGB values are drawn by their luminance); ``rmax``: the radius scale, the frame's
-    peak, so the solid's size and its title agree with every other pane."""
+    scale (its peak, or the largest value at θ ≤ 89°: larger values are clipped to it), so the
+    solid's size and its title agree with every other pane."""
     dirs, face, corner_dirs = solid_samples()
     f = np.asarray(values, dtype=float)
     if f.ndim == 2:
         f = luminance(f)
     f, fv = f[: len(dirs)], f[len(dirs):].reshape(corner_dirs.shape[:2])
     top = rmax if rmax > 0 else 1.0
+    # a scale below the peak (the peak above 89° or unbounded, core/horizon.py): the radius is
+    # clipped at it, as the map's colours are
+    f, fv = np.minimum(f, top), np.minimum(fv, top)
     if log:  # radius = decade position in [0, 1], as in the polar plots
         f = radius(f, top, True, LOG_DECADES)
         fv = radius(fv, top, True, LOG_DECADES)
