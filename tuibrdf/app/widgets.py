@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from os.path import commonprefix
 
 from rich.cells import cell_len
@@ -278,14 +279,20 @@ class ParamPanel(QuietStatic):
 class StatusLine(Rows):
     """Two lines: θi and the frame's numbers; the view, scale, colour map and a message.  The
     numbers may wrap to a third line; the last line is cut with "…" at the width, so a long
-    message never adds one.  A picture, so a new number re-sends only the cells around it
-    (a ``Static`` re-sent both lines whole: ≈ 1.1 kB a key at 160 columns)."""
+    message never adds one.  The text comes in forms, the full one first and each shorter
+    (:func:`.text.status_text`'s ``terse``): the first that fits the three rows is shown; if
+    none does, the tersest is cut after its third row, which ends in "…" (never a silent
+    cut).  A picture, so a new number re-sends only the cells around it (a ``Static``
+    re-sent both lines whole: ≈ 1.1 kB a key at 160 columns)."""
 
     DEFAULT_CSS = "StatusLine { height: auto; max-height: 3; padding: 0 1; }"
+    MAX_ROWS = 3
 
     def __init__(self, **kw) -> None:
         super().__init__(**kw)
-        self._source = Text()  # the text as given (re-cut at a new width)
+        self._forms: Callable[[int], Text] = lambda k: Text()  # the text's forms (re-cut at a
+        self._n_forms = 1  # new width)
+        self._made: dict[int, Text] = {}  # the forms made so far
         self._text = Text()  # as shown
         self._key: tuple | None = None
 
@@ -294,23 +301,56 @@ class StatusLine(Rows):
         return self._text
 
     def _rows(self, width: int) -> list[list[Segment]]:
-        return render_rows(self._text, self.app.console, max(1, width))[:3]
+        return render_rows(self._text, self.app.console, max(1, width))[:self.MAX_ROWS]
 
     def get_content_height(self, container, viewport, width: int) -> int:
         return max(1, len(self._rows(width)))
 
     def show_text(self, text: Text) -> None:
+        self.show_forms(lambda k: text, 1)
+
+    def show_forms(self, forms: Callable[[int], Text], n: int) -> None:
+        """Show the first of ``forms(0)``, …, ``forms(n − 1)`` that fits (made only as far
+        as needed: the full form usually fits)."""
+        text = forms(0)
         key = (text.plain, tuple(text.spans), str(text.style))  # Text == ignores the style
         if key == self._key:
             return
-        self._key, self._source = key, text
+        self._key, self._forms, self._n_forms, self._made = key, forms, n, {0: text}
+        self._draw()
+
+    def _form(self, k: int) -> Text:
+        if k not in self._made:
+            self._made[k] = self._forms(k)
+        return self._made[k]
+
+    def _fitted(self, width: int) -> Text:
+        """The first form that fits :attr:`MAX_ROWS` rows at ``width``, its last line cut
+        with "…"; else the tersest's first rows, the last ending in "…"."""
+        if width <= 10:
+            return self._form(0)
+        for k in range(self._n_forms):
+            lines = self._form(k).split("\n")
+            if len(lines) > 1:
+                last = lines[-1]
+                last.truncate(width, overflow="ellipsis")
+                lines = [*lines[:-1], last]
+            text = Text("\n").join(lines)
+            if len(lines) <= self.MAX_ROWS and all(ln.cell_len <= width for ln in lines):
+                return text  # no line wraps: no need to wrap it to know
+            rows = text.wrap(self.app.console, width)
+            if len(rows) <= self.MAX_ROWS:
+                return text
+        keep = list(rows)[:self.MAX_ROWS]
+        last = keep[-1]
+        last.rstrip()
+        last.truncate(width - 1)
+        last.append("…")
+        return Text("\n").join(keep)
+
+    def _draw(self) -> None:
         width = self.size.width
-        lines = text.split("\n")
-        if width > 10 and len(lines) > 1:
-            last = lines[-1]
-            last.truncate(width, overflow="ellipsis")
-            text = Text("\n").join([*lines[:-1], last])
-        self._text = text
+        self._text = self._fitted(width)
         if width < 1:  # not laid out yet: drawn by on_resize
             return
         rows = self._rows(width)
@@ -326,5 +366,4 @@ class StatusLine(Rows):
     def on_resize(self, event) -> None:
         if self._strips and event.size.width == self._strips[0].cell_length:
             return  # a new height for rows already drawn at this width
-        self._key = None
-        self.show_text(self._source)
+        self._draw()

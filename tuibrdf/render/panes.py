@@ -49,9 +49,12 @@ from .text import (
 PROBE_MARK = dict(glyph="+", ascii="+", rgb=(0, 230, 230))
 
 SIDE_LABELS = ("A", "B")
+#: how a peak's channel is written: in words, so that "B" only ever means side B of compare
+#: mode (``(B peak)``, ``B:``), never the blue channel; Y, the luminance, is not a side
+CHANNEL_WORDS = {"R": "red", "G": "green", "B": "blue"}
 #: how a section's caption names the curves of an RGB model (Look.channel): Y the luminance,
-#: as the status line's "(Y)" peak
-CHANNEL_TAGS = {"lum": "Y"}
+#: as the status line's "(Y)" peak, a channel as the peak's
+CHANNEL_TAGS = {"lum": "Y", **CHANNEL_WORDS}
 #: diverging palette of the difference map: blue (B larger) – grey – red (A larger)
 DIVERGING = ((59, 76, 192), (221, 221, 221), (180, 4, 38))
 
@@ -96,10 +99,15 @@ def _unit(cosine: bool) -> str:
     return "sr⁻¹"
 
 
+def channel_tag(peak: Peak) -> str:
+    """`` (Y)``, `` (red)``, `` (green)``, `` (blue)`` for an RGB model's peak, else ``""``."""
+    return f" ({CHANNEL_WORDS.get(peak.label, peak.label)})" if peak.label else ""
+
+
 def peak_text(peak: Peak, cosine: bool) -> str:
-    """``f peak 425 sr⁻¹`` (``… (Y)`` or ``(R)`` for an RGB model)."""
+    """``f peak 425 sr⁻¹`` (``… (Y)`` or ``(red)`` for an RGB model)."""
     what = "f·cosθr" if cosine else "f"
-    ch = f" ({peak.label})" if peak.label else ""
+    ch = channel_tag(peak)
     return f"{what} peak {fmt_value(peak.value)} {_unit(cosine)}{ch}"
 
 
@@ -264,7 +272,7 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
     cap = caption_parts(caption)
     if look.channel != "rgb" and any(s.sections[key].ndim == 2 for s in res.sides):
         # an RGB model's curves are its luminance or one channel (C): say which, or
-        # "section max" reads as a disagreement with the map's "(R)" peak
+        # "section max" reads as a disagreement with the map's "(red)" peak
         cap[0] = (f"{cap[0][0]} ({CHANNEL_TAGS.get(look.channel, look.channel)})", 0)
     # narrower: "max 0.113" (the pane's title says it is a section) before any crop
     short = [(cap[0][0].replace("section max", "max", 1), 0), *cap[1:]]
@@ -310,7 +318,7 @@ def solid_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     what = "f·cosθr·wo" if res.request.cosine else "f·wo"
     if look.log:
         what += f" (log, {LOG_DECADES:g} decades)"
-    ch = f" ({peak.label})" if peak.label else ""
+    ch = channel_tag(peak)
     head = title([(_label(res, k), 2), (f"θi={res.request.theta_i:g}°", 3),
                   (f"solid {what}, peak {fmt_value(peak.value)}{ch}", 0),
                   (f"az {look.azimuth:g}° el {look.elevation:g}°", 4)], w)
@@ -359,9 +367,10 @@ def pane(view: str, res: FrameResult, k: int, w: int, h: int, look: Look) -> Ren
     raise ValueError(f"unknown pane {view!r}")
 
 
-def stats_text(res: FrameResult, view: str, look: Look) -> Text:
+def stats_text(res: FrameResult, view: str, look: Look, terse: int = 0) -> Text:
     """``a(θi)=0.835  peak 0.703 (Y) at θ=90° φ=0°`` per side (``A: a=… B: a=…`` in compare
-    mode), the albedo flagged in red when above 1 by more than its error estimate."""
+    mode), the albedo flagged in red when above 1 by more than its error estimate; for a
+    narrow status line ``terse`` 1 leaves out the peak's direction, 2 the peak."""
     compare = len(res.sides) > 1
     line = Text()
     for k, side in enumerate(res.sides):
@@ -370,11 +379,13 @@ def stats_text(res: FrameResult, view: str, look: Look) -> Text:
         line.append(f"{tag} {'a' if compare else 'a(θi)'}={a}")
         if side.albedo_exceeds_one():
             line.append(" >1 NOT energy-conserving", style="bold red")
+        if terse >= 2:
+            continue
         pk = shown_peak(side, view, look)
         what = "f·cos peak" if res.request.cosine else "peak"
-        ch = f" ({pk.label})" if pk.label else ""
+        ch = channel_tag(pk)
         at = where(pk.theta_deg, pk.phi_deg)
         at = f"({at.replace('θ=', '').replace(' φ=', ',')})" if compare else f"at {at}"
-        line.append(f"  {what} {fmt_value(pk.value)}{ch} {at}")
+        line.append(f"  {what} {fmt_value(pk.value)}{ch}{'' if terse else ' ' + at}")
     return line
 
