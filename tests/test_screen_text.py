@@ -217,10 +217,14 @@ def test_b_means_side_b_and_the_blue_channel_says_blue():
     for k in (0, 1):
         texts += lines(panes.pane("map", res, k, 40, 14, look), 40)
         texts += lines(panes.pane("solid", res, k, 40, 14, look), 40)
-    for t in texts:
+    sections = [ln for view in ("incidence", "perpendicular")
+                for ln in lines(panes.pane(view, res, 0, 60, 16, look), 60)]
+    for t in texts + sections:
         assert "(B)" not in t and "(R)" not in t and "(G)" not in t, t
+        assert "A:B" not in t and "B:B" not in t, t  # the legends: side, then channel
     assert "(blue)" in texts[0] and "B:" in texts[0]
     assert any("(B peak)" in t for t in texts)
+    assert any("B:blue" in t for t in sections) and any("A:red" in t for t in sections)
 
 
 def test_cli_render_title_names_the_blue_channel(capsys):

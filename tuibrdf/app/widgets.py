@@ -221,7 +221,10 @@ LABEL_WIDTH = (7, 16)
 
 
 class ParamPanel(QuietStatic):
-    """The parameter rows of one side: value, range, unit; the selected row highlighted."""
+    """The parameter rows of one side: value, range, unit; the selected row highlighted.  At
+    most :attr:`max_rows` rows (the layout's, from the terminal's height): a window over them
+    that follows the selected row, the rows above and below it counted in the borders
+    ("↑ 3 more", "↓ 5 more")."""
 
     DEFAULT_CSS = """
     ParamPanel { height: auto; padding: 0 1; border: round $primary-darken-2;
@@ -230,30 +233,52 @@ class ParamPanel(QuietStatic):
     """
 
     _for: tuple | None = None  # what the panel shows now (:meth:`show`)
+    max_rows: int | None = None  # how many parameter rows fit (None: all)
+    _top = 0  # the first row shown when they do not all fit
+
+    def _window(self, n_rows: int, selected: int) -> tuple[int, int]:
+        """``(first, count)`` of the rows shown: all, or :attr:`max_rows` of them with the
+        selected one inside (the window moves only when the selection leaves it)."""
+        n = n_rows if self.max_rows is None else max(1, min(self.max_rows, n_rows))
+        top = min(max(self._top, selected - n + 1), selected)
+        self._top = top = max(0, min(top, n_rows - n))
+        return top, n
 
     def show(self, state: ViewerState, side_index: int) -> None:
         side: Side = state.sides[side_index]
         active = side_index == state.active
-        key = (side.material, side.selected, active, state.compare)
+        width = self.outer_size.width
+        key = (side.material, side.selected, active, state.compare, self.max_rows, width)
         if key == self._for:  # every key of the viewer shows the panels: most change nothing
             return
         self._for = key
         self.set_class(active and state.compare, "active")
+        rows = side.rows()
+        selected = min(side.selected, len(rows) - 1)
+        top, n = self._window(len(rows), max(selected, 0))
+        above, below = top, len(rows) - top - n
         label = "AB"[side_index] + ": " if state.compare else ""
         name = side.spec.title
         if os.path.isabs(name):  # a model file without a title of its own: its file name
             name = os.path.basename(name)
-        title, subtitle = f"{label}{name}", "m/M model" if active else ""
+        up = f" ↑ {above} more" if above else ""
+        if up and width > 0:  # the count stays whole: the name gives way ("╭─ " … " ─╮")
+            room = max(1, width - 6 - len(label) - len(up))
+            name = name if len(name) <= room else name[:max(0, room - 1)] + "…"
+        title = f"{label}{name}{up}"
+        subtitle = " · ".join(x for x in (f"↓ {below} more" if below else "",
+                                          "m/M model" if active else "") if x)
         if (self.border_title, self.border_subtitle) != (title, subtitle):
             self.border_title, self.border_subtitle = title, subtitle
         text = Text(no_wrap=True, overflow="ellipsis")
-        rows = side.rows()
         # one label column for every row: as wide as the longest label (a .brdf file's
         # "clearcoatGloss"), within LABEL_WIDTH; a longer one ends in "…"
         lw = min(max((len(r.label) for r in rows), default=0), LABEL_WIDTH[1])
+        if width > 0:  # a narrow panel: the label gives way to the value ("▶ ", 8, " unit")
+            lw = min(lw, width - 4 - 2 - 8 - 3)  # the border and padding: 4
         lw = max(lw, LABEL_WIDTH[0])
-        for i, row in enumerate(rows):
-            sel = active and i == min(side.selected, len(rows) - 1)
+        for i, row in enumerate(rows[top:top + n], start=top):
+            sel = active and i == selected
             v = state.row_value(row, side)
             p = row.param
             label = row.label if len(row.label) <= lw else row.label[:lw - 1] + "…"
@@ -269,7 +294,7 @@ class ParamPanel(QuietStatic):
             elif p.kind == "choice":
                 line.append(" " + "/".join(p.choices), style="dim")
             text.append_text(line)
-            if i < len(rows) - 1:
+            if i < top + n - 1:
                 text.append("\n")
         if not rows:
             text.append("(no parameters)", style="dim")

@@ -32,7 +32,7 @@ from ..core.scene import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
 from .albedo_plot import albedo_plot
 from .colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize
 from .halfblock import HalfBlockImage, Mark
-from .polar import caption_parts, plot_body, side_curves
+from .polar import CHANNEL_WORDS, caption_parts, plot_body, side_curves
 from .polar_braille import fwhm_text, polar_canvas
 from .solid import solid_image
 from .text import (
@@ -49,9 +49,6 @@ from .text import (
 PROBE_MARK = dict(glyph="+", ascii="+", rgb=(0, 230, 230))
 
 SIDE_LABELS = ("A", "B")
-#: how a peak's channel is written: in words, so that "B" only ever means side B of compare
-#: mode (``(B peak)``, ``B:``), never the blue channel; Y, the luminance, is not a side
-CHANNEL_WORDS = {"R": "red", "G": "green", "B": "blue"}
 #: how a section's caption names the curves of an RGB model (Look.channel): Y the luminance,
 #: as the status line's "(Y)" peak, a channel as the peak's
 CHANNEL_TAGS = {"lum": "Y", **CHANNEL_WORDS}
