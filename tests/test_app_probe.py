@@ -14,6 +14,7 @@ import re
 
 import numpy as np
 import pytest
+from rich.text import Text
 
 import tuibrdf
 from tuibrdf.app.app import BrdfApp
@@ -146,3 +147,64 @@ async def test_section_azimuth_key_turns_the_section_through_the_peak():
         await pilot.pause()
         assert app.state.section_azimuth == 0.0
         assert "ψ=0° through peak" in title() and "FWHM 13.8°" in title()  # issue 13's 13.8°
+
+
+def shown_status_rows(app) -> list[str]:
+    """The status line's rows as drawn (its strips), not the text it was given."""
+    return ["".join(s.text for s in strip).rstrip() for strip in app.query_one("#status")._strips]
+
+
+@pytest.mark.parametrize("a,b", [
+    (("phong", {"kd": 0.0, "ks": 0.08, "n": 70.0}), ("cook-torrance", {"kd": 0.0, "m": 0.07})),
+    (("gltf", {}), ("gltf", {"base_color": (0.2, 0.3, 0.9), "roughness": 0.3})),
+], ids=["scalar", "rgb"])
+async def test_compare_probe_at_80x24_shows_both_sides(a, b):
+    # at 80×24 the 3-row status cut the probe's B part (the numbers wrapped to a fourth row):
+    # both sides' f at the probe must be on screen, each equal to the public evaluate() at the
+    # probe's direction (Lambert inverse written above), and the view's row kept
+    state = ViewerState(sides=[Side.of(*a), Side.of(*b)], theta_i=30.0)
+    app = BrdfApp(state, sync=True)
+    async with app.run_test(size=(80, 24)) as pilot:
+        for key in ("b", "J", "L", "I", "K", "L", "L", "I"):
+            await pilot.press(key)
+        await pilot.pause()
+        u, v = 2 * PROBE_STEP, PROBE_STEP
+        assert app.state.probe == pytest.approx((u, v))
+        rows = shown_status_rows(app)
+        assert 1 <= len(rows) <= 3 and all(len(r) <= 78 for r in rows)
+        shown = " ".join(rows)
+        w = lambert_inverse(u, v)
+        for side, (model, params) in zip("AB", (a, b), strict=True):
+            f = np.atleast_1d(tuibrdf.evaluate(model, params, light(30.0), w))
+            # 3 significant digits shown: within half a unit of the third, ≤ 0.5 %
+            assert numbers_after(shown, f"{side}: f") == pytest.approx(list(f), rel=5e-3)
+        assert "equal-area map" in rows[-1]  # the view's row is still there
+        assert not shown.endswith("…")  # nothing cut: a shorter form fitted
+
+
+async def test_status_line_that_cannot_fit_says_so():
+    # every form too long for three rows: the tersest is shown cut after its third row, which
+    # ends in "…" (an explicit cut), never more rows than three
+    from textual.app import App
+
+    from tuibrdf.app.widgets import StatusLine
+
+    long = Text(" ".join(f"word{i}" for i in range(60)) + "\nview row")
+    forms = [long, Text(" ".join(f"w{i}" for i in range(60)) + "\nview row")]
+
+    class One(App):
+        def compose(self):
+            yield StatusLine(id="status")
+
+    app = One()
+    async with app.run_test(size=(40, 10)) as pilot:
+        line = app.query_one("#status")
+        line.show_forms(lambda k: forms[k], 2)
+        await pilot.pause()
+        rows = shown_status_rows(app)
+        assert len(rows) == 3 and rows[-1].endswith("…")
+        assert rows[0].startswith("w0 w1")  # the terser form
+        # a short text: shown whole, no "…"
+        line.show_forms(lambda k: Text("θi 30°\nview row"), 1)
+        await pilot.pause()
+        assert shown_status_rows(app) == ["θi 30°", "view row"]

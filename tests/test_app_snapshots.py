@@ -116,3 +116,14 @@ def test_new_views(snap_compare, views):
     presses = ["v"] * (2 + views)
     assert snap_compare(app_for("cook-torrance", theta=45.0), terminal_size=(80, 24),
                         press=presses)
+
+
+def test_many_parameters_scroll_at_80x24(snap_compare):
+    # a .brdf file with 13 parameter rows at 80×24: the panel shows a window of them around
+    # the selected row, "↑ 3 more" / "↓ 5 more" in its borders, and both sections keep their
+    # rows (they were squeezed to "36×3: too small for this pane")
+    from pathlib import Path
+
+    path = str(Path(__file__).parent / "data" / "brdf" / "disney.brdf")
+    app = BrdfApp(ViewerState(sides=[Side(path)], theta_i=30.0), sync=True)
+    assert snap_compare(app, terminal_size=(80, 24), press=["down"] * 8)

@@ -13,7 +13,9 @@ def test_each_side_has_its_own_marker_and_legend_entries():
     scalar = np.linspace(0, 2, 5)
     curves = side_curves([("gltf", rgb), ("ggx", scalar)], "rgb")
     labels = [c[0] for c in curves]
-    assert labels == ["A:R", "A:G", "A:B", "B:ggx"]  # one legend entry per curve, side named
+    # one legend entry per curve, side named; a channel in words ("A:B" would read as two
+    # sides, "B:B" as side B twice)
+    assert labels == ["A:red", "A:green", "A:blue", "B:ggx"]
     assert {c[2] for c in curves[:3]} == {SIDE_MARKERS[0]} and curves[3][2] == SIDE_MARKERS[1]
     assert SIDE_MARKERS[0] != SIDE_MARKERS[1]  # the marker survives --color none
     assert curves[3][3] != "red"  # the scalar B is not drawn in A's red channel colour

@@ -212,7 +212,7 @@ def test_rgb_screen_says_which_peak():
     res = scene.compute_frame(scene.FrameRequest((mat,), 45.0, map_px=map_pixels(60, 20)))
     grey = text(panes.stats_text(res, "map", panes.Look(cmap="grey")))
     lum = text(panes.stats_text(res, "map", panes.Look(cmap="viridis")))
-    assert "(R)" in grey and "(Y)" in lum  # channels in colour: the red channel tops the bar
+    assert "(red)" in grey and "(Y)" in lum  # channels in colour: the red channel tops the bar
 
 
 def test_compare_colour_bar_tops_at_the_larger_peak_and_says_whose():

@@ -161,3 +161,72 @@ def test_console_colour_system_is_followed():
     img = HalfBlockImage(np.array([[0], [0]]), np.array([WHITE]))
     assert render(img, "truecolor") == "\x1b[48;2;255;255;255m \x1b[0m\n"
     assert render(img, "256") == "\x1b[48;5;231m \x1b[0m\n"  # cube (5,5,5) = 231
+
+
+def _ring_cells_form_a_closed_loop(plain: str, ring_char: str) -> bool:
+    """The cells showing ``ring_char`` form one 8-connected set in which every cell has at
+    least two ring neighbours (a loop with no loose end and no gap).  Written here, not taken
+    from the renderer: a flood fill over the characters."""
+    grid = [[ch == ring_char for ch in line] for line in plain.split("\n")]
+    cells = {(r, c) for r, row in enumerate(grid) for c, on in enumerate(row) if on}
+    if not cells:
+        return False
+
+    def around(r, c):
+        return [(r + dr, c + dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1)
+                if (dr or dc) and (r + dr, c + dc) in cells]
+
+    if any(len(around(r, c)) < 2 for r, c in cells):
+        return False
+    seen, todo = set(), [next(iter(cells))]
+    while todo:
+        cell = todo.pop()
+        if cell not in seen:
+            seen.add(cell)
+            todo.extend(around(*cell))
+    return seen == cells
+
+
+@pytest.mark.parametrize("px_w", [20, 33, 40, 64, 81, 120])
+@pytest.mark.parametrize("px_h", [12, 17, 30, 31, 44, 60])
+def test_plain_horizon_ring_is_a_closed_loop(px_w, px_h):
+    # --color none drew the ring with a gap at the top centre of the disc: where the disc's
+    # top edge is flat the ring is one pixel row, all of it in cells whose other half is data,
+    # and such a cell showed the data alone.  The disc and its ring come from the map's own
+    # geometry (hemimap.geometry's inside mask); the ring is computed here as the pixels
+    # outside the disc that touch it (8-neighbourhood), the definition in docs/app.md.  Data
+    # pixels are black, so a cell that shows data is a blank: only ring cells are "~".
+    from tuibrdf.core.hemimap import geometry
+    from tuibrdf.render.halfblock import RING_CHAR
+
+    inside = geometry(px_w, px_h).inside
+    padded = np.pad(inside, 1)
+    touch = np.zeros_like(inside)
+    for dr in (-1, 0, 1):
+        for dc in (-1, 0, 1):
+            touch |= padded[1 + dr:1 + dr + px_h, 1 + dc:1 + dc + px_w]
+    ring = touch & ~inside
+    index = np.where(inside, 0, np.where(ring, 1, TRANSPARENT))
+    img = HalfBlockImage(index, np.array([BLACK, (72, 72, 160)], dtype=np.uint8), ring=1)
+    plain = img.plain()
+    assert _ring_cells_form_a_closed_loop(plain, RING_CHAR), plain
+    # only the ring's cells changed to "~": no cell without a ring pixel shows it
+    top, bottom = ring[0::2], np.vstack([ring[1::2], np.zeros((px_h % 2, px_w), bool)])
+    shown = np.array([[ch == RING_CHAR for ch in line] for line in plain.split("\n")])
+    assert not (shown & ~(top | bottom)).any()
+
+
+def test_plain_map_top_of_the_disc_has_no_gap():
+    # the case seen on screen: `tuibrdf render phong --width 64 --height 18 --color none`,
+    # whose top ring row read "~~~~       ~~~~"; expected: the top row of the disc is one
+    # unbroken run of "~"
+    from tuibrdf.core.models import MODELS
+    from tuibrdf.render.halfblock import RING_CHAR
+    from tuibrdf.render.views import render_view
+
+    m = MODELS["phong"]
+    buf = io.StringIO()
+    Console(file=buf, width=64, color_system=None, _environ={}).print(
+        render_view("map", m, m.resolve({}), 30.0, 64, 18, color="none"))
+    first = buf.getvalue().splitlines()[1].strip()
+    assert first and set(first) == {RING_CHAR}, first

@@ -132,16 +132,17 @@ def test_line_plot_labels_the_bottom_of_its_axis():
     assert nums == sorted(nums, reverse=True) and len(nums) >= 2
 
 
-@pytest.mark.parametrize("channel, tag", [("lum", "Y"), ("G", "G")])
+@pytest.mark.parametrize("channel, tag", [("lum", "Y"), ("G", "green"), ("B", "blue")])
 def test_section_max_of_an_rgb_model_says_which_curve(channel, tag):
-    # gltf copper-like at θi = 45°: the map's peak is the red channel's (17.7 "(R)"); with the
-    # curves switched to the luminance (key C) the incidence section's max was 11 with no
-    # word of which curve, beside a "(R)" peak in the same direction
+    # gltf copper-like at θi = 45°: the map's peak is the red channel's (17.7 "(red)"); with
+    # the curves switched to the luminance (key C) the incidence section's max was 11 with no
+    # word of which curve, beside a "(red)" peak in the same direction.  A channel is named in
+    # words: "(B)" would read as side B of compare mode
     mat = Material("gltf", {"base_color": (0.9, 0.5, 0.1), "metallic": 1.0, "roughness": 0.3})
     res = scene.compute_frame(scene.FrameRequest((mat,), 45.0), slow=False)
     v = res.sides[0].sections["incidence"]
     # Rec.709 luminance weights (ITU-R BT.709), written here rather than taken from the code
-    want = {"lum": v @ np.array([0.2126, 0.7152, 0.0722]), "G": v[:, 1]}[channel]
+    want = {"lum": v @ np.array([0.2126, 0.7152, 0.0722]), "G": v[:, 1], "B": v[:, 2]}[channel]
     head = lines(panes.pane("incidence", res, 0, 120, 20,
                             panes.Look(color="none", channel=channel)), 120)[0]
     assert f"section max {fmt_value(float(np.max(want)))} ({tag})" in head, head
@@ -192,3 +193,45 @@ def test_clipped_theta_d_plot_says_where_its_axis_stops(width):
     assert head.startswith("f(θd) at θh=0° φd=90°") or "  f(θd) at θh=0° φd=90°" in head
     assert re.search(rf"scale {re.escape(fmt_value(top))}( sr⁻¹)? \(θ≤85°\)", head), head
     assert len(head) <= width
+
+
+# ------------------------------------------------------------------- "B": side B, not blue
+def test_b_means_side_b_and_the_blue_channel_says_blue():
+    # "(B)" meant the blue channel of an RGB peak and "B" side B of compare mode ("B:",
+    # "(B peak)"): two bluish RGB sides, B's the larger peak, so every place that names a
+    # channel or a side shows up.  Expected: the blue channel written "(blue)" (a glTF base
+    # colour with blue the largest component gives a peak in blue: the Schlick specular is
+    # white, the diffuse term base·(1−metallic)/π is largest in blue), "(B)" nowhere, and
+    # B's peak still said "(B peak)" on the shared colour bar.
+    from tuibrdf.app.state import Side, ViewerState
+    from tuibrdf.app.text import TERSE_FORMS, status_text
+
+    a = Material("gltf", {"base_color": (0.1, 0.2, 0.5), "roughness": 0.6})
+    b = Material("gltf", {"base_color": (0.2, 0.3, 0.9), "roughness": 0.6})
+    res = scene.compute_frame(scene.FrameRequest((a, b), 30.0, map_px=map_pixels(40, 14),
+                                                 solid=True, probe=(0.1, 0.05)), slow=False)
+    look = panes.Look(cmap="grey", color="none")
+    state = ViewerState(sides=[Side.of("gltf", dict(a.values)), Side.of("gltf", dict(b.values))],
+                        theta_i=30.0, probe=(0.1, 0.05))
+    texts = [status_text(state, res, look, {}, "", k).plain for k in range(TERSE_FORMS)]
+    for k in (0, 1):
+        texts += lines(panes.pane("map", res, k, 40, 14, look), 40)
+        texts += lines(panes.pane("solid", res, k, 40, 14, look), 40)
+    sections = [ln for view in ("incidence", "perpendicular")
+                for ln in lines(panes.pane(view, res, 0, 60, 16, look), 60)]
+    for t in texts + sections:
+        assert "(B)" not in t and "(R)" not in t and "(G)" not in t, t
+        assert "A:B" not in t and "B:B" not in t, t  # the legends: side, then channel
+    assert "(blue)" in texts[0] and "B:" in texts[0]
+    assert any("(B peak)" in t for t in texts)
+    assert any("B:blue" in t for t in sections) and any("A:red" in t for t in sections)
+
+
+def test_cli_render_title_names_the_blue_channel(capsys):
+    # `tuibrdf render` prints the same map title: "(blue)", not "(B)"
+    from tuibrdf.cli import main
+
+    rc = main(["render", "gltf", "-p", "base_color=0.2,0.3,0.9", "--width", "64", "--height",
+               "12", "--color", "none"])
+    title = capsys.readouterr().out.splitlines()[0]
+    assert rc == 0 and "(blue)" in title and "(B)" not in title, title

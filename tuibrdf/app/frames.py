@@ -33,7 +33,7 @@ from ..core import scene
 from ..core.scene import FrameRequest, FrameResult
 from ..render import EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, panes
 from ..render.views import extra_pixels, map_pixels
-from .text import PANES, legend_text, status_text, visible_panes
+from .text import PANES, TERSE_FORMS, legend_text, status_text, visible_panes
 
 RETRY_S = 0.02  # re-check a busy writer after this long
 #: a frame not computed by then: the panels and status line go ahead of it (a key's new value
@@ -362,5 +362,6 @@ class FrameDelivery:
             pic.show(Text(f"cannot draw {pane}: {e}"), None)
 
     def _status(self) -> None:
-        self.one("status").show_text(
-            status_text(self.state, self.frame, self.look, self._loading, self.message))
+        self.one("status").show_forms(
+            partial(status_text, self.state, self.frame, self.look, self._loading, self.message),
+            TERSE_FORMS)

@@ -15,6 +15,22 @@ COMPARE_MIN_W, COMPARE_MIN_H = 80, 24
 BOTH_SECTIONS_H = 24
 BOTH_PANELS_H = 40  # compare mode shows both parameter panels from this height
 STEADY_PANEL_H = max(len(panel_rows(m)) for m in MODELS.values()) + 2  # rows + border
+#: the fewest rows a polar section keeps beside the parameter panel: its title and 5 rows of
+#: braille (20 dots; a pane's minimum, render.MIN_HEIGHT); the panel scrolls when its
+#: parameters would take more
+SECTION_MIN_H = 6
+FOOTER_H, STATUS_H = 1, 3  # the status line at its tallest (its numbers wrapped)
+PANEL_BORDER = 2
+
+
+def panel_rows_shown(h: int, compare: bool) -> int:
+    """How many parameter rows a panel shows in a terminal ``h`` rows tall: what is left of the
+    side column when every section shown keeps :data:`SECTION_MIN_H` rows, whatever the
+    status line's height (shared by two panels when both show), at least one."""
+    sections = 2 if h >= BOTH_SECTIONS_H else 1
+    panels = 2 if compare and h >= BOTH_PANELS_H else 1
+    room = h - FOOTER_H - STATUS_H - sections * SECTION_MIN_H
+    return max(1, room // panels - PANEL_BORDER)
 
 CSS = """
 Screen { layout: vertical; }
@@ -65,9 +81,11 @@ def arrange(app) -> None:
     app.one("panel-b").display = both or (s.compare and s.active == 1)
     # tall terminals: panels as tall as the longest model's, so cycling models never
     # resizes the plots below; short ones keep every row for the plots
-    steady = STEADY_PANEL_H if h >= BOTH_PANELS_H else None
+    shown = panel_rows_shown(h, s.compare)
+    steady = min(STEADY_PANEL_H, shown + PANEL_BORDER) if h >= BOTH_PANELS_H else None
     for panel in (app.one("panel-a"), app.one("panel-b")):
         panel.styles.min_height = steady
+        panel.max_rows = shown  # more parameters than that: the panel scrolls
     if s.compare:
         for pane in ("map-a", "map-b", "solid-a", "solid-b", "extra-a", "extra-b"):
             k = PANES[pane][1]

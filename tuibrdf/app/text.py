@@ -34,10 +34,19 @@ def side_files(side: Side) -> list[str]:
             if p.kind == "path" and side.values.get(p.name)]
 
 
+#: how many forms of the status line there are, from the full one to the tersest
+#: (:func:`status_text`'s ``terse``: each leaves out more, least useful first; the status
+#: line shows the first that fits its rows, ``widgets.StatusLine``)
+TERSE_FORMS = 4
+
+
 def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
-                loading: dict[str, float], message: str) -> Text:
+                loading: dict[str, float], message: str, terse: int = 0) -> Text:
     """θi, then each side's albedo and peak from the frame on screen when it is the current
-    state's (else "…"), then the view, scale, colour map and the last message."""
+    state's (else "…"), then the view, scale, colour map and the last message.  ``terse``
+    (0 … TERSE_FORMS − 1) shortens the numbers for a narrow line, least useful first: 1 the
+    probe's f·cos θr left out (f and θr are shown), 2 the peaks' directions too, 3 the peaks
+    (each map's title and colour bar show them)."""
     line = Text()
     line.append(f"θi {s.theta_i:g}°", style="bold")
     if s.phi_i != 180.0:
@@ -49,8 +58,8 @@ def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
     elif frame is not None and (frame.request.materials, frame.request.theta_i,
                                 frame.request.cosine, frame.request.phi_i) == (
                                     materials, s.theta_i, s.cosine, s.phi_i):
-        line.append_text(panes.stats_text(frame, s.view, look))
-        line.append_text(probe_text(frame))
+        line.append_text(panes.stats_text(frame, s.view, look, terse=max(0, terse - 1)))
+        line.append_text(probe_text(frame, terse))
     else:
         for i in range(len(s.sides)):
             line.append(f"  {'AB'[i]}: a=…" if s.compare else "  a(θi) …")
@@ -81,8 +90,9 @@ def view_settings(s: ViewerState) -> str:
     return out
 
 
-def probe_text(frame: FrameResult) -> Text:
-    """``probe θr=40° φr=10°  f=0.31 sr⁻¹  f·cosθr=0.24 sr⁻¹`` per side, from the frame."""
+def probe_text(frame: FrameResult, terse: int = 0) -> Text:
+    """``probe θr=40° φr=10°  f=0.31 f·cosθr=0.24 sr⁻¹`` per side, from the frame;
+    ``terse`` as :func:`status_text`'s."""
     t = Text()
     req = frame.request
     if req.probe is None or any(side.probe is None for side in frame.sides):
@@ -92,7 +102,8 @@ def probe_text(frame: FrameResult) -> Text:
     for k, side in enumerate(frame.sides):
         f, fc = side.probe
         tag = f"  {'AB'[k]}:" if len(frame.sides) > 1 else " "
-        t.append(f"{tag} f={panes.albedo_text(f)} f·cosθr={panes.albedo_text(fc)} sr⁻¹")
+        cos = "" if terse >= 1 else f" f·cosθr={panes.albedo_text(fc)}"
+        t.append(f"{tag} f={panes.albedo_text(f)}{cos} sr⁻¹")
     return t
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from os.path import commonprefix
 
 from rich.cells import cell_len
@@ -220,10 +221,12 @@ LABEL_WIDTH = (7, 16)
 
 
 class ParamPanel(Rows):
-    """The parameter rows of one side: value, range, unit; the selected row highlighted.  Rows
-    of segments (:class:`Rows`): a new value repaints the cells around it on its row, not the
-    whole panel through Textual's styles cache (a ``Static`` did: ≈ 1.7 ms of compositing a
-    parameter key at 160×48, docs/app.md)."""
+    """The parameter rows of one side: value, range, unit; the selected row highlighted.  At
+    most :attr:`max_rows` rows (the layout's, from the terminal's height): a window over them
+    that follows the selected row, the rows above and below it counted in the borders
+    ("↑ 3 more", "↓ 5 more").  Rows of segments (:class:`Rows`): a new value repaints the
+    cells around it on its row, not the whole panel through Textual's styles cache (a
+    ``Static`` did: ≈ 1.7 ms of compositing a parameter key at 160×48, docs/app.md)."""
 
     DEFAULT_CSS = """
     ParamPanel { height: auto; padding: 0 1; border: round $primary-darken-2; }
@@ -231,6 +234,16 @@ class ParamPanel(Rows):
     """
 
     _for: tuple | None = None  # what the panel shows now (:meth:`show`)
+    max_rows: int | None = None  # how many parameter rows fit (None: all)
+    _top = 0  # the first row shown when they do not all fit
+
+    def _window(self, n_rows: int, selected: int) -> tuple[int, int]:
+        """``(first, count)`` of the rows shown: all, or :attr:`max_rows` of them with the
+        selected one inside (the window moves only when the selection leaves it)."""
+        n = n_rows if self.max_rows is None else max(1, min(self.max_rows, n_rows))
+        top = min(max(self._top, selected - n + 1), selected)
+        self._top = top = max(0, min(top, n_rows - n))
+        return top, n
 
     def __init__(self, **kw) -> None:
         super().__init__(**kw)
@@ -281,26 +294,38 @@ class ParamPanel(Rows):
     def show(self, state: ViewerState, side_index: int) -> None:
         side: Side = state.sides[side_index]
         active = side_index == state.active
-        key = (side.material, side.selected, active, state.compare)
+        width = self.outer_size.width
+        key = (side.material, side.selected, active, state.compare, self.max_rows, width)
         if key == self._for:  # every key of the viewer shows the panels: most change nothing
             return
         self._for = key
         self.set_class(active and state.compare, "active")
+        rows = side.rows()
+        selected = min(side.selected, len(rows) - 1)
+        top, n = self._window(len(rows), max(selected, 0))
+        above, below = top, len(rows) - top - n
         label = "AB"[side_index] + ": " if state.compare else ""
         name = side.spec.title
         if os.path.isabs(name):  # a model file without a title of its own: its file name
             name = os.path.basename(name)
-        title, subtitle = f"{label}{name}", "m/M model" if active else ""
+        up = f" ↑ {above} more" if above else ""
+        if up and width > 0:  # the count stays whole: the name gives way ("╭─ " … " ─╮")
+            room = max(1, width - 6 - len(label) - len(up))
+            name = name if len(name) <= room else name[:max(0, room - 1)] + "…"
+        title = f"{label}{name}{up}"
+        subtitle = " · ".join(x for x in (f"↓ {below} more" if below else "",
+                                          "m/M model" if active else "") if x)
         if (self.border_title, self.border_subtitle) != (title, subtitle):
             self.border_title, self.border_subtitle = title, subtitle
         text = Text(no_wrap=True, overflow="ellipsis")
-        rows = side.rows()
         # one label column for every row: as wide as the longest label (a .brdf file's
         # "clearcoatGloss"), within LABEL_WIDTH; a longer one ends in "…"
         lw = min(max((len(r.label) for r in rows), default=0), LABEL_WIDTH[1])
+        if width > 0:  # a narrow panel: the label gives way to the value ("▶ ", 8, " unit")
+            lw = min(lw, width - 4 - 2 - 8 - 3)  # the border and padding: 4
         lw = max(lw, LABEL_WIDTH[0])
-        for i, row in enumerate(rows):
-            sel = active and i == min(side.selected, len(rows) - 1)
+        for i, row in enumerate(rows[top:top + n], start=top):
+            sel = active and i == selected
             v = state.row_value(row, side)
             p = row.param
             label = row.label if len(row.label) <= lw else row.label[:lw - 1] + "…"
@@ -316,7 +341,7 @@ class ParamPanel(Rows):
             elif p.kind == "choice":
                 line.append(" " + "/".join(p.choices), style="dim")
             text.append_text(line)
-            if i < len(rows) - 1:
+            if i < top + n - 1:
                 text.append("\n")
         if not rows:
             text.append("(no parameters)", style="dim")
@@ -328,14 +353,20 @@ class ParamPanel(Rows):
 class StatusLine(Rows):
     """Two lines: θi and the frame's numbers; the view, scale, colour map and a message.  The
     numbers may wrap to a third line; the last line is cut with "…" at the width, so a long
-    message never adds one.  A picture, so a new number re-sends only the cells around it
-    (a ``Static`` re-sent both lines whole: ≈ 1.1 kB a key at 160 columns)."""
+    message never adds one.  The text comes in forms, the full one first and each shorter
+    (:func:`.text.status_text`'s ``terse``): the first that fits the three rows is shown; if
+    none does, the tersest is cut after its third row, which ends in "…" (never a silent
+    cut).  A picture, so a new number re-sends only the cells around it (a ``Static``
+    re-sent both lines whole: ≈ 1.1 kB a key at 160 columns)."""
 
     DEFAULT_CSS = "StatusLine { height: auto; max-height: 3; padding: 0 1; }"
+    MAX_ROWS = 3
 
     def __init__(self, **kw) -> None:
         super().__init__(**kw)
-        self._source = Text()  # the text as given (re-cut at a new width)
+        self._forms: Callable[[int], Text] = lambda k: Text()  # the text's forms (re-cut at a
+        self._n_forms = 1  # new width)
+        self._made: dict[int, Text] = {}  # the forms made so far
         self._text = Text()  # as shown
         self._key: tuple | None = None
 
@@ -344,23 +375,56 @@ class StatusLine(Rows):
         return self._text
 
     def _rows(self, width: int) -> list[list[Segment]]:
-        return render_rows(self._text, self.app.console, max(1, width))[:3]
+        return render_rows(self._text, self.app.console, max(1, width))[:self.MAX_ROWS]
 
     def get_content_height(self, container, viewport, width: int) -> int:
         return max(1, len(self._rows(width)))
 
     def show_text(self, text: Text) -> None:
+        self.show_forms(lambda k: text, 1)
+
+    def show_forms(self, forms: Callable[[int], Text], n: int) -> None:
+        """Show the first of ``forms(0)``, …, ``forms(n − 1)`` that fits (made only as far
+        as needed: the full form usually fits)."""
+        text = forms(0)
         key = (text.plain, tuple(text.spans), str(text.style))  # Text == ignores the style
         if key == self._key:
             return
-        self._key, self._source = key, text
+        self._key, self._forms, self._n_forms, self._made = key, forms, n, {0: text}
+        self._draw()
+
+    def _form(self, k: int) -> Text:
+        if k not in self._made:
+            self._made[k] = self._forms(k)
+        return self._made[k]
+
+    def _fitted(self, width: int) -> Text:
+        """The first form that fits :attr:`MAX_ROWS` rows at ``width``, its last line cut
+        with "…"; else the tersest's first rows, the last ending in "…"."""
+        if width <= 10:
+            return self._form(0)
+        for k in range(self._n_forms):
+            lines = self._form(k).split("\n")
+            if len(lines) > 1:
+                last = lines[-1]
+                last.truncate(width, overflow="ellipsis")
+                lines = [*lines[:-1], last]
+            text = Text("\n").join(lines)
+            if len(lines) <= self.MAX_ROWS and all(ln.cell_len <= width for ln in lines):
+                return text  # no line wraps: no need to wrap it to know
+            rows = text.wrap(self.app.console, width)
+            if len(rows) <= self.MAX_ROWS:
+                return text
+        keep = list(rows)[:self.MAX_ROWS]
+        last = keep[-1]
+        last.rstrip()
+        last.truncate(width - 1)
+        last.append("…")
+        return Text("\n").join(keep)
+
+    def _draw(self) -> None:
         width = self.size.width
-        lines = text.split("\n")
-        if width > 10 and len(lines) > 1:
-            last = lines[-1]
-            last.truncate(width, overflow="ellipsis")
-            text = Text("\n").join([*lines[:-1], last])
-        self._text = text
+        self._text = self._fitted(width)
         if width < 1:  # not laid out yet: drawn by on_resize
             return
         rows = self._rows(width)
@@ -376,5 +440,4 @@ class StatusLine(Rows):
     def on_resize(self, event) -> None:
         if self._strips and event.size.width == self._strips[0].cell_length:
             return  # a new height for rows already drawn at this width
-        self._key = None
-        self.show_text(self._source)
+        self._draw()

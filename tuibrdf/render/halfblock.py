@@ -371,11 +371,19 @@ class HalfBlockImage:
         y = np.append(luma(self.palette), 0.0)  # transparent reads as dark
         if self.ring is not None:  # half ring, half data: the data half alone
             rt, rb = top == self.ring, bottom == self.ring
+            # ... unless the ring half is its column's outermost ring pixel (the pixel beyond
+            # it, in the cell above a top half or below a bottom half, is not ring): where
+            # the disc's top (bottom) edge is flat the ring is one pixel row, all of it in
+            # such cells, and showing the data there left a gap in the guide
+            above = np.vstack([np.zeros_like(rt[:1]), rb[:-1]])  # pixel above each top half
+            below = np.vstack([rt[1:], np.zeros_like(rb[:1])])  # pixel below each bottom half
+            outermost = (rt & (bottom >= 0) & ~rb & ~above) | (rb & (top >= 0) & ~rt & ~below)
             top, bottom = np.where(rt, bottom, top), np.where(rb, top, bottom)
         level = np.rint((y[top] + y[bottom]) / 2 * (len(ASCII_RAMP) - 1)).astype(np.int64)
         if self.ring is not None:  # ring and ring, or ring and outside: the guide
             level[(top == self.ring) | (top < 0) & (bottom == self.ring)] = len(ASCII_RAMP)
             level[(rt | rb) & (top < 0) & (bottom < 0)] = len(ASCII_RAMP)
+            level[outermost] = len(ASCII_RAMP)
 
         def make(code: int) -> tuple[str, Style]:
             return (ASCII_RAMP + RING_CHAR)[code], NULL_STYLE

@@ -35,7 +35,7 @@ from ..core.scene import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
 from .albedo_plot import albedo_plot
 from .colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize
 from .halfblock import HalfBlockImage, Mark
-from .polar import caption_parts, plot_body, side_curves
+from .polar import CHANNEL_WORDS, caption_parts, plot_body, side_curves
 from .polar_braille import fwhm_text, polar_canvas
 from .solid import solid_image
 from .text import (
@@ -53,8 +53,8 @@ PROBE_MARK = dict(glyph="+", ascii="+", rgb=(0, 230, 230))
 
 SIDE_LABELS = ("A", "B")
 #: how a section's caption names the curves of an RGB model (Look.channel): Y the luminance,
-#: as the status line's "(Y)" peak
-CHANNEL_TAGS = {"lum": "Y"}
+#: as the status line's "(Y)" peak, a channel as the peak's
+CHANNEL_TAGS = {"lum": "Y", **CHANNEL_WORDS}
 #: diverging palette of the difference map: blue (B larger) – grey – red (A larger)
 DIVERGING = ((59, 76, 192), (221, 221, 221), (180, 4, 38))
 
@@ -112,7 +112,7 @@ def peak_horizon(side: SideFrame, view: str, look: Look) -> Horizon:
 def scale_text(scale: PeakScale, short: bool = False) -> str:
     """``scale: max θ≤89° 513`` (``scale 513 (θ≤89°)`` short), with the channel for RGB: the
     largest value the picture draws at θ ≤ 89°."""
-    ch = f" ({scale.label})" if scale.label else ""
+    ch = f" ({CHANNEL_WORDS.get(scale.label, scale.label)})" if scale.label else ""
     if short:
         return f"scale {fmt_value(scale.value)}{ch} (θ≤{HORIZON_DEG:g}°)"
     return f"scale: {CAP_TEXT} {fmt_value(scale.value)}{ch}"
@@ -134,12 +134,17 @@ def _unit(cosine: bool) -> str:
     return "sr⁻¹"
 
 
+def channel_tag(peak: Peak) -> str:
+    """`` (Y)``, `` (red)``, `` (green)``, `` (blue)`` for an RGB model's peak, else ``""``."""
+    return f" ({CHANNEL_WORDS.get(peak.label, peak.label)})" if peak.label else ""
+
+
 def peak_text(peak: Peak, cosine: bool, ps: Horizon | PeakScale | None = None,
               short: bool = False) -> str:
-    """``f peak 425 sr⁻¹`` (``… (Y)`` or ``(R)`` for an RGB model); ``f → ∞ toward the
+    """``f peak 425 sr⁻¹`` (``… (Y)`` or ``(red)`` for an RGB model); ``f → ∞ toward the
     horizon`` when ``ps`` (where the peak is) says it is unbounded."""
     what = "f·cosθr" if cosine else "f"
-    ch = f" ({peak.label})" if peak.label else ""
+    ch = channel_tag(peak)
     if ps is not None and ps.kind == "unbounded":
         return f"{what} → ∞ {'at' if short else 'toward the'} horizon{ch}"
     if short:
@@ -339,7 +344,7 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
     cap = caption_parts(caption)
     if look.channel != "rgb" and any(s.sections[key].ndim == 2 for s in res.sides):
         # an RGB model's curves are its luminance or one channel (C): say which, or
-        # "section max" reads as a disagreement with the map's "(R)" peak
+        # "section max" reads as a disagreement with the map's "(red)" peak
         cap[0] = (f"{cap[0][0]} ({CHANNEL_TAGS.get(look.channel, look.channel)})", 0)
     # narrower: "max 0.113" (the pane's title says it is a section) before any crop
     short = [(cap[0][0].replace("section max", "max", 1), 0), *cap[1:]]
@@ -385,7 +390,7 @@ def solid_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     what = "f·cosθr·wo" if res.request.cosine else "f·wo"
     if look.log:
         what += f" (log, {LOG_DECADES:g} decades)"
-    ch = f" ({peak.label})" if peak.label else ""
+    ch = channel_tag(peak)
     if sc.capped:  # the radius scale is not the peak: say which it is, and that it clips
         ps = peak_horizon(side, "solid", look)
         solid = np.asarray(side.solid, dtype=float)
@@ -441,9 +446,11 @@ def pane(view: str, res: FrameResult, k: int, w: int, h: int, look: Look) -> Ren
     raise ValueError(f"unknown pane {view!r}")
 
 
-def stats_text(res: FrameResult, view: str, look: Look) -> Text:
+def stats_text(res: FrameResult, view: str, look: Look, terse: int = 0) -> Text:
     """``a(θi)=0.835  peak 0.703 (Y) at θ=90° φ=0°`` per side (``A: a=… B: a=…`` in compare
-    mode), the albedo flagged in red when above 1 by more than its error estimate."""
+    mode), the albedo flagged in red when above 1 by more than its error estimate; for a
+    narrow status line ``terse`` 1 leaves out the peak's direction and the scale (the map's bar
+    says it), 2 the peak."""
     compare = len(res.sides) > 1
     line = Text()
     for k, side in enumerate(res.sides):
@@ -452,20 +459,22 @@ def stats_text(res: FrameResult, view: str, look: Look) -> Text:
         line.append(f"{tag} {'a' if compare else 'a(θi)'}={a}")
         if side.albedo_exceeds_one():
             line.append(" >1 NOT energy-conserving", style="bold red")
+        if terse >= 2:
+            continue
         pk, ps = shown_peak(side, view, look), peak_horizon(side, view, look)
         sc = shown_scale(side, view, look) if view in ("map", "solid") else None
         what = "f·cos peak" if res.request.cosine else "peak"
-        ch = f" ({pk.label})" if pk.label else ""
+        ch = channel_tag(pk)
         if ps.kind == "unbounded":  # no maximum: the finder's value would be an artefact
             fn = "f·cos" if res.request.cosine else "f"
             at = toward_text(ps)
             at = f"({at})" if compare else f"at {at}"
-            line.append(f"  {fn} → ∞ toward the horizon{ch} {at}")
+            line.append(f"  {fn} → ∞ toward the horizon{ch}{'' if terse else ' ' + at}")
         else:
             at = where(pk.theta_deg, pk.phi_deg)
             at = f"({at.replace('θ=', '').replace(' φ=', ',')})" if compare else f"at {at}"
-            line.append(f"  {what} {fmt_value(pk.value)}{ch} {at}")
-        if sc is not None and sc.capped:
+            line.append(f"  {what} {fmt_value(pk.value)}{ch}{'' if terse else ' ' + at}")
+        if sc is not None and sc.capped and not terse:  # (the map's bar says it too)
             line.append(f" · {scale_text(sc, short=compare)}")
     return line
 

@@ -40,6 +40,9 @@ CELL_ASPECT = 2.0  # a terminal cell is about twice as tall as it is wide
 Curve = tuple
 #: the marker of each side in compare mode: A braille dots, B a '+' per sample
 SIDE_MARKERS = ("braille", "+")
+#: an RGB channel where a side may be named too (compare mode's legends, a peak's channel):
+#: in words, so that "B" only ever means side B, never the blue channel
+CHANNEL_WORDS = {"R": "red", "G": "green", "B": "blue"}
 
 
 def curve_color(label: str, j: int) -> str:
@@ -121,6 +124,6 @@ def side_curves(sides: Sequence[tuple[str, np.ndarray]], channel: str = "rgb") -
         side = "AB"[k]
         for lab, v in channel_curves(name, values, channel):
             col = {"R": "red", "G": "green", "B": "blue"}.get(lab, CURVE_COLORS[k])
-            text = f"{side}:{name}" if lab == name else f"{side}:{lab}"
+            text = f"{side}:{name}" if lab == name else f"{side}:{CHANNEL_WORDS.get(lab, lab)}"
             out.append((text, v, SIDE_MARKERS[k], col))
     return out
