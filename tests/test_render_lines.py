@@ -68,11 +68,16 @@ def test_pads_and_crops():
     Text("abcdefgh", no_wrap=True, overflow="ellipsis"), Text("abcdefgh"),
     Text("centred", justify="center"), Text("tab\there"), Text("two\nlines"),
     Text("wide 漢字"), Text("dim part", style="dim red on blue"),
-    Text.assemble(("a", "bold"), "b")])
+    Text.assemble(("a", "bold"), "b"), Text("a\n"), Text("\n\n"),
+    Text.assemble(("θi 30°", "bold"), "  a(θi)=0.835", ("  >1", "bold red"), "\n",
+                  ("equal-area map · linear", "dim"), " · keys → A"),
+    Text.assemble(("span over\nthe newline", "italic"), " and on", style="blue"),
+    Text("ends with spaces   \n  starts with them"), Text("control \x1b[31m code"),
+    Text("fits\nbut this line is longer than twenty")])
 def test_text_rows_as_rich_draws_them(text):
-    # titles take a shortcut past Rich (one style, one row): the same cells as Rich, and the
-    # cases the shortcut must leave to Rich (wrapping, ellipsis, justification, tabs, wide
-    # characters, spans) too
+    # titles (one style, one row) and short lines (the status line's, with spans) take a
+    # shortcut past Rich: the same cells as Rich, and the cases the shortcuts must leave to
+    # Rich (wrapping, ellipsis, justification, tabs, wide characters, control codes) too
     for system in SYSTEMS:
         con = console(system)
         for w in (4, 20):
