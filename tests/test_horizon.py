@@ -215,19 +215,29 @@ def _brute_scale(side, rgb_mode, px):
     return float(np.max(v[keep]))
 
 
+def _ordinary(side, view, mode):
+    """The peaks of the columns a picture shows (R, G, B in colour mode, else the luminance or
+    the value) that are ordinary ones: bounded and at θ ≤ 89°."""
+    cols = (range(1, len(side.peaks)) if len(side.peaks) > 1 and view == "map"
+            and mode == "color" else (0,))
+    return [side.peaks[j].value for j in cols
+            if side.horizon(j).kind == "peak" and side.peaks[j].theta_deg <= HORIZON_DEG]
+
+
 CASES = [("ggx", {}, 89.0), ("ggx", {}, 90.0), ("sgd", {"material": "gold-metallic-paint"}, 60.0),
          ("sgd", {"material": "gold-metallic-paint"}, 75.0), ("cook-torrance", {}, 90.0)]
 
 
 @pytest.mark.parametrize("model,params,theta_i", CASES)
 @pytest.mark.parametrize("px", [(40, 26), (88, 84)])
-def test_scale_is_the_largest_drawn_value_and_below_the_peak(model, params, theta_i, px):
+def test_scale_is_the_largest_value_at_89_and_below_the_peak(model, params, theta_i, px):
     res = _frame(model, params, theta_i, px)
     side = res.sides[0]
     for mode in ("color", "luminance"):
         sc = side.scale_for(mode, "map")
         assert sc.capped  # every case here has its peak above 89° or unbounded
-        assert sc.value == pytest.approx(_brute_scale(side, mode, px), rel=1e-12)
+        assert sc.value == pytest.approx(max([_brute_scale(side, mode, px),
+                                              *_ordinary(side, "map", mode)]), rel=1e-12)
         assert 0.0 < sc.value < side.peak_for(mode).value
         assert sc.theta_deg <= HORIZON_DEG
         # and the value is f at the direction it names
@@ -237,6 +247,25 @@ def test_scale_is_the_largest_drawn_value_and_below_the_peak(model, params, thet
         f = f if mode == "color" or f.size == 1 else [0.2126 * f[0] + 0.7152 * f[1]
                                                       + 0.0722 * f[2]]
         assert max(f) == pytest.approx(sc.value, rel=1e-6)
+
+
+def test_a_channel_lobe_inside_sets_the_scale_beside_an_unbounded_one():
+    # sgd gold-metallic-paint at θi = 45°: blue grows without bound toward the horizon, red's
+    # lobe peaks inside (≈ 0.646 at 46°) between the map's pixel centres.  The map's scale is
+    # that lobe's top, not the highest pixel: no value the incidence section shows at
+    # |θ| ≤ 89° (its own kernel evaluations, 1° apart) is above the scale
+    res = _frame("sgd", {"material": "gold-metallic-paint"}, 45.0, (40, 26))
+    side = res.sides[0]
+    sc = side.scale_for("color", "map")
+    assert sc.kind == "unbounded" and sc.label == "R"
+    assert sc.value > _brute_scale(side, "color", (40, 26))
+    t = scene.SECTION_THETAS
+    for plane in scene.PLANES:
+        v = np.asarray(side.sections[plane])[np.abs(t) <= HORIZON_DEG]
+        assert float(v.max()) <= sc.value * (1.0 + 1e-9)
+    w = from_degrees(sc.theta_deg, sc.phi_deg)[None, :]
+    f = radiance(side.material.model, side.material.values, incident(45.0), w, False)[0]
+    assert f[0] == pytest.approx(sc.value, rel=1e-9)  # red at the direction it names
 
 
 def test_ordinary_frames_keep_the_peak_as_their_scale():
@@ -372,7 +401,8 @@ def test_scale_is_finite_positive_and_at_most_the_peak(case):
                 v = 0.2126 * v[:, 0] + 0.7152 * v[:, 1] + 0.0722 * v[:, 2]
             below = z >= math.sin(math.radians(90.0 - HORIZON_DEG))
             top = float(np.max(v[below]))
-            if sc.capped:
-                assert sc.value == pytest.approx(top, rel=1e-12, abs=1e-300)
+            if sc.capped:  # what is drawn, or a shown column's ordinary peak above it
+                assert sc.value == pytest.approx(max([top, *_ordinary(side, view, mode)]),
+                                                 rel=1e-12, abs=1e-300)
             elif pk.value > 0.0:
                 assert sc.value > 0.0

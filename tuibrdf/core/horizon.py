@@ -14,10 +14,12 @@ the viewer's largest pane, ≈ 85° at 40×14), the sections sample every degree
 
 **The rule** (the one number of every picture): the colour scale is the frame's peak when the
 peak lies at θ ≤ :data:`HORIZON_DEG` (89°) and is bounded: every ordinary frame.  Otherwise
-(``kind`` ``"capped"`` or ``"unbounded"``) it is the largest value the picture draws at
-θ ≤ 89° (:func:`drawn_scale`: the map's pixel centres, the solid's samples); values above it,
-closer to the horizon, take the top colour ("clipped").  So the lobe next to the horizon
-fills the colour range at any pane size, and the scale is a number the picture shows.
+(``kind`` ``"capped"`` or ``"unbounded"``) it is the largest value at θ ≤ 89°: what the
+picture draws there (:func:`drawn_scale`: the map's pixel centres, the solid's samples), or a
+shown column's own peak there when it is an ordinary one and higher
+(:meth:`tuibrdf.core.scene.SideFrame.scale_for`); values above it, closer to the horizon,
+take the top colour ("clipped").  So the lobe next to the horizon fills the colour range at
+any pane size, and the scale is a number the pictures show.
 
 **Growth test** (:func:`assess`): along the mirror side's horizon azimuth and the peak's own
 azimuth, ``f`` at ``90° − δ`` for ``δ = 10⁰ … 10⁻⁸ degrees`` (one kernel call of 9 directions per

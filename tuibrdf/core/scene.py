@@ -247,9 +247,10 @@ class SideFrame:
         """The top of the colour (or radius) scale of ``view`` (``"map"`` or ``"solid"``, whose
         values the frame holds; the solid in luminance) in ``rgb_mode``: the one number every
         pane shows.  :meth:`peak_for`'s peak when it is at θ ≤ 89° and bounded; otherwise the
-        largest value the picture draws at θ ≤ 89° (:func:`~tuibrdf.core.horizon.drawn_scale`,
-        every channel in ``"color"`` mode), with the peak's kind.  None when that picture is
-        not in the frame."""
+        largest value at θ ≤ 89°: what the picture draws there
+        (:func:`~tuibrdf.core.horizon.drawn_scale`, every channel in ``"color"`` mode), or the
+        peak of a column it shows when that peak is an ordinary one and higher; with the
+        peak's kind.  None when that picture is not in the frame."""
         mode = "luminance" if view == "solid" else rgb_mode
         pk, hz = self.peak_for(mode), self.peak_horizon(mode)
         if hz.kind == "peak":
@@ -273,6 +274,17 @@ class SideFrame:
             else:
                 v, labels = luminance(v), ("Y",)
         s = drawn_scale(v, g.dirs if g is not None else dirs, labels)
+        # a column shown whose own peak is an ordinary one (bounded, at θ ≤ 89°: a channel
+        # beside the one that grows toward the horizon) is the largest value at θ ≤ 89° in
+        # that column, whether or not a pixel falls on it: a scale below it would sit under
+        # the lobe the sections show (sgd gold-metallic-paint at θi = 45°: red 0.646 at 46°,
+        # the map's pixels 0.622)
+        cols = range(1, len(self.peaks)) if labels == ("R", "G", "B") else (0,)
+        for j in cols:
+            p = self.peaks[j]
+            if (self.horizon(j).kind == "peak" and p.theta_deg <= HORIZON_DEG
+                    and p.value > s.value):
+                s = PeakScale(p.value, p.theta_deg, p.phi_deg, p.label)
         return s._replace(kind=hz.kind, toward_deg=hz.toward_deg)
 
     @property

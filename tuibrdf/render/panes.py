@@ -4,7 +4,7 @@ Every number a pane shows comes from the result, so the panes agree: the map's t
 colour bar's top, the solid's scale and the status line show the same peak
 (:func:`shown_peak`: for an RGB model the luminance ``Y``, or the largest channel when the map
 shows the channels in colour, and the text says which) and the same scale (:func:`shown_scale`:
-the peak, or the largest value the picture draws at θ ≤ 89° when the peak is above 89° or
+the peak, or the largest value at θ ≤ 89° (drawn, or a shown lobe) when the peak is above 89° or
 unbounded, "f → ∞"; :mod:`tuibrdf.core.horizon`); the cross-sections say "section max" (the
 largest value along the two planes, below the peak when it lies off them).  In compare mode
 both maps share one colour scale topped by the larger of the two scales, and the bar says
@@ -111,7 +111,7 @@ def peak_horizon(side: SideFrame, view: str, look: Look) -> Horizon:
 
 def scale_text(scale: PeakScale, short: bool = False) -> str:
     """``scale: max θ≤89° 513`` (``scale 513 (θ≤89°)`` short), with the channel for RGB: the
-    largest value the picture draws at θ ≤ 89°."""
+    largest value at θ ≤ 89° (:meth:`~tuibrdf.core.scene.SideFrame.scale_for`)."""
     ch = f" ({CHANNEL_WORDS.get(scale.label, scale.label)})" if scale.label else ""
     if short:
         return f"scale {fmt_value(scale.value)}{ch} (θ≤{HORIZON_DEG:g}°)"
