@@ -20,7 +20,7 @@ from textual.widget import Widget
 from textual.widgets import Static
 
 from ..core.params import _fmt
-from ..render.lines import BLANK, fit_rows, pane_lines, render_rows
+from ..render.lines import BLANK, fit_row, pane_lines, render_rows
 from ..render.rowdiff import ChangedRow
 from .state import Side, ViewerState
 
@@ -84,10 +84,18 @@ class Rows(Widget):
         if regions:
             self.refresh(*regions)
 
+    def _blank_style(self) -> Style:
+        """The style of the blank cells below the rows."""
+        return BLANK
+
     def render_line(self, y: int) -> Strip:
         if y < len(self._strips):
             return self._strips[y]
-        return Strip([Segment(" " * self.size.width, BLANK)], self.size.width)
+        return Strip([Segment(" " * self.size.width, self._blank_style())], self.size.width)
+
+    def _styles_key(self) -> tuple:
+        """What the widget's look depends on: the styles of the widget and its ancestors."""
+        return tuple(node.styles._cache_key for node in self.ancestors_with_self)
 
     #: (the styles' keys of the widget and its ancestors, the side padding or None, its
     #: style): :meth:`_sides`, computed again when any of those styles changed
@@ -100,8 +108,7 @@ class Rows(Widget):
         here or in an ancestor), else ``None``; and the padding's style, as Textual's styles
         cache pads a line.  Kept until a style of the widget or an ancestor changes (looking
         them up costs ≈ 50 µs, more than handing the rows over)."""
-        nodes = self.ancestors_with_self
-        key = tuple(node.styles._cache_key for node in nodes)
+        key = self._styles_key()
         if self._direct is None or self._direct[0] != key:
             s = self.styles
             g, p = s.gutter, s.padding
@@ -216,11 +223,40 @@ class QuietStatic(Static):
         self._rows = None  # the next text is laid out at the new width
 
 
+class DrawnRows(Rows):
+    """Rows a widget draws from its own content (:meth:`_draw`), its height following them:
+    the parameter panel and the status line."""
+
+    def _draw(self) -> None:
+        raise NotImplementedError
+
+    def _place(self, lines: list[list[Segment]], width: int) -> None:
+        """Show ``lines`` of ``width`` cells: only the cells that changed are repainted; a
+        height of its own other than the widget's (its rows and gutter, at least its
+        min-height) lays the screen out again, these rows drawn in the same paint (the rows
+        below them blank: :meth:`Rows.render_line`)."""
+        floor = self.styles.min_height  # a panel as tall as the longest model's (layout.py)
+        floor = int(floor.value) if floor is not None and floor.unit == Unit.CELLS else 0
+        if max(len(lines) + self.styles.gutter.height, floor) != self.outer_size.height:
+            self._strips = [Strip(line, width) for line in lines]
+            self._lines = lines
+            self.refresh(layout=True)
+            return
+        h = self.size.height
+        blank = [Segment(" " * width, self._blank_style())]  # rows below (min-height)
+        self._set(lines[:h] + [blank] * (h - len(lines)), width, h)
+
+    def on_resize(self, event) -> None:
+        if self._strips and event.size.width == self._strips[0].cell_length:
+            return  # a new height for rows already drawn at this width
+        self._draw()
+
+
 #: the parameter panel's label column: at least, at most (cells)
 LABEL_WIDTH = (7, 16)
 
 
-class ParamPanel(Rows):
+class ParamPanel(DrawnRows):
     """The parameter rows of one side: value, range, unit; the selected row highlighted.  At
     most :attr:`max_rows` rows (the layout's, from the terminal's height): a window over them
     that follows the selected row, the rows above and below it counted in the borders
@@ -264,10 +300,12 @@ class ParamPanel(Rows):
     def _style(self) -> Style:
         """The widget's colours (Textual works them out from every ancestor: ≈ 0.3 ms; kept
         until a style of the widget or an ancestor changes)."""
-        key = tuple(node.styles._cache_key for node in self.ancestors_with_self)
+        key = self._styles_key()
         if self._base is None or self._base[0] != key:
             self._base = key, self.rich_style
         return self._base[1]
+
+    _blank_style = _style
 
     def _rows(self, width: int) -> list[list[Segment]]:
         """The rows over the widget's colours, as a ``Static`` renders its content (so
@@ -283,39 +321,16 @@ class ParamPanel(Rows):
                 cut = Segment.adjust_line_length(segments, max(width - 1, 0), base)
                 last = Segment.adjust_line_length(segments, width, base)[-1].style
                 segments = [*cut, Segment("…", last)] if width else []
-            out.append(_fit_row(segments, min(n, width), width, base))
+            out.append(fit_row(segments, min(n, width), width, base))
         return out
 
     def get_content_height(self, container, viewport, width: int) -> int:
         return max(1, len(self._parts))
 
     def _draw(self) -> None:
-        """The text's rows at the widget's width: only the cells that changed are repainted;
-        a new number of rows lays the screen out again."""
         width = self.size.width
-        if width < 1:  # not laid out yet: drawn by on_resize
-            return
-        lines = self._rows(width)
-        floor = self.styles.min_height  # a panel as tall as the longest model's (layout.py)
-        floor = int(floor.value) if floor is not None and floor.unit == Unit.CELLS else 0
-        if max(len(lines) + self.styles.gutter.height, floor) != self.outer_size.height:
-            self._strips = [Strip(line, width) for line in lines]  # a new height: laid out
-            self._lines = lines  # again, these rows drawn in the same paint (the rows
-            self.refresh(layout=True)  # below them blank: Rows.render_line)
-            return
-        h = self.size.height
-        blank = [Segment(" " * width, self._style())]  # rows below the text (min-height)
-        self._set(lines[:h] + [blank] * (h - len(lines)), width, h)
-
-    def render_line(self, y: int) -> Strip:
-        if y < len(self._strips):
-            return self._strips[y]
-        return Strip([Segment(" " * self.size.width, self._style())], self.size.width)
-
-    def on_resize(self, event) -> None:
-        if self._strips and event.size.width == self._strips[0].cell_length:
-            return  # a new height for rows already drawn at this width
-        self._draw()
+        if width >= 1:  # (else not laid out yet: drawn by on_resize)
+            self._place(self._rows(width), width)
 
     def show(self, state: ViewerState, side_index: int) -> None:
         side: Side = state.sides[side_index]
@@ -376,12 +391,7 @@ class ParamPanel(Rows):
             self._draw()
 
 
-def _fit_row(row: list[Segment], own: int, width: int, pad: Style) -> list[Segment]:
-    """``row`` (``own`` ≤ ``width`` cells) padded to ``width`` cells in ``pad``."""
-    return row if own >= width else [*row, Segment(" " * (width - own), pad)]
-
-
-class StatusLine(Rows):
+class StatusLine(DrawnRows):
     """Two lines: θi and the frame's numbers; the view, scale, colour map and a message.  The
     numbers may wrap to a third line; the last line is cut with "…" at the width, so a long
     message never adds one.  The text comes in forms, the full one first and each shorter
@@ -456,19 +466,5 @@ class StatusLine(Rows):
     def _draw(self) -> None:
         width = self.size.width
         self._text = self._fitted(width)
-        if width < 1:  # not laid out yet: drawn by on_resize
-            return
-        rows = self._rows(width)
-        h = len(rows)
-        lines = fit_rows(rows, width, h)
-        if h != self.size.height:  # a new height: laid out again, the rows drawn in the
-            self._strips = [Strip(line, width) for line in lines]  # same paint
-            self._lines = lines
-            self.refresh(layout=True)
-            return
-        self._set(lines, width, h)
-
-    def on_resize(self, event) -> None:
-        if self._strips and event.size.width == self._strips[0].cell_length:
-            return  # a new height for rows already drawn at this width
-        self._draw()
+        if width >= 1:  # (else not laid out yet: drawn by on_resize)
+            self._place(self._rows(width), width)

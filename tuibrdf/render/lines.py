@@ -49,13 +49,19 @@ def _short_lines(text: Text, width: int) -> list[Text] | None:
     return None if any(len(line.plain) > width for line in lines) else lines
 
 
-def _fit(row: list[Segment], own: int, width: int) -> list[Segment]:
-    """``row`` (``own`` cells) cropped or padded to ``width`` cells."""
+def fit_row(row: list[Segment], own: int, width: int, pad: Style = BLANK) -> list[Segment]:
+    """``row`` (``own`` cells) cropped or padded to ``width`` cells (padding in ``pad``)."""
     if own == width:
         return row
     if own < width:
-        return [*row, Segment(" " * (width - own), BLANK)]
-    return Segment.adjust_line_length(row, width, BLANK)
+        return [*row, Segment(" " * (width - own), pad)]
+    return Segment.adjust_line_length(row, width, pad)
+
+
+def _styled(segments) -> list[Segment]:
+    """``segments`` with a ``None`` style made :data:`BLANK` (Rich may leave one; Textual's
+    NO_COLOR filter crashes on it)."""
+    return [s if s.style is not None else Segment(s.text, BLANK) for s in segments]
 
 
 def render_rows(part: RenderableType, console: Console, width: int,
@@ -72,25 +78,22 @@ def render_rows(part: RenderableType, console: Console, width: int,
     if isinstance(part, HalfBlockImage):
         prev = like if isinstance(like, HalfBlockImage) else None
         rows = part.rows(part.color_system or console_system(console), prev)
-        return [_fit(r, part.width, width) for r in rows]
+        return [fit_row(r, part.width, width) for r in rows]
     if isinstance(part, BrailleCanvas):
         rows = part.rows(like if isinstance(like, BrailleCanvas) else None)
-        return [_fit(r, part.width, width) for r in rows]
+        return [fit_row(r, part.width, width) for r in rows]
     if isinstance(part, LeftLabelled):
-        return [_fit(r, part.width, width) for r in part.rows()]
+        return [fit_row(r, part.width, width) for r in part.rows()]
     if isinstance(part, Text) and _plain_line(part, width):  # a title: one style, one line
         style = console.get_style(part.style) if part.style else BLANK
         text = part.plain
-        return [_fit([Segment(text, style)] if text else [], len(text), width)]
+        return [fit_row([Segment(text, style)] if text else [], len(text), width)]
     if isinstance(part, Text) and (lines := _short_lines(part, width)) is not None:
-        return [_fit([s if s.style is not None else Segment(s.text, BLANK)
-                      for s in line.render(console, end="")], len(line.plain), width)
+        return [fit_row(_styled(line.render(console, end="")), len(line.plain), width)
                 for line in lines]
     rows = console.render_lines(part, console.options.update(width=width, height=None),
                                 style=BLANK, pad=True)
-    # Rich may leave a segment's style None; the pictures above never do
-    return [[s if s.style is not None else Segment(s.text, BLANK) for s in row]
-            for row in rows]
+    return [_styled(row) for row in rows]  # (the pictures above never leave a None style)
 
 
 def fit_rows(rows: list[list[Segment]], width: int, height: int) -> list[list[Segment]]:
