@@ -4,8 +4,11 @@ Expected values come from the parameter declarations (each Param's step and coar
 range, the kd + ks ≤ 1 constraint) and the key table of issue 4 / SPEC §5, not from the app.
 """
 
+from functools import partial
+
 import pytest
 
+from tests.pilot import wait_for as pilot_wait_for
 from tuibrdf.app.app import BrdfApp
 from tuibrdf.app.state import Side, ViewerState
 from tuibrdf.app.text import visible_panes
@@ -306,12 +309,7 @@ def constant_merl(path, value=0.1, nan=False):
     return write_merl(path, table)
 
 
-async def wait_for(pilot, cond, rounds=200):
-    for _ in range(rounds):
-        if cond():
-            return True
-        await pilot.pause(0.02)
-    return False
+wait_for = partial(pilot_wait_for, seconds=4.0)
 
 
 async def test_measured_file_loads_in_the_background_then_draws(tmp_path):
@@ -374,9 +372,10 @@ async def test_albedo_curve_is_computed_off_the_loop_then_drawn(monkeypatch):
         assert "computing" in shown()
         release.set()
         m = Material("cook-torrance", {"m": 0.05, "kd": 0.1})
-        assert await wait_for(pilot, lambda: scene._CURVES.peek((m, 180.0)) is not None, 500)
+        assert await wait_for(pilot, lambda: scene._CURVES.peek((m, 180.0)) is not None,
+                              seconds=10.0)  # (500 rounds of 0.02 s)
         drawn = lambda: "a(θi=30°) = " in shown() and "computing" not in shown()  # noqa: E731
-        assert await wait_for(pilot, drawn, 500)
+        assert await wait_for(pilot, drawn, seconds=10.0)
         await pilot.press("right")  # keys still work
         assert app.state.theta_i == 31.0
 

@@ -10,12 +10,14 @@ from __future__ import annotations
 import dataclasses
 import random
 import re
+from functools import partial
 
 import numpy as np
 import pytest
 from rich.console import Console
 from textual import events
 
+from tests.pilot import wait_for as pilot_wait_for
 from tuibrdf.app import keys
 from tuibrdf.app.app import BrdfApp
 from tuibrdf.app.state import MAIN_VIEWS, Side, ViewerState
@@ -45,12 +47,7 @@ def burst(app, *names: str) -> None:
         app.post_message(events.Key(name, char))
 
 
-async def wait_for(pilot, cond, seconds=20.0):
-    for _ in range(int(seconds / 0.05)):
-        if cond():
-            return True
-        await pilot.pause(0.05)
-    return False
+wait_for = partial(pilot_wait_for, seconds=20.0, step=0.05)
 
 
 # ------------------------------------------------------------------------- the key table
@@ -343,7 +340,7 @@ async def test_key_mash_leaves_a_live_app_and_a_valid_state():
         await pilot.press("right" if s.theta_i < 90 else "left")
         want = app.frame_request()
         assert await wait_for(pilot, lambda: app.frame is not None and
-                              app.frame.request == want, 30)
+                              app.frame.request == want, seconds=30)
 
 
 async def test_the_lit_plane_is_evaluated_once_per_frame_and_exposure_evaluates_nothing(

@@ -24,6 +24,7 @@ from textual.screen import Screen
 from textual.strip import Strip
 from textual.widget import Widget
 
+from tests.pilot import wait_for
 from tuibrdf.app import frames, paint
 from tuibrdf.app.app import BrdfApp
 from tuibrdf.app.paint import ViewerCompositor, _cells
@@ -243,14 +244,6 @@ def held_compute(monkeypatch, slow_only: bool):
 
     monkeypatch.setattr(scene, "compute_frame", compute)
     return release
-
-
-async def wait_for(pilot, cond, seconds=10.0):
-    for _ in range(int(seconds / 0.02)):
-        if cond():
-            return True
-        await pilot.pause(0.02)
-    return False
 
 
 async def test_a_slow_frame_lets_the_status_line_go_ahead(monkeypatch):
