@@ -267,10 +267,10 @@ class SideFrame:
             v = self.solid[:len(dirs)]
         else:
             return None
-        labels = ("",)
+        labels, cols = ("",), (0,)  # the columns of ``peaks`` the picture shows
         if v.ndim == 2:
             if mode == "color":
-                labels = ("R", "G", "B")
+                labels, cols = ("R", "G", "B"), (1, 2, 3)
             else:
                 v, labels = luminance(v), ("Y",)
         s = drawn_scale(v, g.dirs if g is not None else dirs, labels)
@@ -279,7 +279,6 @@ class SideFrame:
         # that column, whether or not a pixel falls on it: a scale below it would sit under
         # the lobe the sections show (sgd gold-metallic-paint at θi = 45°: red 0.646 at 46°,
         # the map's pixels 0.622)
-        cols = range(1, len(self.peaks)) if labels == ("R", "G", "B") else (0,)
         for j in cols:
             p = self.peaks[j]
             if (self.horizon(j).kind == "peak" and p.theta_deg <= HORIZON_DEG

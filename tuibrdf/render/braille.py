@@ -36,7 +36,7 @@ from rich.measure import Measurement
 from rich.segment import Segment
 from rich.style import Style
 
-from .rowdiff import mark_changed
+from .rowdiff import kept_rows, mark_changed
 
 BRAILLE_BASE = 0x2800
 #: bit of the dot at (row 0..3, column 0..1) of a cell (Unicode braille numbering 1-8)
@@ -265,17 +265,13 @@ class BrailleCanvas:
         cols = np.where(blank, 0, np.arange(self.width)[None, :])
         np.maximum.accumulate(cols, axis=1, out=cols)
         cid = np.take_along_axis(cid, cols, axis=1)
-        out: list[list[Segment]] = [[] for _ in range(self.height)]
         # each cell's colour as a number that means the same colour on every canvas
         colour = np.array([_colour_id(c) for c in palette])[cid]
         old = None if like is None else like._drawn
-        same = np.zeros(self.height, dtype=bool)
         diff = None
         if old is not None and old[0].shape == chars.shape:
             diff = (old[0] != chars) | (old[1] != colour)
-            same = ~diff.any(axis=1)
-            for r in np.flatnonzero(same).tolist():
-                out[r] = old[2][r]
+        out, same = kept_rows(None if diff is None else old[2], diff, self.height)
         starts = np.ones(cid.shape, dtype=bool)
         starts[:, 1:] = cid[:, 1:] != cid[:, :-1]
         starts[same] = False  # only the runs of the rows that changed

@@ -45,7 +45,7 @@ from rich.segment import Segment
 from rich.style import Style
 
 from ..core.conventions import REC709  # here applied to 8-bit values: a luma
-from .rowdiff import mark_changed
+from .rowdiff import kept_rows, mark_changed
 
 ColorSystem = Literal["truecolor", "256", "none"]
 COLOR_SYSTEMS: tuple[str, ...] = ("truecolor", "256", "none")
@@ -170,24 +170,21 @@ def split_halves(index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 #: the code tables kept across frames (:func:`_code_table`): a few palettes at a time (the
 #: colour maps in use; a lit picture's palette is its own distinct colours, new each frame)
 TABLES_KEPT = 8
-_TABLES: OrderedDict[tuple, dict] = OrderedDict()
-
-
-#: a run's key in a code table: ``code * RUN_KEY + length`` (a row is far shorter)
+_TABLES: OrderedDict[tuple, tuple[dict, dict]] = OrderedDict()
+#: a run's key in a code table's segments: ``code * RUN_KEY + length`` (a row is far shorter)
 RUN_KEY = 1 << 20
-SEGMENTS = "segments"  #: the key of a code table's segments by run (:data:`RUN_KEY`)
 
 
-def _code_table(system: str, ring: int | None, palette: np.ndarray) -> dict:
-    """``code → (character, style)`` of a palette's cells in ``system`` (the codes of
-    :meth:`HalfBlockImage._build`; a mark's look is keyed by the mark and its two pixels),
-    filled as codes are met and kept for the next frame with the same palette: a map's frame
-    meets the same few hundred colour pairs again, and working each out anew was ≈ 40 % of
-    drawing it."""
+def _code_table(system: str, ring: int | None, palette: np.ndarray) -> tuple[dict, dict]:
+    """``(looks, runs)`` of a palette's cells in ``system``: ``code → (character, style)``
+    (the codes of :meth:`HalfBlockImage._build`; a mark's look is keyed by the mark and its
+    two pixels) and ``code * RUN_KEY + length → Segment`` of a run; filled as they are met and
+    kept for the next frame with the same palette: a map's frame meets the same few hundred
+    colour pairs and runs again, and working each out anew was ≈ 40 % of drawing it."""
     key = (system, ring, palette.tobytes())
     table = _TABLES.get(key)
     if table is None:
-        table = _TABLES[key] = {}
+        table = _TABLES[key] = ({}, {})
         if len(_TABLES) > TABLES_KEPT:
             _TABLES.popitem(last=False)
     else:
@@ -302,22 +299,16 @@ class HalfBlockImage:
                 codes[m.row, m.col] = -(k + 1)
         self._codes[system] = codes
         diff = self._differ(codes, system, like)
-        same = np.zeros(self.height, dtype=bool) if diff is None else ~diff.any(axis=1)
-        out: list[list[Segment]] = [[] for _ in range(self.height)]
-        for r in np.flatnonzero(same).tolist():
-            out[r] = like._rows[system][r]
-        table = _code_table(system, self.ring, self.palette)
+        out, same = kept_rows(None if diff is None else like._rows[system], diff, self.height)
+        looks, segments = _code_table(system, self.ring, self.palette)
         rows, starts, lengths = find_runs(codes)
         if same.any():  # only the runs of the rows that changed
             keep = ~same[rows]
             rows, starts, lengths = rows[keep], starts[keep], lengths[keep]
         run_codes = codes[rows, starts]
-        # a run's segment, kept in the table by code and length (a frame meets the same few
-        # hundred again): one dict look-up a run; a mark's (code < 0) key never matches
+        # a run's segment, kept by code and length: one dict look-up a run; a mark's
+        # (code < 0) key never matches
         keys = np.where(run_codes >= 0, run_codes * RUN_KEY + lengths, -1).tolist()
-        segments = table.get(SEGMENTS)
-        if segments is None:
-            segments = table[SEGMENTS] = {}
         flat = [segments.get(k) for k in keys]
         if None in flat:
             for i in [i for i, seg in enumerate(flat) if seg is None]:
@@ -327,9 +318,9 @@ class HalfBlockImage:
                     m = self.marks[-code - 1]
                     r, c = int(rows[i]), int(starts[i])
                     key = (m.glyph, m.ascii, m.rgb, int(top[r, c]), int(bottom[r, c]))
-                got = table.get(key)
+                got = looks.get(key)
                 if got is None:
-                    got = table[key] = (make(code) if code >= 0
+                    got = looks[key] = (make(code) if code >= 0
                                         else self._mark(m, key[3], key[4], system))
                 flat[i] = seg = Segment(got[0] * n, got[1])
                 if code >= 0:

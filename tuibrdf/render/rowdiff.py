@@ -36,6 +36,18 @@ def spans(diff: np.ndarray) -> list[tuple[int, int]]:
     return list(zip(x0.tolist(), x1.tolist(), strict=True))
 
 
+def kept_rows(old_rows: list[list[Segment]] | None, diff: np.ndarray | None,
+              height: int) -> tuple[list[list[Segment]], np.ndarray]:
+    """``(out, same)``: ``height`` rows, each without a differing cell (``diff``, ``(rows,
+    cells)``; None: every row differs) the row of ``old_rows`` at its place itself, the
+    others empty lists to draw; and which rows were kept."""
+    same = np.zeros(height, dtype=bool) if diff is None else ~diff.any(axis=1)
+    out: list[list[Segment]] = [[] for _ in range(height)]
+    for r in np.flatnonzero(same).tolist():
+        out[r] = old_rows[r]
+    return out, same
+
+
 def mark_changed(out: list[list[Segment]], old_rows: list[list[Segment]], redrawn: np.ndarray,
                  diff: np.ndarray) -> None:
     """Each row of ``out`` drawn again (``redrawn``) as a :class:`ChangedRow` against the row
