@@ -288,11 +288,8 @@ class SideFrame:
 
     @property
     def section_center(self) -> tuple[float, float]:
-        """``(θ, φ)`` in degrees of the centre of the section through the peak: the overall
-        peak's direction, lowered to θ = 89° when it is above (the section across a peak on
-        the horizon would be the horizon itself)."""
-        p = self.peaks[0]
-        return min(p.theta_deg, HORIZON_DEG), p.phi_deg
+        """:func:`section_center` of the overall peak."""
+        return section_center(self.peaks[0])
 
     @property
     def section_max(self) -> float:
@@ -353,9 +350,11 @@ def _peaks(m: Material, theta_i: float, cosine: bool, phi_i: float
     return assess(m.model, m.values, theta_i, peaks, cosine=cosine, phi_i_deg=phi_i)
 
 
-def peak_center(peak: Peak) -> np.ndarray:
-    """The unit direction of ``peak`` (the centre of the section through it)."""
-    return from_degrees(peak.theta_deg, peak.phi_deg)
+def section_center(peak: Peak) -> tuple[float, float]:
+    """``(θ, φ)`` in degrees of the centre of the section through ``peak``: its direction,
+    lowered to θ = 89° when it is above (the section across a peak on the horizon would be
+    the horizon itself)."""
+    return min(peak.theta_deg, HORIZON_DEG), peak.phi_deg
 
 
 def _sections(m: Material, theta_i: float, cosine: bool, center: np.ndarray,
@@ -475,7 +474,7 @@ def _side(req: FrameRequest, m: Material, slow: bool,
     t, cos, pi = req.theta_i, req.cosine, req.phi_i
     peaks, horizons = _PEAKS.get((m, t, pi, cos), lambda: _peaks(m, t, cos, pi))
     az = req.section_azimuth
-    ctr = SideFrame(m, peaks, {}).section_center
+    ctr = section_center(peaks[0])
     sections = _SECTIONS.get((m, t, pi, cos, ctr, az),
                              lambda: _sections(m, t, cos, from_degrees(*ctr), az, pi))
     mp = None

@@ -112,7 +112,7 @@ def peak_horizon(side: SideFrame, view: str, look: Look) -> Horizon:
 def scale_text(scale: PeakScale, short: bool = False) -> str:
     """``scale: max θ≤89° 513`` (``scale 513 (θ≤89°)`` short), with the channel for RGB: the
     largest value at θ ≤ 89° (:meth:`~tuibrdf.core.scene.SideFrame.scale_for`)."""
-    ch = f" ({CHANNEL_WORDS.get(scale.label, scale.label)})" if scale.label else ""
+    ch = channel_tag(scale)
     if short:
         return f"scale {fmt_value(scale.value)}{ch} (θ≤{HORIZON_DEG:g}°)"
     return f"scale: {CAP_TEXT} {fmt_value(scale.value)}{ch}"
@@ -134,8 +134,9 @@ def _unit(cosine: bool) -> str:
     return "sr⁻¹"
 
 
-def channel_tag(peak: Peak) -> str:
-    """`` (Y)``, `` (red)``, `` (green)``, `` (blue)`` for an RGB model's peak, else ``""``."""
+def channel_tag(peak: Peak | PeakScale) -> str:
+    """`` (Y)``, `` (red)``, `` (green)``, `` (blue)`` for an RGB model's peak (or scale),
+    else ``""``."""
     return f" ({CHANNEL_WORDS.get(peak.label, peak.label)})" if peak.label else ""
 
 
@@ -177,7 +178,7 @@ def _top(values: np.ndarray, rgb_mode: str) -> float:
     """The largest value a picture of ``values`` draws (its luminance for an RGB picture not
     in ``"color"`` mode); 0 when none is finite."""
     v = np.asarray(values, dtype=float)
-    if v.ndim >= 2 and v.shape[-1] == 3 and rgb_mode != "color" and v.ndim == 3:
+    if v.ndim == 3 and v.shape[-1] == 3 and rgb_mode != "color":
         v = luminance(v)
     finite = v[np.isfinite(v)]
     return float(finite.max()) if finite.size else 0.0
