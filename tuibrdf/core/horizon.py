@@ -41,7 +41,7 @@ import numpy as np
 
 from .frame import incident
 from .params import Model
-from .peak import PEAK_TOL, Peak, _plane_refine, radiance, scores
+from .peak import NORMAL, PEAK_TOL, Peak, _plane_refine, mirror_horizon, radiance, scores
 
 #: a peak above this polar angle (degrees) is on the horizon for the pictures: their scale is
 #: the largest value they draw at θ ≤ this angle, and the section through the peak goes
@@ -56,7 +56,6 @@ HORIZON_RATIO = 1.5
 GROWTH_DELTAS_DEG = tuple(10.0 ** -k for k in range(9))
 #: growth per decade over the last two decades that counts as unbounded (f ~ 1/δ^p, p ≥ 1/2)
 GROWTH_MIN = math.sqrt(10.0)
-_NORMAL = np.array([0.0, 0.0, 1.0])
 _DELTAS = np.radians(np.array(GROWTH_DELTAS_DEG))
 _COS_D, _SIN_D = np.cos(_DELTAS), np.sin(_DELTAS)
 
@@ -92,10 +91,7 @@ class PeakScale(NamedTuple):
 def _axes(wi: np.ndarray, phi_i_deg: float, peaks: tuple[Peak, ...]) -> list[np.ndarray]:
     """The horizontal unit vectors to test: the mirror side's horizon, then each peak's azimuth
     where the peak is above HORIZON_DEG and not on the first."""
-    r = math.hypot(wi[0], wi[1])
-    mirror = (np.array([-wi[0] / r, -wi[1] / r, 0.0]) if r > 1e-100  # r ≠ 0
-              else incident(90.0, float(phi_i_deg) + 180.0))
-    out = [mirror]
+    out = [mirror_horizon(wi, phi_i_deg)]
     for p in peaks:
         if p.theta_deg <= HORIZON_DEG:
             continue
@@ -129,7 +125,7 @@ def _classify(model: Model, values: Mapping[str, Any], theta_i_deg: float,
     axes = _axes(wi, phi_i_deg, peaks)
     n = len(_DELTAS)
     # 90° − δ along each axis: cos δ · axis + sin δ · N (exact distances from the horizon)
-    w = np.concatenate([_COS_D[:, None] * ax + _SIN_D[:, None] * _NORMAL for ax in axes])
+    w = np.concatenate([_COS_D[:, None] * ax + _SIN_D[:, None] * NORMAL for ax in axes])
     sc = scores(radiance(model, values, wi, w, cosine))  # one call for every axis
     peaks = list(peaks)
     toward: list[float | None] = [None] * len(peaks)

@@ -396,6 +396,21 @@ def _plane_refine(model: Model, values: Mapping[str, Any], wi: np.ndarray, cosin
     return out
 
 
+def _at_normal(wi: np.ndarray) -> bool:
+    """The light is at the normal (to rounding): the mirror direction has no azimuth."""
+    return math.hypot(wi[0], wi[1]) <= 1e-100
+
+
+def mirror_horizon(wi: np.ndarray, phi_i_deg: float) -> np.ndarray:
+    """The horizon on the mirror side, a horizontal unit vector: HORIZON_MIRROR turned with the
+    light's azimuth (from the mirror direction itself, but at the normal, where it has
+    none)."""
+    if _at_normal(wi):
+        return incident(90.0, float(phi_i_deg) + 180.0)
+    r = math.hypot(wi[0], wi[1])  # > 0
+    return np.array([-wi[0] / r, -wi[1] / r, 0.0])
+
+
 def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
                cosine: bool = False, level: int = PEAK_LEVEL,
                phi_i_deg: float = 180.0) -> tuple[Peak, ...]:
@@ -405,18 +420,14 @@ def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
         raise ValueError(f"theta_i = {theta_i_deg!r} is invalid: expected in [0, 90]°")
     wi = incident(theta_i_deg, phi_i_deg)
     s_dir = mirror(wi)
-    # the horizon on the mirror side: HORIZON_MIRROR turned with the light's azimuth (from S
-    # itself, but at the normal, where S has no azimuth)
-    r = math.hypot(s_dir[0], s_dir[1])
-    h_mirror = (np.array([s_dir[0] / r, s_dir[1] / r, 0.0]) if r > 1e-100  # r ≠ 0
-                else incident(90.0, float(phi_i_deg) + 180.0))
+    h_mirror = mirror_horizon(wi, phi_i_deg)
     cand = np.concatenate([hemisphere(level).vertices, [s_dir, h_mirror, NORMAL]])
     # one kernel call for the candidates and the plane's grid
     line = _PLANE_SIN * h_mirror + _PLANE_UP
     sc = scores(radiance(model, values, wi, np.concatenate([cand, line]), cosine))
     sc, gs = sc[:len(cand)], sc[len(cand):]
     val, at, ended = _climb(model, values, wi, cosine, cand, sc, level)
-    starts = _plane_starts(gs, val, at, ended, h_mirror, r <= 1e-100)
+    starts = _plane_starts(gs, val, at, ended, h_mirror, _at_normal(wi))
     starts += _near_horizon_starts(model, values, wi, cosine, h_mirror, at)
     if starts:
         for c, v, t in _plane_refine(model, values, wi, cosine, h_mirror, starts, val):
