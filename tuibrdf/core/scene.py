@@ -8,10 +8,10 @@ albedo curve is shown.  Per material the result holds:
 
 ==============  ==================================================================================
 ``peaks``       :func:`tuibrdf.core.peak.find_peaks`: the one peak (``(Y, R, G, B)`` for RGB),
-                put right next to the horizon by :func:`tuibrdf.core.horizon.frame_scale`
+                put right next to the horizon by :func:`tuibrdf.core.horizon.assess`
 ``horizons``    per column, whether the peak is above 89° or unbounded
                 (:class:`~tuibrdf.core.horizon.Horizon`): the pictures' scale is then the largest
-                value they draw at θ ≤ 89° (:meth:`SideFrame.scale_for`)
+                value at θ ≤ 89° (:meth:`SideFrame.scale_for`)
 ``sections``    ``f`` along both planes (θr from −90° to 90°, :data:`SECTION_THETAS`) and, under
                 ``"peak"``, along the great circle through :attr:`SideFrame.section_center` (the
                 overall peak, the luminance's for RGB; lowered to θ = 89° when it is above 89°)
@@ -260,10 +260,9 @@ class SideFrame:
 
             data = self.map[0]
             g = geometry(data.shape[1], data.shape[0])
-            v = data[g.inside]
+            v, dirs = data[g.inside], g.dirs
         elif view == "solid" and self.solid is not None:
             dirs = solid_samples()[0]
-            g = None
             v = self.solid[:len(dirs)]
         else:
             return None
@@ -273,7 +272,7 @@ class SideFrame:
                 labels, cols = ("R", "G", "B"), (1, 2, 3)
             else:
                 v, labels = luminance(v), ("Y",)
-        s = drawn_scale(v, g.dirs if g is not None else dirs, labels)
+        s = drawn_scale(v, dirs, labels)
         # a column shown whose own peak is an ordinary one (bounded, at θ ≤ 89°: a channel
         # beside the one that grows toward the horizon) is the largest value at θ ≤ 89° in
         # that column, whether or not a pixel falls on it: a scale below it would sit under
