@@ -22,18 +22,13 @@ import numpy as np
 import tuibrdf.core.peak as peak_module
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_peak import counted  # noqa: E402
 from test_peak import both_sides_max, peak  # noqa: E402
 
 
 def main() -> int:
-    calls: list[int] = []
-    inner = peak_module.evaluate_resolved
-
-    def counting(*args, **kwargs):
-        calls.append(1)
-        return inner(*args, **kwargs)
-
-    peak_module.evaluate_resolved = counting
+    calls = counted(peak_module)
     short, worst, per_case = {}, 0.0, []
     for m in np.arange(0.30, 1.0001, 0.025):
         for th in np.arange(3.0, 40.01, 1.0):
