@@ -167,7 +167,7 @@ class FrameDelivery:
                 self._failed(req, e)
             return
         done = scene.cached_frame(req)
-        if (done is None or not done.complete) and self._compute_here(req):
+        if (done is None or not done.complete) and self._compute_here(req, done is None):
             return
         if done is not None:
             self.frame_ready(done)
@@ -192,16 +192,16 @@ class FrameDelivery:
         kept.append(seconds)
         del kept[:-INLINE_KEEP]
 
-    def _compute_here(self, req: FrameRequest) -> bool:
+    def _compute_here(self, req: FrameRequest, fresh: bool) -> bool:
         """Compute and show ``req``'s frame now, on the event loop, when frames of its kind
         took less than :data:`INLINE_S` lately (none yet: the worker, which times them) and it
-        needs no new albedo curve; returns whether it did."""
+        needs no new albedo curve; returns whether it did.  ``fresh``: none of it is cached
+        (its time is then noted)."""
         kept = self._costs.get(self._kind(req))
         if not kept or max(kept) >= INLINE_S or scene.needs_curve(req):
             return False
         if self._worker is not None and self._worker.is_running:
             self._worker.cancel()  # an older request's: its result would be dropped
-        fresh = scene.cached_frame(req) is None
         start = time.perf_counter()
         try:
             res = scene.compute_frame(req)
