@@ -145,3 +145,23 @@ async def test_scrolling_the_panel_never_lays_the_screen_out_again():
             await pilot.press("down")
         await pilot.pause()
         assert len(calls) >= 12 and not any(calls)  # every ↓ repaints, none lays out
+
+
+async def test_a_narrow_panel_cuts_its_rows_with_an_ellipsis_at_its_width():
+    # at 60×18 cook-torrance's rows are wider than the panel: each drawn row is exactly the
+    # panel's width, a row cut ends in "…" in its last cell, and the cells before it are the
+    # row's own text (render(): the rows as text, uncut)
+    app = BrdfApp(ViewerState(sides=[Side.of("cook-torrance")]), sync=True)
+    async with app.run_test(size=(60, 18)) as pilot:
+        await pilot.pause()
+        panel = app.query_one("#panel-a")
+        width = panel.size.width
+        full = str(panel.render()).splitlines()
+        drawn = ["".join(s.text for s in row) for row in panel._lines[:len(full)]]
+        assert any(len(line) > width for line in full)  # the case this is about
+        for text, row in zip(full, drawn, strict=True):
+            assert len(row) == width
+            if len(text) > width:
+                assert row == text[:width - 1] + "…"
+            else:
+                assert row == text.ljust(width)
