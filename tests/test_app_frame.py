@@ -576,3 +576,105 @@ async def test_garbage_is_collected_after_each_frame_and_fully_when_idle(monkeyp
             del junk
     finally:
         gc.set_threshold(*threshold)
+
+
+def _prefetch_log(monkeypatch):
+    """compute_frame wrapped: the log of (model names, θi, on the event loop) per call."""
+    import threading
+
+    from tuibrdf.app import frames
+
+    monkeypatch.setattr(frames, "PREFETCH_S", 0.01)
+    scene.clear_caches()
+    log: list[tuple[tuple[str, ...], float, bool]] = []
+    real = scene.compute_frame
+
+    def compute(req, **kw):
+        log.append((tuple(m.name for m in req.materials), req.theta_i,
+                    threading.current_thread() is threading.main_thread()))
+        return real(req, **kw)
+
+    monkeypatch.setattr(scene, "compute_frame", compute)
+    return log
+
+
+def _after_in_table(name: str, step: int) -> str:
+    names = list(MODELS)  # the registered models in their order (merl: no file, skipped)
+    names.remove("merl")
+    return names[(names.index(name) + step) % len(names)]
+
+
+@pytest.mark.parametrize("step,key", [(1, "m"), (-1, "M")])
+async def test_a_model_key_prefetches_the_frame_the_same_key_shows_next(monkeypatch, step,
+                                                                         key):
+    # after m (M), the frame of the model after (before) it is computed in the worker while
+    # the viewer is idle; the next m (M) then shows that very result, computed nowhere else
+    log = _prefetch_log(monkeypatch)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))
+    first, second = _after_in_table("phong", step), _after_in_table("phong", 2 * step)
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        await pilot.press(key)
+        assert await pilot_wait_for(pilot, lambda: app.frame.complete
+                                    and app.frame.request.materials[0].name == first)
+        ahead = dataclasses.replace(app.request,
+                                    materials=(Side.of(second).material,))
+        assert await pilot_wait_for(pilot, lambda: (f := scene.cached_frame(ahead)) is not None
+                                    and f.complete)
+        prefetched = scene.cached_frame(ahead)
+        where = [loop for names, _, loop in log if names == (second,)]
+        assert where and not any(where)  # in the worker
+        calls = len(log)
+        await pilot.press(key)
+        assert await pilot_wait_for(pilot, lambda: app.frame.request == ahead)
+        assert app.frame is prefetched
+        assert [names for names, _, _ in log[calls:]
+                if names == (second,)] == []  # nothing computed again for it
+
+
+async def test_other_keys_prefetch_nothing(monkeypatch):
+    # a θi or a parameter key computes its own frame only (no model other than the shown one)
+    log = _prefetch_log(monkeypatch)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        for key in ("right", "minus", "right"):
+            await pilot.press(key)
+            assert await pilot_wait_for(pilot, lambda: app.frame.request == app.request
+                                        and app.frame.complete)
+            await pilot.pause(0.1)  # ten times PREFETCH_S
+        assert {names for names, _, _ in log} == {("phong",)}
+
+
+async def test_the_key_a_prefetch_is_for_waits_for_it_rather_than_computing_again(
+        monkeypatch):
+    # m pressed while the worker still computes that frame: the frame comes from that one
+    # computation (the worker is neither cancelled nor joined by a second)
+    import threading
+
+    log = _prefetch_log(monkeypatch)
+    traced = scene.compute_frame
+    started, release = threading.Event(), threading.Event()
+    ahead_name = _after_in_table("blinn-phong", 1)
+
+    def held(req, **kw):
+        if req.materials[0].name == ahead_name and not release.is_set():
+            started.set()
+            release.wait(10.0)
+        return traced(req, **kw)
+
+    monkeypatch.setattr(scene, "compute_frame", held)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        await pilot.press("m")  # → blinn-phong; then the prefetch of the next one starts
+        assert await pilot_wait_for(pilot, started.is_set)
+        ahead = dataclasses.replace(app.request, materials=(Side.of(ahead_name).material,))
+        app._costs[app._kind(ahead)] = [0.0]  # a kind known fast: the loop would compute it
+        await pilot.press("m")  # the very frame being computed
+        await pilot.pause(0.05)
+        release.set()
+        assert await pilot_wait_for(pilot, lambda: app.frame.complete
+                                    and app.frame.request.materials[0].name == ahead_name)
+        fresh = [c for c in log if c[0] == (ahead_name,)]
+        assert len(fresh) <= 2 and not any(loop for _, _, loop in fresh)  # fast part, albedo

@@ -314,3 +314,33 @@ def test_issue13_view_settings_stay_in_range():
         s.move_probe(1, 0)
     assert s.probe[0] == pytest.approx(2**0.5) and s.probe[1] == 0.0  # held on the horizon
     assert len(MAIN_VIEWS) == 8
+
+
+@pytest.mark.parametrize("step", [1, -1, 2])
+def test_model_after_and_side_after_name_where_the_model_key_goes_and_change_nothing(
+        tmp_path, step):
+    # the prefetch (app/frames.py) asks where m / M goes before the key: the answer is where
+    # cycle_model then goes, from every model and a model file, asking changes nothing, and
+    # side_after is that model's side with its remembered values (None for a file)
+    import shutil
+    from pathlib import Path
+
+    path = tmp_path / "mine.brdf"
+    shutil.copy(Path(__file__).parent / "data" / "brdf" / "lambert.brdf", path)
+    s = ViewerState(sides=[Side.of(str(path))])
+    s.memory["ggx"] = {**MODELS["ggx"].defaults(), "alpha": 0.05}
+    def seen(s):  # what cycle_model changes
+        return ([x.material for x in s.sides], {k: dict(v) for k, v in s.memory.items()},
+                list(s.files), s.preset)
+
+    for _ in range(2 * len(MODELS) + 2):
+        before = seen(s)
+        name, side = s.model_after(step), s.side_after(step)
+        assert seen(s) == before  # asked, nothing changed
+        s.cycle_model(step)
+        assert s.side.model == name
+        if name == str(path):
+            assert side is None
+        else:
+            assert side is not None and side.material == s.side.material
+    assert s.files == [str(path)]

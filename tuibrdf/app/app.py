@@ -94,6 +94,7 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self._costs: dict[tuple, list[float]] = {}
         self._changes = 0  # changes so far; only the last one queued updates the screen
         self._relayout = False  # a change since the last update may show other panes
+        self._browse = 0  # the last change was the model key m (1) or M (−1)
         self._preset_names: list[str] = []  # the saved presets, for the command palette
         self._widgets: dict[str, object] = {}  # id → widget (BrdfApp.one)
         self._collected_at: float | None = None  # the last collection after a frame
@@ -171,12 +172,14 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
 
     # -- one frame ---------------------------------------------------------------------------
     def _changed(self, message: str | None = None, relayout: bool = False,
-                 at_once: bool = False) -> None:
+                 at_once: bool = False, browse: int = 0) -> None:
         """After any change: the screen follows once the events already queued are handled
         (a burst of keys costs one update, for the last state).  ``at_once`` (a key): with
         no event queued, the update runs now rather than as a message behind an empty queue
-        (≈ 0.2 ms a key, docs/app.md)."""
+        (≈ 0.2 ms a key, docs/app.md).  ``browse``: the change was the model key of that
+        step (:meth:`~tuibrdf.app.frames.FrameDelivery.prefetch`)."""
         self.message = message or ""
+        self._browse = browse
         self._relayout = self._relayout or relayout
         self._changes += 1
         queue = getattr(self, "_message_queue", None)
@@ -234,7 +237,7 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
     def action_state(self, method: str, args: tuple = ()) -> None:
         """A :class:`ViewerState` transition named in the key table."""
         self._changed(getattr(self.state, method)(*args), relayout=method in keys.RELAYOUT,
-                      at_once=True)
+                      at_once=True, browse=args[0] if method == "cycle_model" else 0)
 
     def action_help(self) -> None:
         self.push_screen(HelpScreen())

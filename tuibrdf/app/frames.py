@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import asyncio
 import contextvars
+import dataclasses
 import gc
 import time
 from functools import partial
@@ -33,7 +34,7 @@ from ..core import scene
 from ..core.scene import FrameRequest, FrameResult
 from ..render import EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, panes
 from ..render.views import extra_pixels, map_pixels
-from .text import PANES, TERSE_FORMS, legend_text, status_text, visible_panes
+from .text import PANES, TERSE_FORMS, legend_text, side_files, status_text, visible_panes
 
 RETRY_S = 0.02  # re-check a busy writer after this long
 #: a frame not computed by then: the panels and status line go ahead of it (a key's new value
@@ -67,6 +68,13 @@ INLINE_KEEP = 3
 #: ≈ 1 ms after that (a collection run right after the paint delayed the last byte by ≈ 2 ms)
 GC_AFTER_S = 0.03
 GC_IDLE_S = 1.0  #: a full collection once no frame has come for this long
+#: after the frame of a model key (m, M) is complete on the screen, the frame the same key
+#: shows next is computed in the worker this long after (its paint and collection done,
+#: :data:`GC_AFTER_S`): browsing the models then costs a key the drawing, not the computing
+#: (5–20 ms a frame at 160×48, docs/app.md).  Only after a model key, for a registered model
+#: with no data file to read; any key cancels it, and the key it was for waits for it rather
+#: than starting again
+PREFETCH_S = 0.04
 
 
 class FrameDelivery:
@@ -201,6 +209,8 @@ class FrameDelivery:
         if not kept or max(kept) >= INLINE_S or scene.needs_curve(req):
             return False
         if self._worker is not None and self._worker.is_running:
+            if self._worker_for == req:  # prefetched (:meth:`prefetch`): on its way
+                return False
             self._worker.cancel()  # an older request's: its result would be dropped
         start = time.perf_counter()
         try:
@@ -310,6 +320,24 @@ class FrameDelivery:
         if self._event_loop is not None:  # not in sync mode (tests)
             self._event_loop.call_later(GC_AFTER_S, self._collect_young,
                                         context=self._loop_context)
+            if self._browse and res.complete:
+                self._after(PREFETCH_S, self.prefetch, res.request, self._browse)
+
+    def prefetch(self, shown: FrameRequest, step: int) -> None:
+        """Compute, in the worker, the frame the model key ``step`` would show next, when
+        nothing changed since ``shown`` was drawn and the worker is idle (:data:`PREFETCH_S`).
+        The result goes to the core's cache; the key then finds it there."""
+        if shown != self.request or (self._worker is not None and self._worker.is_running):
+            return
+        side = self.state.side_after(step)
+        if side is None or side_files(side):  # measured data: read with its progress shown
+            return
+        materials = list(shown.materials)
+        materials[self.state.active] = side.material
+        req = dataclasses.replace(shown, materials=tuple(materials))
+        done = scene.cached_frame(req)
+        if done is None or not done.complete:
+            self._worker, self._worker_for = self.compute(req), req
 
     def capture_loop(self) -> None:
         """Note the event loop and the app's context (on mount) for the collections."""

@@ -319,16 +319,30 @@ class ViewerState:
             return f"θi: {e}; expected 0–90°"
 
     # -- models, views, toggles ----------------------------------------------------------------
-    def cycle_model(self, delta: int) -> str | None:
-        """Next / previous registered model on the active side; θi and the view stay."""
-        if self.side.model not in MODELS and self.side.model not in self.files:
-            self.files.append(self.side.model)  # a model file: m comes back to it
-        names = [n for n, m in MODELS.items() if usable(m, self.memory.get(n))] + self.files
+    def model_after(self, delta: int) -> str:
+        """The model :meth:`cycle_model` ``(delta)`` goes to (nothing changes)."""
+        files = self.files + ([self.side.model] if self.side.model not in MODELS
+                              and self.side.model not in self.files else [])
+        names = [n for n, m in MODELS.items() if usable(m, self.memory.get(n))] + files
         if self.side.model in names:
             i = names.index(self.side.model)
         else:
             i = -1 if delta > 0 else 0
-        name = names[(i + delta) % len(names)]
+        return names[(i + delta) % len(names)]
+
+    def side_after(self, delta: int) -> Side | None:
+        """The side :meth:`cycle_model` ``(delta)`` would show when it goes to another
+        registered model (nothing changes); None for a model file (reading it is I/O)."""
+        name = self.model_after(delta)
+        if name not in MODELS or name == self.side.model:
+            return None
+        return Side(name, self.memory.get(name))
+
+    def cycle_model(self, delta: int) -> str | None:
+        """Next / previous registered model on the active side; θi and the view stay."""
+        name = self.model_after(delta)
+        if self.side.model not in MODELS and self.side.model not in self.files:
+            self.files.append(self.side.model)  # a model file: m comes back to it
         self.memory[self.side.model] = self.side.values
         try:
             self.sides[self.active] = Side(name, self.memory.get(name))
