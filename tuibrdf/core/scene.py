@@ -44,7 +44,7 @@ from __future__ import annotations
 import threading
 from collections import OrderedDict
 from collections.abc import Callable, Hashable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import Any
 
@@ -206,6 +206,9 @@ class SideFrame:
     probe: tuple | None = None
     #: per column of ``peaks`` (:mod:`tuibrdf.core.horizon`); None: every peak is ordinary
     horizons: tuple[Horizon, ...] | None = None
+    #: :meth:`scale_for`'s answers: the map, the sections and the status line each ask
+    _scales: dict[tuple[str, str], PeakScale | None] = field(
+        default_factory=dict, init=False, compare=False, repr=False)
 
     def albedo_exceeds_one(self) -> bool:
         """The energy test on the albedo: above 1 by more than its error estimate."""
@@ -251,6 +254,12 @@ class SideFrame:
         (:func:`~tuibrdf.core.horizon.drawn_scale`, every channel in ``"color"`` mode), or the
         peak of a column it shows when that peak is an ordinary one and higher; with the
         peak's kind.  None when that picture is not in the frame."""
+        key = rgb_mode, view
+        if key not in self._scales:
+            self._scales[key] = self._scale(rgb_mode, view)
+        return self._scales[key]
+
+    def _scale(self, rgb_mode: str, view: str) -> PeakScale | None:
         mode = "luminance" if view == "solid" else rgb_mode
         pk, hz = self.peak_for(mode), self.peak_horizon(mode)
         if hz.kind == "peak":
