@@ -10,7 +10,9 @@ The public Python API is numpy only (importing it never loads textual or rich)::
 
 from __future__ import annotations
 
-from typing import Any
+TYPE_CHECKING = False  # typing is not imported for ``tuibrdf --help`` (≈ 3 ms)
+if TYPE_CHECKING:
+    from typing import Any
 
 __all__ = ["MODELS", "evaluate", "get_model", "albedo"]
 __version__ = "0.1.0"

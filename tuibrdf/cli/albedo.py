@@ -13,9 +13,17 @@ lobe, docs/accuracy.md).
 from __future__ import annotations
 
 import argparse
-import json
 
-from .common import add_model_args, add_phi_i, add_theta_i, fmt, fmt_params, json_params, resolve
+from .common import (
+    add_model_args,
+    add_phi_i,
+    add_theta_i,
+    fmt,
+    fmt_params,
+    json_params,
+    print_json,
+    resolve,
+)
 
 DEFAULT_THETAS = (0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0)
 
@@ -59,7 +67,7 @@ def run(args: argparse.Namespace) -> int:
                         "energy_conserving": not o}
                        for t, row, e, o in zip(thetas, a, err, over, strict=True)],
         }
-        print(json.dumps(doc, indent=2, allow_nan=False))
+        print_json(doc)
         return 0
     print(f"# {model.name}  {fmt_params(params)}")
     print("# directional albedo a = ∫ f cos θr dω ± the quadrature's error estimate "

@@ -10,7 +10,6 @@ Values are in sr⁻¹ (no cosine factor; ``--cosine`` multiplies by cos θr), pr
 from __future__ import annotations
 
 import argparse
-import json
 
 from .common import (
     add_model_args,
@@ -20,6 +19,7 @@ from .common import (
     fmt_params,
     json_params,
     phi_r_deg,
+    print_json,
     resolve,
     theta_r_deg,
 )
@@ -76,7 +76,7 @@ def run(args: argparse.Namespace) -> int:
             "values": [{"theta_r": tr, "phi_r": pr, "f": v.tolist() if model.rgb else float(v)}
                        for tr, pr, v in rows],
         }
-        print(json.dumps(doc, indent=2, allow_nan=False))
+        print_json(doc)
         return 0
     print(f"# {model.name}  {fmt_params(params)}  theta_i={fmt(args.theta_i)}"
           + (f"  phi_i={fmt(args.phi_i)}" if args.phi_i != 180.0 else ""))

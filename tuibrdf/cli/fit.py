@@ -14,9 +14,8 @@ exit 2.
 from __future__ import annotations
 
 import argparse
-import json
 
-from .common import UsageError, fmt, fmt_params, json_params, parse_params
+from .common import UsageError, fmt, fmt_params, json_params, parse_params, print_json
 
 #: ``tuibrdf.core.fit.STRIDE``, repeated so that ``--help`` does not import numpy (a test
 #: checks that they agree)
@@ -112,7 +111,7 @@ def run(args: argparse.Namespace) -> int:
             doc["published"] = published
         if saved:
             doc["preset"] = str(saved)
-        print(json.dumps(doc, indent=2, allow_nan=False))
+        print_json(doc)
         return 0
     print(f"# fit {result.model.name} to {data.path}")
     print(f"# {result.n_samples} samples, {result.evaluations} evaluations, "

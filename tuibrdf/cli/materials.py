@@ -14,10 +14,9 @@ from __future__ import annotations
 
 import argparse
 import io
-import json
 import sys
 
-from .common import choices_type
+from .common import choices_type, print_json
 from .render import COLORS, color_system
 
 SWATCH = "██"
@@ -107,7 +106,7 @@ def run(args: argparse.Namespace) -> int:
                 for n, o, a in rows()
             ],
         }
-        print(json.dumps(doc, indent=2, ensure_ascii=False, allow_nan=False))
+        print_json(doc, ascii=False)
         return 0
     sys.stdout.write(text(color_system(args.color)))
     return 0

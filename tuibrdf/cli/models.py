@@ -7,12 +7,14 @@ so the listing is deterministic and a new model appears without touching this fi
 from __future__ import annotations
 
 import argparse
-import json
-from typing import TYPE_CHECKING, Any
+
+from .common import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from typing import Any
+
     from ..core.params import Model, Param
-from .common import fmt
+from .common import fmt, print_json
 
 COLUMNS = ("name", "symbol", "range", "default", "unit", "meaning")
 
@@ -76,8 +78,7 @@ def run(args: argparse.Namespace) -> int:
 
     models = [find_model(n) for n in args.names] if args.names else list(MODELS.values())
     if args.json:
-        print(json.dumps([model_doc(m) for m in models], indent=2, ensure_ascii=False,
-                         allow_nan=False))
+        print_json([model_doc(m) for m in models], ascii=False)
         return 0
     print("\n\n".join("\n".join(model_text(m)) for m in models))
     return 0

@@ -25,10 +25,10 @@ import argparse
 import io
 import os
 import sys
-from typing import Any
 
 from ..render import CMAPS, EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, VIEWS
 from .common import (
+    TYPE_CHECKING,
     add_model_args,
     add_phi_i,
     add_theta_i,
@@ -38,6 +38,9 @@ from .common import (
     isatty,
     resolve,
 )
+
+if TYPE_CHECKING:
+    from typing import Any
 
 #: the lit and half/difference views (in :data:`tuibrdf.render.VIEWS`, declared there with no
 #: import so ``--help`` stays light)
