@@ -164,17 +164,19 @@ def test_one_line_escapes_controls():
 
 
 def test_help_and_argument_errors_do_not_import_numpy_and_help_not_typing_or_json():
-    """Issue 16: `tuibrdf --help` paid for numpy (~60 ms), then for typing and json (≈ 3 and
-    2 ms).  --help of every subcommand must import none of them beyond what argparse itself
-    does, in an interpreter without site (which imports more on some machines); an argparse
-    error not numpy (a typo's close match may import the declarations)."""
-    code = ("import sys, argparse, math, os, re, shutil\nbefore = set(sys.modules)\n"
+    """Issue 16: `tuibrdf --help` paid for numpy (~60 ms), then for typing, json and shutil
+    (≈ 3, 2 and 4 ms) and every command's module.  --help of every command must import none
+    of them beyond what argparse itself does, in an interpreter without site (which imports
+    more on some machines), nor another command's module; an argparse error not numpy (a
+    typo's close match may import the declarations)."""
+    code = ("import sys, argparse, math, os, re, textwrap\nbefore = set(sys.modules)\n"
             "from tuibrdf.cli import main\n"
-            "for argv in (['--help'], ['eval', '--help'], ['view', '--help'], ['fit', '--help'],"
+            "for argv in (['--help'], ['view', '--help'], ['fit', '--help'],"
             " ['render', '--help'], ['albedo', '--help'], ['models', '--help'],"
             " ['materials', '--help']):\n"
             "    main(argv)\n"
-            "print(sorted({'numpy', 'typing', 'json'} & (set(sys.modules) - before)))\n"
+            "print(sorted({'numpy', 'typing', 'json', 'shutil', 'tuibrdf.cli.eval'}"
+            " & (set(sys.modules) - before)))\n"
             "for argv in (['eval', 'x', '--theta-i', '99'], ['modls'], ['eval', 'phong', '-p']):\n"
             "    main(argv)\n"
             "print('numpy' in sys.modules)\n")
@@ -188,3 +190,25 @@ def test_fit_stride_default_agrees_with_the_core():
     from tuibrdf.core.fit import STRIDE as CORE
 
     assert STRIDE == CORE
+
+
+@pytest.mark.parametrize("columns", ["40", "80", "137", "", "junk", "-5", None])
+@pytest.mark.parametrize("argv", [["--help"], ["eval", "--help"], ["view", "--help"]])
+def test_help_is_as_wide_as_argparse_makes_it(monkeypatch, capsys, columns, argv):
+    # the help's width is found without shutil (common.Formatter): the same text as
+    # argparse's own formatter gives, whatever COLUMNS says
+    import argparse
+
+    from tuibrdf.cli import common
+
+    if columns is None:
+        monkeypatch.delenv("COLUMNS", raising=False)
+    else:
+        monkeypatch.setenv("COLUMNS", columns)
+    assert main(argv) == 0
+    ours = capsys.readouterr().out
+    monkeypatch.setattr(common, "Formatter", argparse.HelpFormatter)
+    assert main(argv) == 0
+    assert ours == capsys.readouterr().out
+    if columns == "40" and argv == ["--help"]:  # (a long option's usage can overflow)
+        assert max(map(len, ours.splitlines())) <= 38
