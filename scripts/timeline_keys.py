@@ -150,7 +150,10 @@ def cpu_seconds(pid: int) -> tuple[float, float]:
 def drive(model: str, key: str, n: int, w: int,
           h: int) -> tuple[list[float], list, list, tuple[float, float]]:
     out = tempfile.mktemp(suffix=".marks")
-    env = dict(os.environ, TERM="xterm-256color", COLORTERM="truecolor")
+    # the viewer of this script's tree (the child's sys.path[0] is scripts/, and an installed
+    # tuibrdf would come next): a copy of an older tree times that tree
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    env = dict(os.environ, TERM="xterm-256color", COLORTERM="truecolor", PYTHONPATH=root)
     env.pop("NO_COLOR", None)
     pid, fd = pty.fork()
     if pid == 0:
