@@ -632,6 +632,27 @@ async def test_a_model_key_prefetches_the_frame_the_same_key_shows_next(monkeypa
                 if names == (second,)] == []  # nothing computed again for it
 
 
+async def test_in_compare_mode_the_prefetch_changes_only_the_active_side(monkeypatch):
+    # side B active: the frame computed ahead keeps side A's material, and is the one shown
+    _prefetch_log(monkeypatch)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong"), Side.of("ggx")], active=1,
+                              theta_i=30.0))
+    first, second = _after_in_table("ggx", 1), _after_in_table("ggx", 2)
+    async with app.run_test(size=(160, 48)) as pilot:
+        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        await pilot.press("m")
+        assert await pilot_wait_for(pilot, lambda: app.frame.complete and [
+            m.name for m in app.frame.request.materials] == ["phong", first])
+        ahead = dataclasses.replace(app.request, materials=(
+            app.request.materials[0], Side.of(second).material))
+        assert await pilot_wait_for(pilot, lambda: (f := scene.cached_frame(ahead)) is not None
+                                    and f.complete)
+        prefetched = scene.cached_frame(ahead)
+        await pilot.press("m")
+        assert await pilot_wait_for(pilot, lambda: app.frame.request == ahead)
+        assert app.frame is prefetched
+
+
 async def test_other_keys_prefetch_nothing(monkeypatch):
     # a θi or a parameter key computes its own frame only (no model other than the shown one)
     log = _prefetch_log(monkeypatch)
