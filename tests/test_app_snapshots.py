@@ -127,3 +127,14 @@ def test_many_parameters_scroll_at_80x24(snap_compare):
     path = str(Path(__file__).parent / "data" / "brdf" / "disney.brdf")
     app = BrdfApp(ViewerState(sides=[Side(path)], theta_i=30.0), sync=True)
     assert snap_compare(app, terminal_size=(80, 24), press=["down"] * 8)
+
+
+def test_compare_rgb_legend_folds_at_80x24(snap_compare):
+    # two RGB sides in sections squeezed to 6 rows by a 13-row panel: the sections' legends
+    # name all 6 curves on 2 lines, one a side (the last channel, B:blue, was cut before)
+    from pathlib import Path
+
+    path = str(Path(__file__).parent / "data" / "brdf" / "disney.brdf")
+    state = ViewerState(sides=[Side(path), Side.of("gltf", {"base_color": (0.9, 0.5, 0.2)})],
+                        theta_i=30.0)
+    assert snap_compare(BrdfApp(state, sync=True), terminal_size=(80, 24))

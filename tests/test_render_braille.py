@@ -255,3 +255,60 @@ def test_points_on_the_limits_are_drawn_in_the_edge_dots():
     just_out = 90.0 * (1 + 1e-9)
     cv.points(np.array([just_out, 45.0]), np.array([0.5, -1e-9]), b)
     assert not (cv.owner == b).any()
+
+
+def _legend_canvas(height: int, labels: list[str], patterns: list[str]):
+    from tuibrdf.render.braille import draw_legend
+
+    c = BrailleCanvas(40, height, (0.0, 1.0), (0.0, 1.0), color="truecolor")
+    colours = {"red": "#ff0000", "green": "#00ff00", "blue": "#0000ff"}
+    ids = [c.layer(colours[lab.split(":")[-1]], pat, "*" if pat == "solid" else "+")
+           for lab, pat in zip(labels, patterns, strict=True)]
+    draw_legend(c, [(lab, np.zeros(0), np.zeros(0)) for lab in labels], ids)
+    return c
+
+
+def _cell_colours(row) -> list[str | None]:
+    out = []
+    for seg in row:
+        name = None if seg.style is None or seg.style.color is None else \
+            seg.style.color.get_truecolor().hex
+        out += [name] * len(seg.text)
+    return out
+
+
+COMPARE_RGB = [f"{s}:{n}" for s in "AB" for n in ("red", "green", "blue")]
+COMPARE_PATTERNS = ["solid"] * 3 + ["dotted"] * 3
+
+
+def test_a_legend_with_more_curves_than_rows_names_every_curve_a_side_a_line():
+    # compare mode, two RGB sides in a section of 4 rows: 6 curves, 2 lines, every channel
+    # named in its colour after its side's line sample (B:blue was cut before)
+    c = _legend_canvas(4, COMPARE_RGB, COMPARE_PATTERNS)
+    lines, rows = c.lines(), c.rows()
+    for r, side, pattern in ((0, "A", "solid"), (1, "B", "dotted")):
+        sample = legend_sample(pattern, "braille", "")
+        assert lines[r].startswith(f"{sample} {side}:red green blue")
+        colours = _cell_colours(rows[r])
+        for word, hexa in (("red", "#ff0000"), ("green", "#00ff00"), ("blue", "#0000ff")):
+            at = lines[r].index(word)
+            assert set(colours[at:at + len(word)]) == {hexa}, (side, word)
+        assert colours[0] == "#ff0000"  # the sample in the first curve's colour
+    assert lines[2].strip() == lines[3].strip() == ""
+
+
+def test_a_legend_that_fits_keeps_one_line_a_curve():
+    c = _legend_canvas(6, COMPARE_RGB, COMPARE_PATTERNS)
+    lines = c.lines()
+    for r, lab in enumerate(COMPARE_RGB):
+        assert lines[r].rstrip().endswith(" " + lab)
+
+
+def test_a_legend_folds_only_curves_of_one_side_drawn_alike():
+    # labels with no side, or one side's curves in different patterns, keep a line each
+    # (what does not fit is cut, as before)
+    c = _legend_canvas(2, ["red", "green", "blue"], ["solid", "dotted", "solid"])
+    assert [x.split()[-1] for x in c.lines()] == ["red", "green"]
+    c = _legend_canvas(2, ["A:red", "A:green", "A:blue"], ["solid", "dotted", "dotted"])
+    lines = [x.rstrip() for x in c.lines()]
+    assert lines[0].endswith(" A:red") and lines[1].endswith(" A:green blue")

@@ -371,8 +371,27 @@ def curve_layers(canvas: BrailleCanvas, curves: Sequence[Curve],
 
 def draw_legend(canvas: BrailleCanvas, curves: Sequence[Curve], ids: Sequence[int],
                 row: int = 0, col: int = 0) -> None:
-    """One line per curve, top-left: a sample of its line, then its label."""
-    for k, ((label, _, _), lid) in enumerate(zip(curves, ids, strict=True)):
-        ly = canvas.layers[lid]
-        canvas.text(row + k, col, legend_sample(ly.pattern, canvas.charset, ly.marker)
-                    + " " + label, ly.color)
+    """One line per curve, top-left: a sample of its line, then its label.  When the canvas
+    has fewer rows below ``row`` than there are curves, the curves of one compare side drawn
+    alike (labels ``A:red``, ``A:green`` …, one pattern: only their colours differ) share a
+    line, each name in its own colour: ``•••• A:red green blue``."""
+    layers = [canvas.layers[lid] for lid in ids]
+    lines: list[list[int]] = []  # the curves of each line
+    fold = len(curves) > canvas.height - row
+    for k, ((label, _, _), ly) in enumerate(zip(curves, layers, strict=True)):
+        last = lines[-1][-1] if lines else None
+        if (fold and last is not None and ":" in label
+                and label.split(":")[0] == curves[last][0].split(":")[0]
+                and (ly.pattern, ly.marker) == (layers[last].pattern, layers[last].marker)):
+            lines[-1].append(k)
+        else:
+            lines.append([k])
+    for r, members in enumerate(lines):
+        first = layers[members[0]]
+        text = legend_sample(first.pattern, canvas.charset, first.marker) + " "
+        x = col
+        for n, k in enumerate(members):
+            label = curves[k][0]
+            piece = text + label if n == 0 else " " + label.split(":", 1)[1]
+            canvas.text(row + r, x, piece, layers[k].color)
+            x += len(piece)
