@@ -344,3 +344,10 @@ def test_model_after_and_side_after_name_where_the_model_key_goes_and_change_not
         else:
             assert side is not None and side.material == s.side.material
     assert s.files == [str(path)]
+
+
+def test_side_after_is_none_for_values_the_model_refuses():
+    # the prefetch runs on a timer: a refused value must not raise there (cycle_model says it)
+    s = phong_state()
+    s.memory["blinn-phong"] = {**MODELS["blinn-phong"].defaults(), "kd": 5.0}
+    assert s.model_after(1) == "blinn-phong" and s.side_after(1) is None

@@ -332,11 +332,15 @@ class ViewerState:
 
     def side_after(self, delta: int) -> Side | None:
         """The side :meth:`cycle_model` ``(delta)`` would show when it goes to another
-        registered model (nothing changes); None for a model file (reading it is I/O)."""
+        registered model (nothing changes); None for a model file (reading it is I/O) and
+        for values the model refuses (the key itself then says why)."""
         name = self.model_after(delta)
         if name not in MODELS or name == self.side.model:
             return None
-        return Side(name, self.memory.get(name))
+        try:
+            return Side(name, self.memory.get(name))
+        except ValueError:
+            return None
 
     def cycle_model(self, delta: int) -> str | None:
         """Next / previous registered model on the active side; θi and the view stay."""
