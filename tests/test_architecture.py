@@ -108,3 +108,11 @@ for name, m in MODELS.items():
     full = subprocess.run([sys.executable, "-c", code + "\nimport sys\nprint('numpy.ma' in "
                            "sys.modules)"], capture_output=True, text=True, check=True)
     assert full.stdout.split()[-1] == "False", full.stdout
+
+
+def test_the_viewer_starts_without_plotext_or_tomllib():
+    # the viewer's modules import plotext (the albedo plot) and tomllib (presets) when they
+    # draw or read one: ≈ 20 ms each of every start-up otherwise (docs/app.md)
+    mods = loaded_after("import tuibrdf.cli.view, tuibrdf.app.app, tuibrdf.render.panes")
+    assert "textual" in mods  # the viewer was imported
+    assert "plotext" not in mods and "tomllib" not in mods

@@ -12,7 +12,6 @@ the channel choice asks for; in compare mode each side has its own marker.
 from __future__ import annotations
 
 import numpy as np
-import plotext as plt
 
 from .polar import GUIDE_COLOR, INCIDENT_COLOR, PLOT_LOCK, curve_color, finish_plot
 
@@ -27,6 +26,8 @@ def albedo_plot(
     color: str = "truecolor",
 ) -> str:
     """plotext line plot of the curves with the line a = 1 and a marker at ``theta_i_deg``."""
+    import plotext as plt  # ≈ 20 ms: when the albedo view is first drawn, not at start
+
     peak = max(float(np.max(a)) for _, a, *_ in curves)
     top = nice_top(peak)
     step = nice_step(top)
