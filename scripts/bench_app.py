@@ -61,8 +61,10 @@ VIEW_KEYS = {"sphere": (3, ("right", "left")), "plane": (4, ("right", "left")),
 class Term:
     """The app in a pty; ``rate`` limits reading (bytes/s, None = as fast as possible)."""
 
-    def __init__(self, w: int, h: int, color: str, args: list[str]) -> None:
-        env = dict(os.environ, TERM="xterm-256color", PYTHONPATH=str(ROOT))
+    def __init__(self, w: int, h: int, color: str, args: list[str],
+                 root: str | Path = ROOT) -> None:
+        """``root``: the tree whose viewer runs (``tuibrdf/`` in it)."""
+        env = dict(os.environ, TERM="xterm-256color", PYTHONPATH=str(root))
         env.pop("NO_COLOR", None)
         if color == "truecolor":
             env["COLORTERM"] = "truecolor"
@@ -71,7 +73,7 @@ class Term:
         self.t0 = time.perf_counter()
         pid, fd = pty.fork()
         if pid == 0:  # child
-            os.chdir(ROOT)
+            os.chdir(root)
             os.execvpe(sys.executable, [sys.executable, "-m", "tuibrdf", "view", *args,
                                         "--color", color], env)
         self.pid, self.fd = pid, fd

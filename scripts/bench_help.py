@@ -48,7 +48,9 @@ def fresh_bytecode(env: dict | None = None) -> None:
     ``tuibrdf --help`` on this machine."""
     code = ("import compileall, os, tuibrdf\n"
             "compileall.compile_dir(os.path.dirname(tuibrdf.__file__), quiet=1)")
-    subprocess.run([sys.executable, "-c", code], check=True, env=env or os.environ)
+    # (not from the current directory, whose tuibrdf would come before PYTHONPATH's)
+    subprocess.run([sys.executable, "-c", code], check=True, env=env or os.environ,
+                   cwd=tempfile.gettempdir())
 
 
 def run_once(cmd: list[str], env: dict) -> tuple[float, float]:

@@ -1,0 +1,58 @@
+"""The viewer's start-up: spawn → its first frame (the map's colour bar unit ``sr⁻¹``) in a
+pseudo-terminal, as ``scripts/bench_app.py`` measures it, repeated.
+
+    python scripts/bench_startup.py [--runs 12] [--size 160x48] [--against REV]
+
+``--against REV`` starts git revision REV's viewer (``git archive``) too, the two trees one
+after the other in every round, so a slow spell of the machine falls on both.  The package's
+bytecode is written first (as an install or a first run writes it).  Prints the median and the
+minimum per tree; docs/app.md quotes them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import sys
+import tempfile
+
+from bench_app import ROOT, Term
+from bench_help import fresh_bytecode
+from revtree import extract
+
+
+def first_frame(tree: str, w: int, h: int) -> float:
+    term = Term(w, h, "truecolor", ["phong", "--theta-i", "0"], root=tree)
+    try:
+        return term.until("sr⁻¹".encode()) - term.t0
+    finally:
+        term.close()
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=12)
+    ap.add_argument("--size", default="160x48")
+    ap.add_argument("--against", metavar="REV")
+    a = ap.parse_args()
+    w, h = (int(v) for v in a.size.split("x"))
+    with tempfile.TemporaryDirectory() as tmp:
+        trees = {"this tree": str(ROOT)}
+        if a.against:
+            trees = {a.against: extract(a.against, tmp), **trees}
+        for tree in trees.values():
+            fresh_bytecode({k: v for k, v in os.environ.items()
+                            if k != "PYTHONDONTWRITEBYTECODE"} | {"PYTHONPATH": tree})
+        times: dict[str, list[float]] = {name: [] for name in trees}
+        for _ in range(a.runs):
+            for name, tree in trees.items():
+                times[name].append(first_frame(tree, w, h))
+    print(f"start-up to the first frame, {w}×{h}, {a.runs} runs each")
+    for name, t in times.items():
+        print(f"  {name}: median {1e3 * statistics.median(t):.0f} ms, min {1e3 * min(t):.0f} ms")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
