@@ -648,9 +648,82 @@ async def test_in_compare_mode_the_prefetch_changes_only_the_active_side(monkeyp
         assert await pilot_wait_for(pilot, lambda: (f := scene.cached_frame(ahead)) is not None
                                     and f.complete)
         prefetched = scene.cached_frame(ahead)
+        assert await pilot_wait_for(pilot, lambda: app._drawn_ahead)  # some drawn while idle
         await pilot.press("m")
         assert await pilot_wait_for(pilot, lambda: app.frame.request == ahead)
         assert app.frame is prefetched
+        from tuibrdf.app.text import visible_panes
+
+        for pane in visible_panes(app.state):  # what was drawn ahead, and what was kept
+            assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane
+
+
+def _fresh_rows(app, pane: str) -> list[list[tuple[str, object]]]:
+    """``pane``'s rows drawn from nothing from the frame on screen (the pictures' own way,
+    which tests/test_render_lines.py checks against Rich)."""
+    from tuibrdf.app.frames import PANES
+    from tuibrdf.render import panes
+    from tuibrdf.render.lines import pane_lines
+
+    pic = app.query_one(f"#{pane}")
+    got = app._pane_key(pane, app.frame)
+    key, w, h = got
+    view, k = PANES[pane]
+    part = panes.pane(view, app.frame, k, w, h, app.look)
+    rows = pane_lines(part, app.console, pic.size.width, pic.size.height)
+    return [[(s.text, s.style) for s in row] for row in rows]
+
+
+def _shown_rows(app, pane: str) -> list[list[tuple[str, object]]]:
+    return [[(s.text, s.style) for s in strip] for strip in app.query_one(f"#{pane}")._strips]
+
+
+def _cells(rows) -> list[list[tuple[str, object]]]:
+    """Per row, its cells: (character, style) (segments may be cut differently)."""
+    return [[(ch, style) for text, style in row for ch in text] for row in rows]
+
+
+@pytest.mark.parametrize("between", [[], ["l"], ["k"]])
+async def test_pictures_drawn_ahead_are_the_pictures_the_key_would_draw(monkeypatch, between):
+    # after a model key, the next model's pictures are drawn while idle (frames._draw_ahead)
+    # and shown by the next m: cell for cell what drawing them then gives; a look changed in
+    # between (log scale, colour map) makes them drawn afresh, as right
+    from tuibrdf.app import widgets
+    from tuibrdf.app.text import visible_panes
+
+    _prefetch_log(monkeypatch)
+    given: list[bool] = []  # per Picture.show: rows given (drawn ahead)
+    show = widgets.Picture.show
+
+    def spy(self, renderable, key=None, lines=None):
+        given.append(lines is not None)
+        return show(self, renderable, key, lines)
+
+    monkeypatch.setattr(widgets.Picture, "show", spy)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=35.0))
+    names = [_after_in_table("phong", j) for j in (1, 2, 3)]
+    async with app.run_test(size=(160, 48)) as pilot:
+        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        for j, name in enumerate(names):
+            await pilot.press("m")
+            assert await pilot_wait_for(pilot, lambda name=name: app.frame.complete and
+                                        app.frame.request.materials[0].name == name)
+            if j == 0:  # the first m: nothing ahead yet; then wait for the next one's
+                assert await pilot_wait_for(pilot, lambda: len(app._drawn_ahead) == len(
+                    visible_panes(app.state)))
+                for key in between:
+                    await pilot.press(key)
+                    await pilot.pause(0.05)
+                given.clear()
+                continue
+            panes_now = visible_panes(app.state)
+            for pane in panes_now:
+                assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane
+            if j == 1:
+                assert given and all(given) if not between else not any(given)
+            n = len(panes_now)
+            assert await pilot_wait_for(pilot, lambda n=n: len(app._drawn_ahead) == n)
+            given.clear()
 
 
 async def test_other_keys_prefetch_nothing(monkeypatch):

@@ -95,6 +95,9 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self._changes = 0  # changes so far; only the last one queued updates the screen
         self._relayout = False  # a change since the last update may show other panes
         self._browse = 0  # the last change was the model key m (1) or M (−1)
+        self._ahead: FrameRequest | None = None  # the frame computed ahead (frames.prefetch)
+        #: its pictures drawn while idle: key of the pane's picture → (renderable, rows)
+        self._drawn_ahead: dict[tuple, tuple] = {}
         self._preset_names: list[str] = []  # the saved presets, for the command palette
         self._widgets: dict[str, object] = {}  # id → widget (BrdfApp.one)
         self._collected_at: float | None = None  # the last collection after a frame

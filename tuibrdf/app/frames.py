@@ -33,6 +33,7 @@ from textual.worker import get_current_worker
 from ..core import scene
 from ..core.scene import FrameRequest, FrameResult
 from ..render import EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, panes
+from ..render.lines import pane_lines
 from ..render.views import extra_pixels, map_pixels
 from .text import PANES, TERSE_FORMS, legend_text, side_files, status_text, visible_panes
 
@@ -301,6 +302,8 @@ class FrameDelivery:
         the status line in one go (one paint; each pane redrawn only if what it shows
         changed)."""
         if res.request != self.request or not self.is_running:
+            if res.complete and res.request == self._ahead and self.is_running:
+                self._after(0.0, self._draw_ahead, res, visible_panes(self.state))
             return  # a newer request is on its way, or the app is closing
         if self._writer_busy():  # trailing edge: try again when the terminal has caught up
             self._after(RETRY_S, self.show_frame, res)
@@ -310,6 +313,7 @@ class FrameDelivery:
         self.frames += 1
         for pane in visible_panes(self.state):
             self._draw(pane, res)
+        self._drawn_ahead.clear()  # (pictures of another frame)
         if self.state.compare and self.state.view == "map":
             self.one("legend").update(legend_text(self.state))
         self._panels()
@@ -334,10 +338,34 @@ class FrameDelivery:
             return
         materials = list(shown.materials)
         materials[self.state.active] = side.material
-        req = dataclasses.replace(shown, materials=tuple(materials))
+        req = self._ahead = dataclasses.replace(shown, materials=tuple(materials))
         done = scene.cached_frame(req)
         if done is None or not done.complete:
             self._worker, self._worker_for = self.compute(req), req
+        else:
+            self._draw_ahead(done, visible_panes(self.state))
+
+    def _draw_ahead(self, res: FrameResult, todo: list[str]) -> None:
+        """The pictures of the frame computed ahead (:meth:`prefetch`), drawn while the viewer
+        is idle, one pane a call (a key waits for one at most); :meth:`_draw` shows them when
+        the key comes, as long as they are what it would draw (the same key)."""
+        if res.request != self._ahead or res.request == self.request or not todo:
+            return
+        pane = todo[0]
+        got = self._pane_key(pane, res)
+        pic = self.one(pane)
+        if got is not None and pic.shown_for != got[0]:  # (else the key leaves it as it is)
+            key, w, h = got
+            view, k = PANES[pane]
+            try:
+                part = panes.pane(view, res, k, w, h, self.look)
+                lines = pane_lines(part, self.console, pic.size.width, pic.size.height)
+            except DRAW_ERRORS:
+                pass  # drawn, and the error shown, if the key comes
+            else:
+                self._drawn_ahead[key] = part, lines
+        if todo[1:]:
+            self._after(0.0, self._draw_ahead, res, todo[1:])
 
     def capture_loop(self) -> None:
         """Note the event loop and the app's context (on mount) for the collections."""
@@ -363,15 +391,17 @@ class FrameDelivery:
             self._collected_at = None
             gc.collect()
 
-    def _draw(self, pane: str, res: FrameResult) -> None:
+    def _pane_key(self, pane: str, res: FrameResult) -> tuple[tuple, int, int] | None:
+        """What ``pane`` shows of ``res``: its size and what it is drawn from (a picture is
+        drawn again only when this changes), and the size to draw it at; None when the pane is
+        too small for it."""
         pic = self.one(pane)
         w, h = pic.size.width, pic.size.height
         view, k = PANES[pane]
         look, req = self.look, res.request
         if w < MIN_WIDTH or h < MIN_HEIGHT or (view in ("map", "diff") and not req.map_px) or (
                 view == "extra" and req.extra is None):
-            pic.show(Text(f"{w}×{h}: too small for this pane"), None)
-            return
+            return None
         if view in ("map", "diff"):  # every map of a compare grid on the same pixel grid
             w, h = req.map_px[0], req.map_px[1] // 2 + 3
         what = (req.materials, req.theta_i, req.cosine, req.phi_i)
@@ -382,10 +412,24 @@ class FrameDelivery:
                "extra": (req.materials, req.extra_key, look)}.get(view)
         key = (pane, w, h, key or (what, req.section_azimuth, look.color, look.log,
                                    look.channel))
+        return key, w, h
+
+    def _draw(self, pane: str, res: FrameResult) -> None:
+        pic = self.one(pane)
+        got = self._pane_key(pane, res)
+        if got is None:
+            pic.show(Text(f"{pic.size.width}×{pic.size.height}: too small for this pane"), None)
+            return
+        key, w, h = got
         if pic.shown_for == key:
             return
+        ahead = self._drawn_ahead.pop(key, None)
+        if ahead is not None:  # drawn while idle (:meth:`_draw_ahead`)
+            pic.show(ahead[0], key, ahead[1])
+            return
+        view, k = PANES[pane]
         try:
-            pic.show(panes.pane(view, res, k, w, h, look), key)
+            pic.show(panes.pane(view, res, k, w, h, self.look), key)
         except DRAW_ERRORS as e:
             pic.show(Text(f"cannot draw {pane}: {e}"), None)
 

@@ -172,11 +172,15 @@ class Picture(Rows):
         #: the renderable shown: the next one takes the rows they share from it
         self._shown: RenderableType | None = None
 
-    def show(self, renderable: RenderableType, key: object = None) -> None:
+    def show(self, renderable: RenderableType, key: object = None,
+             lines: list[list[Segment]] | None = None) -> None:
+        """Show ``renderable`` (``lines``: its rows at this size, drawn already)."""
         w, h = self.size.width, self.size.height
         self.shown_for = key
         like, self._shown = self._shown, renderable
-        self._set(pane_lines(renderable, self.app.console, w, h, like), w, h)
+        if lines is None:
+            lines = pane_lines(renderable, self.app.console, w, h, like)
+        self._set(lines, w, h)
 
     def on_resize(self, event) -> None:
         self.shown_for = None
