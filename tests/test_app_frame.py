@@ -255,6 +255,7 @@ async def test_a_fast_frame_is_computed_on_the_event_loop_a_slow_one_in_the_work
     from tuibrdf.core import scene
 
     monkeypatch.setattr(frames, "INLINE_S", 5.0)
+    monkeypatch.setattr(frames, "PREDICTED", frozenset())  # no frame computed ahead of a key
     extra = [0.0]
     monkeypatch.setattr(frames, "time", types.SimpleNamespace(
         perf_counter=lambda: time.perf_counter() + extra[0], monotonic=time.monotonic))
@@ -726,18 +727,75 @@ async def test_pictures_drawn_ahead_are_the_pictures_the_key_would_draw(monkeypa
             given.clear()
 
 
-async def test_other_keys_prefetch_nothing(monkeypatch):
-    # a θi or a parameter key computes its own frame only (no model other than the shown one)
-    log = _prefetch_log(monkeypatch)
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))
+async def test_other_keys_and_refused_keys_prefetch_nothing(monkeypatch):
+    # keys that are not stepped again and again (log scale, colour map, the section's
+    # azimuth) and a key refused at a bound (θi already 90°) compute no frame but their own
+    import threading
+
+    from tuibrdf.app import frames
+
+    _prefetch_log(monkeypatch)
+    asked: list[tuple[float, float, bool]] = []  # (θi, ψ, in the worker)
+    real = scene.compute_frame
+
+    def compute(req, **kw):
+        asked.append((req.theta_i, req.section_azimuth,
+                      threading.current_thread() is not threading.main_thread()))
+        return real(req, **kw)
+
+    monkeypatch.setattr(scene, "compute_frame", compute)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=90.0))
     async with app.run_test(size=(120, 36)) as pilot:
         assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-        for key in ("right", "minus", "right"):
+        for key in ("l", "k", "a", "right"):  # (→ at 90°: refused)
+            asked.clear()
             await pilot.press(key)
             assert await pilot_wait_for(pilot, lambda: app.frame.request == app.request
                                         and app.frame.complete)
-            await pilot.pause(0.1)  # ten times PREFETCH_S
-        assert {names for names, _, _ in log} == {("phong",)}
+            await pilot.pause(10 * frames.PREFETCH_S)
+            wanted = (app.request.theta_i, app.request.section_azimuth)
+            assert {(t, psi) for t, psi, _ in asked} <= {wanted}, key
+            assert app._ahead is None or app._ahead.theta_i == 90.0 and (
+                app._ahead.section_azimuth == app.request.section_azimuth)
+
+
+@pytest.mark.parametrize("key,method,args", [("right", "step_theta", (1,)),
+                                             ("left", "step_theta", (-1,)),
+                                             ("minus", "step_param", (-1,))])
+async def test_a_theta_or_parameter_key_prefetches_the_frame_the_same_key_shows_next(
+        monkeypatch, key, method, args):
+    # → (←, −) again: its frame is the very result computed ahead in the worker, computed
+    # nowhere else, and its pictures were drawn ahead
+    from tuibrdf.app import widgets
+
+    log = _prefetch_log(monkeypatch)
+    given: list[bool] = []
+    show = widgets.Picture.show
+
+    def spy(self, renderable, key=None, lines=None):
+        given.append(lines is not None)
+        return show(self, renderable, key, lines)
+
+    monkeypatch.setattr(widgets.Picture, "show", spy)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        await pilot.press(key)
+        assert await pilot_wait_for(pilot, lambda: app.frame.complete
+                                    and app.frame.request == app.request)
+        state = app.state.fork()  # where the same key goes: the state's own transition
+        assert getattr(state, method)(*args) is None
+        ahead = app.frame_request(state)
+        assert ahead != app.request
+        assert await pilot_wait_for(pilot, lambda: (f := scene.cached_frame(ahead)) is not None
+                                    and f.complete and app._drawn_ahead)
+        prefetched = scene.cached_frame(ahead)
+        calls, given[:] = len(log), []
+        await pilot.press(key)
+        assert await pilot_wait_for(pilot, lambda: app.frame.request == ahead)
+        assert app.frame is prefetched
+        assert all(not on_loop for _, _, on_loop in log[calls:])  # nothing on the loop
+        assert given and all(given)  # every picture drawn ahead
 
 
 async def test_the_key_a_prefetch_is_for_waits_for_it_rather_than_computing_again(

@@ -94,7 +94,9 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self._costs: dict[tuple, list[float]] = {}
         self._changes = 0  # changes so far; only the last one queued updates the screen
         self._relayout = False  # a change since the last update may show other panes
-        self._browse = 0  # the last change was the model key m (1) or M (−1)
+        #: the last change, when a key's transition the viewer prepares again ahead
+        #: (frames.PREDICTED): (method, args)
+        self._repeat: tuple[str, tuple] | None = None
         self._ahead: FrameRequest | None = None  # the frame computed ahead (frames.prefetch)
         #: its pictures drawn while idle: key of the pane's picture → (renderable, rows)
         self._drawn_ahead: dict[tuple, tuple] = {}
@@ -175,14 +177,14 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
 
     # -- one frame ---------------------------------------------------------------------------
     def _changed(self, message: str | None = None, relayout: bool = False,
-                 at_once: bool = False, browse: int = 0) -> None:
+                 at_once: bool = False, repeat: tuple[str, tuple] | None = None) -> None:
         """After any change: the screen follows once the events already queued are handled
         (a burst of keys costs one update, for the last state).  ``at_once`` (a key): with
         no event queued, the update runs now rather than as a message behind an empty queue
-        (≈ 0.2 ms a key, docs/app.md).  ``browse``: the change was the model key of that
-        step (:meth:`~tuibrdf.app.frames.FrameDelivery.prefetch`)."""
+        (≈ 0.2 ms a key, docs/app.md).  ``repeat``: the key's transition, which the same key
+        would make again (:meth:`~tuibrdf.app.frames.FrameDelivery.prefetch`)."""
         self.message = message or ""
-        self._browse = browse
+        self._repeat = repeat
         self._relayout = self._relayout or relayout
         self._changes += 1
         queue = getattr(self, "_message_queue", None)
@@ -239,8 +241,9 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
     # -- actions -----------------------------------------------------------------------------
     def action_state(self, method: str, args: tuple = ()) -> None:
         """A :class:`ViewerState` transition named in the key table."""
-        self._changed(getattr(self.state, method)(*args), relayout=method in keys.RELAYOUT,
-                      at_once=True, browse=args[0] if method == "cycle_model" else 0)
+        message = getattr(self.state, method)(*args)
+        self._changed(message, relayout=method in keys.RELAYOUT, at_once=True,
+                      repeat=(method, args) if message is None else None)
 
     def action_help(self) -> None:
         self.push_screen(HelpScreen())

@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import asyncio
 import contextvars
-import dataclasses
 import gc
 import time
 from functools import partial
@@ -35,6 +34,7 @@ from ..core.scene import FrameRequest, FrameResult
 from ..render import EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, panes
 from ..render.lines import pane_lines
 from ..render.views import extra_pixels, map_pixels
+from .state import ViewerState
 from .text import PANES, TERSE_FORMS, legend_text, side_files, status_text, visible_panes
 
 RETRY_S = 0.02  # re-check a busy writer after this long
@@ -69,13 +69,15 @@ INLINE_KEEP = 3
 #: ≈ 1 ms after that (a collection run right after the paint delayed the last byte by ≈ 2 ms)
 GC_AFTER_S = 0.03
 GC_IDLE_S = 1.0  #: a full collection once no frame has come for this long
-#: after the frame of a model key (m, M) is complete on the screen, the frame the same key
-#: shows next is computed in the worker this long after (its paint and collection done,
-#: :data:`GC_AFTER_S`): browsing the models then costs a key the drawing, not the computing
-#: (5–20 ms a frame at 160×48, docs/app.md).  Only after a model key, for a registered model
-#: with no data file to read; any key cancels it, and the key it was for waits for it rather
-#: than starting again
+#: after the frame of a key in :data:`PREDICTED` is complete on the screen, the frame the
+#: same key shows next is computed in the worker this long after (its paint and collection
+#: done, :data:`GC_AFTER_S`), and its pictures drawn while idle: stepping θi, a parameter or
+#: the model then costs a key the last drawing steps and the paint (docs/app.md).  Any key
+#: cancels it, and the key it was for waits for it rather than starting again
 PREFETCH_S = 0.04
+#: the transitions prepared ahead: the keys a user presses again and again (θi ←/→, a
+#: parameter's +/−, the model m/M); a model only when registered, with no data file to read
+PREDICTED = frozenset({"step_theta", "step_param", "cycle_model"})
 
 
 class FrameDelivery:
@@ -129,19 +131,20 @@ class FrameDelivery:
         size = self.one(pane).size
         return size.width, size.height
 
-    def frame_request(self) -> FrameRequest:
-        """What the visible panes show, from the state and the pane sizes."""
-        s = self.state
+    def frame_request(self, state: ViewerState | None = None) -> FrameRequest:
+        """What the visible panes show, from the state (``state``: another one, at the
+        present pane sizes) and the pane sizes."""
+        s = self.state if state is None else state
         map_px = None
         if s.view == "map":
-            sizes = [self._pane_size(p) for p in visible_panes(self.state) if PANES[p][0] in
+            sizes = [self._pane_size(p) for p in visible_panes(s) if PANES[p][0] in
                      ("map", "diff")]
             if all(w >= MIN_WIDTH and h >= MIN_HEIGHT for w, h in sizes):
                 map_px = map_pixels(min(w for w, _ in sizes), min(h for _, h in sizes))
         extra = s.view if s.view in EXTRA_VIEWS else None
         extra_px = None
         if extra is not None:
-            sizes = [self._pane_size(p) for p in visible_panes(self.state) if
+            sizes = [self._pane_size(p) for p in visible_panes(s) if
                      PANES[p][0] == "extra"]
             w, h = min(w for w, _ in sizes), min(h for _, h in sizes)
             if w >= MIN_WIDTH and h >= MIN_HEIGHT:
@@ -324,21 +327,29 @@ class FrameDelivery:
         if self._event_loop is not None:  # not in sync mode (tests)
             self._event_loop.call_later(GC_AFTER_S, self._collect_young,
                                         context=self._loop_context)
-            if self._browse and res.complete:
-                self._after(PREFETCH_S, self.prefetch, res.request, self._browse)
+            if self._repeat is not None and self._repeat[0] in PREDICTED and res.complete:
+                self._after(PREFETCH_S, self.prefetch, res.request, self._repeat)
 
-    def prefetch(self, shown: FrameRequest, step: int) -> None:
-        """Compute, in the worker, the frame the model key ``step`` would show next, when
-        nothing changed since ``shown`` was drawn and the worker is idle (:data:`PREFETCH_S`).
-        The result goes to the core's cache; the key then finds it there."""
+    def prefetch(self, shown: FrameRequest, repeat: tuple[str, tuple]) -> None:
+        """Compute, in the worker, the frame the key of transition ``repeat`` (method, args)
+        would show next, when nothing changed since ``shown`` was drawn and the worker is
+        idle (:data:`PREFETCH_S`); then draw its pictures while idle (:meth:`_draw_ahead`).
+        The transition is tried on a copy of the state (:meth:`ViewerState.fork`); the
+        result goes to the core's cache, where the key finds it."""
         if shown != self.request or (self._worker is not None and self._worker.is_running):
             return
-        side = self.state.side_after(step)
-        if side is None or side_files(side):  # measured data: read with its progress shown
+        method, args = repeat
+        if method == "cycle_model":
+            side = self.state.side_after(*args)
+            if side is None or side_files(side):  # a file to read: not ahead of the key
+                return
+        ahead = self.state.fork()
+        if getattr(ahead, method)(*args) is not None:  # refused (a bound): nothing next
             return
-        materials = list(shown.materials)
-        materials[self.state.active] = side.material
-        req = self._ahead = dataclasses.replace(shown, materials=tuple(materials))
+        req = self.frame_request(ahead)
+        if req == shown:
+            return
+        self._ahead = req
         done = scene.cached_frame(req)
         if done is None or not done.complete:
             self._worker, self._worker_for = self.compute(req), req
