@@ -2,6 +2,10 @@
 
     python scripts/timeline_keys.py [--model phong] [--key right] [--keys 40] [--size 160x48]
 
+``--key right,-`` sends the keys in turn (→, −, →, …): each key then differs from the one
+before, so the frame the viewer prepared ahead for a repeat of the last key is not the one
+asked for (docs/app.md, "the next frame ahead").
+
 The viewer runs in a pty as a user sees it (truecolor); inside it, a few of its methods and
 Textual's are wrapped to note a timestamp (``time.perf_counter``, the same monotonic clock in
 both processes) when they start and end.  The driver sends one key every 150 ms, reads the pty
@@ -175,9 +179,10 @@ def drive(model: str, key: str, n: int, w: int,
 
     drain(3.0)
     cpu0 = cpu_seconds(pid)
-    for _ in range(n):
+    for i in range(n):
         sends.append(time.perf_counter())
-        os.write(fd, KEYS[key])
+        cycle = key.split(",")
+        os.write(fd, KEYS[cycle[i % len(cycle)]])
         drain(0.15)
     cpu = tuple((b - a) / n for a, b in zip(cpu0, cpu_seconds(pid), strict=True))
     os.write(fd, b"q")
@@ -252,10 +257,13 @@ def main() -> int:
         return 0
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--model", default="phong")
-    ap.add_argument("--key", default="right", choices=sorted(KEYS))
+    ap.add_argument("--key", default="right",
+                    help=f"one of {', '.join(sorted(KEYS))}, or several, comma-separated")
     ap.add_argument("--keys", type=int, default=40)
     ap.add_argument("--size", default="160x48")
     args = ap.parse_args()
+    if not all(k in KEYS for k in args.key.split(",")):
+        ap.error(f"--key: expected keys among {', '.join(sorted(KEYS))}, comma-separated")
     w, h = (int(v) for v in args.size.split("x"))
     print(f"{args.model}, key {args.key!r} × {args.keys}, {w}×{h}, truecolor")
     sends, marks, reads, cpu = drive(args.model, args.key, args.keys, w, h)

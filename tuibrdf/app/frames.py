@@ -11,7 +11,8 @@ the slow part (albedo, albedo curve) when done; the fast part waits up to :data:
 the slow one, so a fast model's key costs one paint: every pane, the panels and the status
 line together (a slow frame lets the panels and status go ahead after :data:`PENDING_S`).
 Once a frame is on the terminal the garbage of its key is collected (:data:`GC_YOUNG`), not in
-the middle of the next one.  A
+the middle of the next one; after a key pressed again and again (:data:`PREDICTED`) the frame
+the same key shows next is computed and drawn while the viewer is idle (:meth:`prefetch`).  A
 frame waits while Textual's output writer still has frames queued (a slow terminal), and each
 pane is redrawn only when what it shows changed, through
 :func:`tuibrdf.render.lines.pane_lines` (rows of segments, not Rich's line splitting).
@@ -377,6 +378,8 @@ class FrameDelivery:
                 self._drawn_ahead[key] = part, lines
         if todo[1:]:
             self._after(0.0, self._draw_ahead, res, todo[1:])
+        else:  # its garbage now, not in the middle of the next key (GC_YOUNG)
+            self._collect_young()
 
     def capture_loop(self) -> None:
         """Note the event loop and the app's context (on mount) for the collections."""
