@@ -542,6 +542,7 @@ async def test_garbage_is_collected_after_each_frame_and_fully_when_idle(monkeyp
     monkeypatch.setattr(app_module, "FREEZE_S", 0.05)
     monkeypatch.setattr(app_module, "GC_IDLE_S", 0.5)
     monkeypatch.setattr(frames, "GC_IDLE_S", 0.5)
+    monkeypatch.setattr(frames, "PREDICTED", frozenset())  # (its own collection: below)
     threshold = gc.get_threshold()
     gc.set_threshold(700, *threshold[1:])  # Python's default (an earlier viewer raised it)
     try:
@@ -830,3 +831,32 @@ async def test_the_key_a_prefetch_is_for_waits_for_it_rather_than_computing_agai
                                     and app.frame.request.materials[0].name == ahead_name)
         fresh = [c for c in log if c[0] == (ahead_name,)]
         assert len(fresh) <= 2 and not any(loop for _, _, loop in fresh)  # fast part, albedo
+
+
+async def test_the_garbage_of_a_frame_drawn_ahead_is_collected_once_it_is_drawn(monkeypatch):
+    # the frame prepared ahead leaves its garbage (rows, segments) between two keys: it is
+    # collected when its last picture is drawn, not by the automatic collector in the next key
+    import gc
+
+    from tuibrdf.app import frames
+
+    monkeypatch.setattr(frames, "PREFETCH_S", 0.05)
+    monkeypatch.setattr(frames, "GC_AFTER_S", 0.001)  # the key's own, well before
+    marks: list[str] = []
+    collect = gc.collect
+    monkeypatch.setattr(gc, "collect", lambda *a: (marks.append(f"collect{a}"), collect(*a))[1])
+    draw_ahead = frames.FrameDelivery._draw_ahead
+
+    def spy(self, res, todo):
+        marks.append(f"ahead {len(todo)}")
+        return draw_ahead(self, res, todo)
+
+    monkeypatch.setattr(frames.FrameDelivery, "_draw_ahead", spy)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        await pilot.pause(0.2)
+        marks.clear()
+        await pilot.press("right")
+        assert await wait_for(pilot, lambda: "ahead 1" in marks
+                              and "collect(1,)" in marks[marks.index("ahead 1"):])
