@@ -660,6 +660,21 @@ async def test_in_compare_mode_the_prefetch_changes_only_the_active_side(monkeyp
             assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane
 
 
+def _drawn_ahead_log(monkeypatch) -> list[bool]:
+    """Picture.show wrapped: per call, whether its rows came drawn ahead."""
+    from tuibrdf.app import widgets
+
+    given: list[bool] = []
+    show = widgets.Picture.show
+
+    def spy(self, renderable, key=None, lines=None):
+        given.append(lines is not None)
+        return show(self, renderable, key, lines)
+
+    monkeypatch.setattr(widgets.Picture, "show", spy)
+    return given
+
+
 def _fresh_rows(app, pane: str) -> list[list[tuple[str, object]]]:
     """``pane``'s rows drawn from nothing from the frame on screen (the pictures' own way,
     which tests/test_render_lines.py checks against Rich)."""
@@ -690,18 +705,10 @@ async def test_pictures_drawn_ahead_are_the_pictures_the_key_would_draw(monkeypa
     # after a model key, the next model's pictures are drawn while idle (frames._draw_ahead)
     # and shown by the next m: cell for cell what drawing them then gives; a look changed in
     # between (log scale, colour map) makes them drawn afresh, as right
-    from tuibrdf.app import widgets
     from tuibrdf.app.text import visible_panes
 
     _prefetch_log(monkeypatch)
-    given: list[bool] = []  # per Picture.show: rows given (drawn ahead)
-    show = widgets.Picture.show
-
-    def spy(self, renderable, key=None, lines=None):
-        given.append(lines is not None)
-        return show(self, renderable, key, lines)
-
-    monkeypatch.setattr(widgets.Picture, "show", spy)
+    given = _drawn_ahead_log(monkeypatch)
     app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=35.0))
     names = [_after_in_table("phong", j) for j in (1, 2, 3)]
     async with app.run_test(size=(160, 48)) as pilot:
@@ -767,17 +774,8 @@ async def test_a_theta_or_parameter_key_prefetches_the_frame_the_same_key_shows_
         monkeypatch, key, method, args):
     # → (←, −) again: its frame is the very result computed ahead in the worker, computed
     # nowhere else, and its pictures were drawn ahead
-    from tuibrdf.app import widgets
-
     log = _prefetch_log(monkeypatch)
-    given: list[bool] = []
-    show = widgets.Picture.show
-
-    def spy(self, renderable, key=None, lines=None):
-        given.append(lines is not None)
-        return show(self, renderable, key, lines)
-
-    monkeypatch.setattr(widgets.Picture, "show", spy)
+    given = _drawn_ahead_log(monkeypatch)
     app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
     async with app.run_test(size=(120, 36)) as pilot:
         assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
