@@ -858,3 +858,36 @@ async def test_the_garbage_of_a_frame_drawn_ahead_is_collected_once_it_is_drawn(
         await pilot.press("right")
         assert await wait_for(pilot, lambda: "ahead 1" in marks
                               and "collect(1,)" in marks[marks.index("ahead 1"):])
+
+
+async def test_a_slow_kind_of_frame_is_not_prepared_ahead(monkeypatch):
+    # frames of a kind that took PREFETCH_MAX_S or more lately (measured data, a slow model
+    # file) are not computed ahead of a θi key: the worker would hold the next key up.  The
+    # viewer's clock is the test's: real time plus twice PREFETCH_MAX_S per frame computed
+    import time
+    import types
+
+    from tuibrdf.app import frames
+
+    _prefetch_log(monkeypatch)
+    extra = [0.0]
+    monkeypatch.setattr(frames, "time", types.SimpleNamespace(
+        perf_counter=lambda: time.perf_counter() + extra[0], monotonic=time.monotonic))
+    asked: list[float] = []
+    real = scene.compute_frame
+
+    def slow(req, **kw):
+        asked.append(req.theta_i)
+        extra[0] += 2 * frames.PREFETCH_MAX_S
+        return real(req, **kw)
+
+    monkeypatch.setattr(scene, "compute_frame", slow)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        for theta in (41.0, 42.0):
+            await pilot.press("right")
+            assert await pilot_wait_for(pilot, lambda t=theta: app.frame.complete
+                                        and app.frame.request.theta_i == t)
+            await pilot.pause(10 * frames.PREFETCH_S)
+        assert set(asked) == {40.0, 41.0, 42.0}  # none of 43°

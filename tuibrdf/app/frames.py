@@ -79,6 +79,11 @@ PREFETCH_S = 0.04
 #: the transitions prepared ahead: the keys a user presses again and again (θi ←/→, a
 #: parameter's +/−, the model m/M); a model only when registered, with no data file to read
 PREDICTED = frozenset({"step_theta", "step_param", "cycle_model"})
+#: a θi or parameter key is prepared ahead only when the frames of its kind took less than
+#: this lately (the registered models' frames take 2–25 ms at 160×48): measured data, a
+#: model file's slow kernel or a curve would keep the worker, and the interpreter lock,
+#: from the next key for longer than preparing it could save
+PREFETCH_MAX_S = 0.03
 
 
 class FrameDelivery:
@@ -343,6 +348,10 @@ class FrameDelivery:
         if method == "cycle_model":
             side = self.state.side_after(*args)
             if side is None or side_files(side):  # a file to read: not ahead of the key
+                return
+        else:  # the same kind of frame as this one: only when its frames are quick
+            kept = self._costs.get(self._kind(shown))
+            if not kept or max(kept) >= PREFETCH_MAX_S:
                 return
         ahead = self.state.fork()
         if getattr(ahead, method)(*args) is not None:  # refused (a bound): nothing next
