@@ -891,3 +891,28 @@ async def test_a_slow_kind_of_frame_is_not_prepared_ahead(monkeypatch):
                                         and app.frame.request.theta_i == t)
             await pilot.pause(10 * frames.PREFETCH_S)
         assert set(asked) == {40.0, 41.0, 42.0}  # none of 43°
+
+
+async def test_pictures_drawn_ahead_for_another_widget_size_are_drawn_again(monkeypatch):
+    # a map's key names its pixel grid, not its widget's size: rows drawn ahead for a widget
+    # of another size (resized meanwhile) are not shown, the picture is drawn afresh
+    from textual.geometry import Size
+
+    _prefetch_log(monkeypatch)
+    given = _drawn_ahead_log(monkeypatch)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        await pilot.press("right")
+        assert await pilot_wait_for(pilot, lambda: app.frame.request.theta_i == 41.0
+                                    and len(app._drawn_ahead) >= 3)
+        for key, (part, lines, _size) in list(app._drawn_ahead.items()):
+            app._drawn_ahead[key] = part, lines, Size(7, 3)  # as if drawn before a resize
+        given.clear()
+        await pilot.press("right")
+        assert await pilot_wait_for(pilot, lambda: app.frame.request.theta_i == 42.0)
+        assert given and not any(given)
+        from tuibrdf.app.text import visible_panes
+
+        for pane in visible_panes(app.state):
+            assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane

@@ -98,7 +98,8 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         #: (frames.PREDICTED): (method, args)
         self._repeat: tuple[str, tuple] | None = None
         self._ahead: FrameRequest | None = None  # the frame computed ahead (frames.prefetch)
-        #: its pictures drawn while idle: key of the pane's picture → (renderable, rows)
+        #: its pictures drawn while idle: key of the pane's picture → (renderable, rows, the
+        #: widget's size they were drawn for)
         self._drawn_ahead: dict[tuple, tuple] = {}
         self._preset_names: list[str] = []  # the saved presets, for the command palette
         self._widgets: dict[str, object] = {}  # id → widget (BrdfApp.one)

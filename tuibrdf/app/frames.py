@@ -384,7 +384,7 @@ class FrameDelivery:
             except DRAW_ERRORS:
                 pass  # drawn, and the error shown, if the key comes
             else:
-                self._drawn_ahead[key] = part, lines
+                self._drawn_ahead[key] = part, lines, pic.size
         if todo[1:]:
             self._after(0.0, self._draw_ahead, res, todo[1:])
         else:  # its garbage now, not in the middle of the next key (GC_YOUNG)
@@ -447,8 +447,8 @@ class FrameDelivery:
         if pic.shown_for == key:
             return
         ahead = self._drawn_ahead.pop(key, None)
-        if ahead is not None:  # drawn while idle (:meth:`_draw_ahead`)
-            pic.show(ahead[0], key, ahead[1])
+        if ahead is not None and ahead[2] == pic.size:  # drawn while idle (_draw_ahead), for
+            pic.show(ahead[0], key, ahead[1])  # this size (a map's key has its pixels')
             return
         view, k = PANES[pane]
         try:
