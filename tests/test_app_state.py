@@ -317,11 +317,9 @@ def test_issue13_view_settings_stay_in_range():
 
 
 @pytest.mark.parametrize("step", [1, -1, 2])
-def test_model_after_and_side_after_name_where_the_model_key_goes_and_change_nothing(
-        tmp_path, step):
+def test_model_after_names_where_the_model_key_goes_and_changes_nothing(tmp_path, step):
     # the prefetch (app/frames.py) asks where m / M goes before the key: the answer is where
-    # cycle_model then goes, from every model and a model file, asking changes nothing, and
-    # side_after is that model's side with its remembered values (None for a file)
+    # cycle_model then goes, from every model and a model file, and asking changes nothing
     import shutil
     from pathlib import Path
 
@@ -335,22 +333,23 @@ def test_model_after_and_side_after_name_where_the_model_key_goes_and_change_not
 
     for _ in range(2 * len(MODELS) + 2):
         before = seen(s)
-        name, side = s.model_after(step), s.side_after(step)
+        name = s.model_after(step)
         assert seen(s) == before  # asked, nothing changed
         s.cycle_model(step)
         assert s.side.model == name
-        if name == str(path):
-            assert side is None
-        else:
-            assert side is not None and side.material == s.side.material
     assert s.files == [str(path)]
 
 
-def test_side_after_is_none_for_values_the_model_refuses():
-    # the prefetch runs on a timer: a refused value must not raise there (cycle_model says it)
+def test_a_model_key_to_values_the_model_refuses_says_so_and_changes_no_side():
+    # the prefetch runs the key on a fork, on a timer: a refused value must not raise there;
+    # the key says why and the side stays
     s = phong_state()
     s.memory["blinn-phong"] = {**MODELS["blinn-phong"].defaults(), "kd": 5.0}
-    assert s.model_after(1) == "blinn-phong" and s.side_after(1) is None
+    assert s.model_after(1) == "blinn-phong"
+    ahead = s.fork()
+    said = ahead.cycle_model(1)
+    assert said and "blinn-phong" in said and "kd" in said
+    assert ahead.side.model == "phong" and s.side.model == "phong" and s.files == []
 
 
 def _seen_all(s) -> tuple:

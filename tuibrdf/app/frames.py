@@ -31,6 +31,7 @@ from textual import work
 from textual.worker import get_current_worker
 
 from ..core import scene
+from ..core.models import MODELS
 from ..core.scene import FrameRequest, FrameResult
 from ..render import EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, panes
 from ..render.lines import pane_lines
@@ -346,8 +347,7 @@ class FrameDelivery:
             return
         method, args = repeat
         if method == "cycle_model":
-            side = self.state.side_after(*args)
-            if side is None or side_files(side):  # a file to read: not ahead of the key
+            if self.state.model_after(*args) not in MODELS:  # a model file: reading it is I/O
                 return
         else:  # the same kind of frame as this one: only when its frames are quick
             kept = self._costs.get(self._kind(shown))
@@ -355,6 +355,8 @@ class FrameDelivery:
                 return
         ahead = self.state.fork()
         if getattr(ahead, method)(*args) is not None:  # refused (a bound): nothing next
+            return
+        if any(side_files(side) for side in ahead.sides):  # measured data: read when asked
             return
         req = self.frame_request(ahead)
         if req == shown:

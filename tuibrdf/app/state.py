@@ -343,18 +343,6 @@ class ViewerState:
             i = -1 if delta > 0 else 0
         return names[(i + delta) % len(names)]
 
-    def side_after(self, delta: int) -> Side | None:
-        """The side :meth:`cycle_model` ``(delta)`` would show when it goes to another
-        registered model (nothing changes); None for a model file (reading it is I/O) and
-        for values the model refuses (the key itself then says why)."""
-        name = self.model_after(delta)
-        if name not in MODELS or name == self.side.model:
-            return None
-        try:
-            return Side(name, self.memory.get(name))
-        except ValueError:
-            return None
-
     def cycle_model(self, delta: int) -> str | None:
         """Next / previous registered model on the active side; θi and the view stay."""
         name = self.model_after(delta)
@@ -363,8 +351,9 @@ class ViewerState:
         self.memory[self.side.model] = self.side.values
         try:
             self.sides[self.active] = Side(name, self.memory.get(name))
-        except ValueError as e:  # a model file edited or removed meanwhile
-            self.files.remove(name)
+        except ValueError as e:  # a model file edited or removed meanwhile (or values refused)
+            if name in self.files:
+                self.files.remove(name)
             return f"cannot read {name}: {e}"
         self.preset = ""
         return None
