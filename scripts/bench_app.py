@@ -25,13 +25,15 @@ timestamps the bytes the app writes back:
 * **views** (``--views``): key → frame and key → all panes on each of issue 13's views (lit
   sphere, lit plane, θh × θd slice, f(θh), f(θd)): a parameter key and the view's own key.
 
-Usage: ``python scripts/bench_app.py [--sizes 80x24,160x48,240x70] [--reps 20] [--views]``.
+Usage: ``python scripts/bench_app.py [--sizes 80x24,160x48,240x70] [--reps 20] [--views]
+[--load N]``; ``--load N`` runs N processes spinning on the CPU meanwhile (a shared machine).
 Prints a Markdown table.  Numbers depend on the machine: read them as "about".
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import fcntl
 import glob
 import os
@@ -224,6 +226,20 @@ def min_bytes(before: dict, after: dict) -> tuple[int, int]:
     return len(changed), total
 
 
+@contextlib.contextmanager
+def loaded(n: int):
+    """``n`` other processes spinning on the CPU meanwhile (``--load N``): a machine shared
+    with other jobs, reproducibly.  On this 2-core machine ``--load 1`` leaves the viewer one
+    core for its threads, ``--load 2`` less than a core each."""
+    spin = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(n)]
+    try:
+        yield
+    finally:
+        for p in spin:
+            p.kill()
+            p.wait()
+
+
 def pct(xs: list[float], q: float) -> float:
     xs = sorted(xs)
     return xs[min(len(xs) - 1, round(q * (len(xs) - 1)))]
@@ -356,7 +372,14 @@ def main() -> int:
     ap.add_argument("--no-catch-up", action="store_true", help="skip the held-key test")
     ap.add_argument("--views", action="store_true",
                     help="key → frame on each of issue 13's views instead")
+    ap.add_argument("--load", type=int, default=0, metavar="N",
+                    help="N other processes spinning on the CPU meanwhile (a shared machine)")
     args = ap.parse_args()
+    with loaded(args.load):
+        return run(args)
+
+
+def run(args: argparse.Namespace) -> int:
     sizes = [tuple(int(v) for v in s.split("x")) for s in args.sizes.split(",")]
     colors = args.colors.split(",")
     if args.views:

@@ -1,6 +1,7 @@
 """Where a key's time goes in the running viewer: a timeline of each key's phases.
 
     python scripts/timeline_keys.py [--model phong] [--key right] [--keys 40] [--size 160x48]
+                                    [--load N]
 
 ``--key right,-`` sends the keys in turn (→, −, →, …): each key then differs from the one
 before, so the frame the viewer prepared ahead for a repeat of the last key is not the one
@@ -261,12 +262,19 @@ def main() -> int:
                     help=f"one of {', '.join(sorted(KEYS))}, or several, comma-separated")
     ap.add_argument("--keys", type=int, default=40)
     ap.add_argument("--size", default="160x48")
+    ap.add_argument("--load", type=int, default=0, metavar="N",
+                    help="N other processes spinning on the CPU meanwhile (a shared machine)")
     args = ap.parse_args()
     if not all(k in KEYS for k in args.key.split(",")):
         ap.error(f"--key: expected keys among {', '.join(sorted(KEYS))}, comma-separated")
     w, h = (int(v) for v in args.size.split("x"))
-    print(f"{args.model}, key {args.key!r} × {args.keys}, {w}×{h}, truecolor")
-    sends, marks, reads, cpu = drive(args.model, args.key, args.keys, w, h)
+    print(f"{args.model}, key {args.key!r} × {args.keys}, {w}×{h}, truecolor"
+          + (f", {args.load} spinning processes" if args.load else ""))
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from bench_app import loaded
+
+    with loaded(args.load):
+        sends, marks, reads, cpu = drive(args.model, args.key, args.keys, w, h)
     print(table(sends, marks, reads))
     print(steps(sends, marks))
     print("CPU per key ms: all threads {:.2f}, event loop {:.2f}".format(*(t * 1e3 for t in cpu)))

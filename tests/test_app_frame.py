@@ -704,7 +704,7 @@ def _cells(rows) -> list[list[tuple[str, object]]]:
 async def test_pictures_drawn_ahead_are_the_pictures_the_key_would_draw(monkeypatch, between):
     # after a model key, the next model's pictures are drawn while idle (frames._draw_ahead)
     # and shown by the next m: cell for cell what drawing them then gives; a look changed in
-    # between (log scale, colour map) makes them drawn afresh, as right
+    # between (log scale, colour map) has them drawn ahead again, in that look
     from tuibrdf.app.text import visible_panes
 
     _prefetch_log(monkeypatch)
@@ -721,15 +721,17 @@ async def test_pictures_drawn_ahead_are_the_pictures_the_key_would_draw(monkeypa
                 assert await pilot_wait_for(pilot, lambda: len(app._drawn_ahead) == len(
                     visible_panes(app.state)))
                 for key in between:
-                    await pilot.press(key)
-                    await pilot.pause(0.05)
+                    shown = app.frames
+                    await pilot.press(key)  # its frame clears what was drawn ahead
+                    assert await pilot_wait_for(pilot, lambda s=shown: app.frames > s and len(
+                        app._drawn_ahead) == len(visible_panes(app.state)))
                 given.clear()
                 continue
             panes_now = visible_panes(app.state)
             for pane in panes_now:
                 assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane
             if j == 1:
-                assert given and all(given) if not between else not any(given)
+                assert given and all(given)
             n = len(panes_now)
             assert await pilot_wait_for(pilot, lambda n=n: len(app._drawn_ahead) == n)
             given.clear()
@@ -769,6 +771,7 @@ async def test_other_keys_and_refused_keys_prefetch_nothing(monkeypatch):
 
 @pytest.mark.parametrize("key,method,args", [("right", "step_theta", (1,)),
                                              ("left", "step_theta", (-1,)),
+                                             ("greater_than_sign", "step_phi_i", (15,)),
                                              ("minus", "step_param", (-1,))])
 async def test_a_theta_or_parameter_key_prefetches_the_frame_the_same_key_shows_next(
         monkeypatch, key, method, args):
@@ -916,3 +919,95 @@ async def test_pictures_drawn_ahead_for_another_widget_size_are_drawn_again(monk
 
         for pane in visible_panes(app.state):
             assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane
+
+
+async def test_a_key_then_the_key_back_shows_the_pictures_shown_before(monkeypatch):
+    # → then ←: the frame of ← is the one shown before → (the core's cache) and so are its
+    # pictures (frames._draw keeps what a frame replaces): none drawn again, each cell for
+    # cell what drawing it gives.  Nothing is prepared ahead here (PREFETCH_S: an hour)
+    from tuibrdf.app import frames
+    from tuibrdf.app.text import visible_panes
+
+    log = _prefetch_log(monkeypatch)
+    monkeypatch.setattr(frames, "PREFETCH_S", 3600.0)
+    given = _drawn_ahead_log(monkeypatch)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        await pilot.pause(0.2)  # (the layout settled)
+        assert await pilot_wait_for(pilot, lambda: app.frame.request == app.request)
+        first = app.frame
+        await pilot.press("right")
+        assert await pilot_wait_for(pilot, lambda: app.frame.complete
+                                    and app.frame.request.theta_i == 41.0)
+        assert not any(given)  # (nothing was drawn ahead)
+        calls, given[:] = len(log), []
+        await pilot.press("left")
+        assert await pilot_wait_for(pilot, lambda: app.frame.request.theta_i == 40.0)
+        assert app.frame.request == first.request and len(log) == calls  # (cached)
+        assert len(given) == len(visible_panes(app.state)) and all(given)
+        for pane in visible_panes(app.state):
+            assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane
+        given.clear()  # and → again: the pictures ← replaced
+        await pilot.press("right")
+        assert await pilot_wait_for(pilot, lambda: app.frame.request.theta_i == 41.0)
+        assert given and all(given)
+        for pane in visible_panes(app.state):
+            assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane
+
+
+async def test_the_two_latest_different_keys_are_both_prepared_ahead(monkeypatch):
+    # θi →, then a parameter's −: the frames of − again and of → again are both computed in
+    # the worker and drawn while idle; → then shows its prepared frame, drawn ahead, cell for
+    # cell what drawing it gives
+    from tuibrdf.app.text import visible_panes
+
+    log = _prefetch_log(monkeypatch)
+    given = _drawn_ahead_log(monkeypatch)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        for key in ("right", "minus"):
+            await pilot.press(key)
+            assert await pilot_wait_for(pilot, lambda: app.frame.complete
+                                        and app.frame.request == app.request)
+        wanted = []
+        for method, args in (("step_param", (-1,)), ("step_theta", (1,))):
+            state = app.state.fork()
+            assert getattr(state, method)(*args) is None
+            wanted.append(app.frame_request(state))
+        assert len(set(wanted)) == 2 and app.request not in wanted
+        n = len(visible_panes(app.state))
+        assert await pilot_wait_for(pilot, lambda: all(
+            (f := scene.cached_frame(r)) is not None and f.complete for r in wanted)
+            and app._ahead == wanted[1] and len(app._drawn_ahead) >= n + 1)
+        prefetched = scene.cached_frame(wanted[1])
+        assert not any(on_loop for names, theta, on_loop in log if theta == 42.0)
+        calls, given[:] = len(log), []
+        await pilot.press("right")
+        assert await pilot_wait_for(pilot, lambda: app.frame.request == wanted[1])
+        assert app.frame is prefetched and all(not loop for _, _, loop in log[calls:])
+        assert given and all(given)
+        for pane in visible_panes(app.state):
+            assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane
+
+
+async def test_a_worker_whose_frame_is_complete_is_not_computing():
+    # a thread worker reads as running a moment after it handed over its last result; the
+    # prefetch of the next transition does not wait for it (frames._computing): a worker is
+    # computing only while its request's complete frame is not in the cache
+    import types
+
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        done = app.frame.request
+        assert scene.cached_frame(done).complete
+        app._worker = types.SimpleNamespace(is_running=True)
+        app._worker_for = done
+        assert not app._computing()
+        app._worker_for = dataclasses.replace(done, theta_i=12.5)  # not computed
+        assert app._computing()
+        app._worker = types.SimpleNamespace(is_running=False)
+        assert not app._computing()
+        app._worker = None

@@ -25,7 +25,7 @@ from ..core.sections import great_circle
 from ..render import panes
 from ..render.polar_braille import angle_at
 from . import keys
-from .frames import GC_IDLE_S, GC_YOUNG, FrameDelivery
+from .frames import GC_IDLE_S, GC_YOUNG, PREDICT_KEEP, FrameDelivery
 from .layout import CSS, arrange
 from .loading import MeasuredData
 from .paint import ViewerScreen
@@ -94,13 +94,18 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self._costs: dict[tuple, list[float]] = {}
         self._changes = 0  # changes so far; only the last one queued updates the screen
         self._relayout = False  # a change since the last update may show other panes
-        #: the last change, when a key's transition the viewer prepares again ahead
-        #: (frames.PREDICTED): (method, args)
-        self._repeat: tuple[str, tuple] | None = None
+        #: the latest different transitions of the keys since the last other change, the
+        #: latest first (frames.PREDICT_KEEP): (method, args); those in frames.PREDICTED are
+        #: prepared ahead
+        self._repeats: tuple[tuple[str, tuple], ...] = ()
         self._ahead: FrameRequest | None = None  # the frame computed ahead (frames.prefetch)
+        #: what to prepare once its pictures are drawn: (the request shown, transitions)
+        self._ahead_then: tuple[FrameRequest | None, tuple] = (None, ())
         #: its pictures drawn while idle: key of the pane's picture → (renderable, rows, the
         #: widget's size they were drawn for)
         self._drawn_ahead: dict[tuple, tuple] = {}
+        #: the pictures the last frame replaced, the same way (a key then its opposite)
+        self._drawn_before: dict[tuple, tuple] = {}
         self._preset_names: list[str] = []  # the saved presets, for the command palette
         self._widgets: dict[str, object] = {}  # id → widget (BrdfApp.one)
         self._collected_at: float | None = None  # the last collection after a frame
@@ -183,9 +188,11 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         (a burst of keys costs one update, for the last state).  ``at_once`` (a key): with
         no event queued, the update runs now rather than as a message behind an empty queue
         (≈ 0.2 ms a key, docs/app.md).  ``repeat``: the key's transition, which the same key
-        would make again (:meth:`~tuibrdf.app.frames.FrameDelivery.prefetch`)."""
+        would make again (:meth:`~tuibrdf.app.frames.FrameDelivery.prefetch`); a change
+        without one forgets the keys before it."""
         self.message = message or ""
-        self._repeat = repeat
+        self._repeats = () if repeat is None else (
+            repeat, *[r for r in self._repeats if r != repeat])[:PREDICT_KEEP]
         self._relayout = self._relayout or relayout
         self._changes += 1
         queue = getattr(self, "_message_queue", None)

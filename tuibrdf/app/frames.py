@@ -77,9 +77,14 @@ GC_IDLE_S = 1.0  #: a full collection once no frame has come for this long
 #: the model then costs a key the last drawing steps and the paint (docs/app.md).  Any key
 #: cancels it, and the key it was for waits for it rather than starting again
 PREFETCH_S = 0.04
-#: the transitions prepared ahead: the keys a user presses again and again (θi ←/→, a
-#: parameter's +/−, the model m/M); a model only when registered, with no data file to read
-PREDICTED = frozenset({"step_theta", "step_param", "cycle_model"})
+#: the transitions prepared ahead: the keys a user presses again and again (θi ←/→, the
+#: light's azimuth </>, a parameter's +/−, the model m/M); a model only when registered, with
+#: no data file to read
+PREDICTED = frozenset({"step_theta", "step_phi_i", "step_param", "cycle_model"})
+#: how many of the latest different transitions are prepared ahead, the latest first: a user
+#: who goes from one key to another and back (θi, then a parameter, then θi again) finds
+#: both ready (docs/app.md)
+PREDICT_KEEP = 2
 #: a θi or parameter key is prepared ahead only when the frames of its kind took less than
 #: this lately (the registered models' frames take 2–25 ms at 160×48): measured data, a
 #: model file's slow kernel or a curve would keep the worker, and the interpreter lock,
@@ -321,8 +326,9 @@ class FrameDelivery:
         self._cancel_timers()  # this request's frame is shown: its panels and pictures with it
         self.frame = res
         self.frames += 1
+        before, self._drawn_before = self._drawn_before, {}
         for pane in visible_panes(self.state):
-            self._draw(pane, res)
+            self._draw(pane, res, before)
         self._drawn_ahead.clear()  # (pictures of another frame)
         if self.state.compare and self.state.view == "map":
             self.one("legend").update(legend_text(self.state))
@@ -334,50 +340,70 @@ class FrameDelivery:
         if self._event_loop is not None:  # not in sync mode (tests)
             self._event_loop.call_later(GC_AFTER_S, self._collect_young,
                                         context=self._loop_context)
-            if self._repeat is not None and self._repeat[0] in PREDICTED and res.complete:
-                self._after(PREFETCH_S, self.prefetch, res.request, self._repeat)
+            todo = tuple(t for t in self._repeats if t[0] in PREDICTED)
+            if todo and res.complete:
+                self._after(PREFETCH_S, self.prefetch, res.request, todo)
 
-    def prefetch(self, shown: FrameRequest, repeat: tuple[str, tuple]) -> None:
-        """Compute, in the worker, the frame the key of transition ``repeat`` (method, args)
-        would show next, when nothing changed since ``shown`` was drawn and the worker is
-        idle (:data:`PREFETCH_S`); then draw its pictures while idle (:meth:`_draw_ahead`).
-        The transition is tried on a copy of the state (:meth:`ViewerState.fork`); the
-        result goes to the core's cache, where the key finds it."""
-        if shown != self.request or (self._worker is not None and self._worker.is_running):
+    def prefetch(self, shown: FrameRequest, todo: tuple[tuple[str, tuple], ...]) -> None:
+        """Compute, in the worker, the frame the key of the first transition of ``todo``
+        (method, args) would show next, when nothing changed since ``shown`` was drawn and
+        the worker is idle (:data:`PREFETCH_S`); then draw its pictures while idle
+        (:meth:`_draw_ahead`), then the next transition's.  A transition is tried on a copy
+        of the state (:meth:`ViewerState.fork`); the result goes to the core's cache, where
+        the key finds it."""
+        if shown != self.request or self._computing():
             return
-        method, args = repeat
+        for i, (method, args) in enumerate(todo):
+            req = self._predicted(shown, method, args)
+            if req is None:
+                continue
+            self._ahead, self._ahead_then = req, (shown, todo[i + 1:])
+            done = scene.cached_frame(req)
+            if done is None or not done.complete:
+                self._worker, self._worker_for = self.compute(req), req
+            else:
+                self._draw_ahead(done, visible_panes(self.state))
+            return
+
+    def _computing(self) -> bool:
+        """Whether the worker is computing a frame: running, and its frame not complete in
+        the cache (a thread worker reads as running a moment after handing over its last
+        result, until the event loop learns it has ended)."""
+        if self._worker is None or not self._worker.is_running:
+            return False
+        done = scene.cached_frame(self._worker_for)
+        return done is None or not done.complete
+
+    def _predicted(self, shown: FrameRequest, method: str, args: tuple) -> FrameRequest | None:
+        """The request the transition ``method(*args)`` would make from the state shown as
+        ``shown``; None when it is not prepared ahead (refused, measured data or a model
+        file to read, a kind of frame slow lately, nothing new)."""
         if method == "cycle_model":
             if self.state.model_after(*args) not in MODELS:  # a model file: reading it is I/O
-                return
+                return None
         else:  # the same kind of frame as this one: only when its frames are quick
             kept = self._costs.get(self._kind(shown))
             if not kept or max(kept) >= PREFETCH_MAX_S:
-                return
+                return None
         ahead = self.state.fork()
         if getattr(ahead, method)(*args) is not None:  # refused (a bound): nothing next
-            return
+            return None
         if any(side_files(side) for side in ahead.sides):  # measured data: read when asked
-            return
+            return None
         req = self.frame_request(ahead)
-        if req == shown:
-            return
-        self._ahead = req
-        done = scene.cached_frame(req)
-        if done is None or not done.complete:
-            self._worker, self._worker_for = self.compute(req), req
-        else:
-            self._draw_ahead(done, visible_panes(self.state))
+        return None if req == shown else req
 
     def _draw_ahead(self, res: FrameResult, todo: list[str]) -> None:
         """The pictures of the frame computed ahead (:meth:`prefetch`), drawn while the viewer
         is idle, one pane a call (a key waits for one at most); :meth:`_draw` shows them when
-        the key comes, as long as they are what it would draw (the same key)."""
+        the key comes, as long as they are what it would draw (the same key).  A picture
+        the screen showed just before (:meth:`_draw`) is not drawn again."""
         if res.request != self._ahead or res.request == self.request or not todo:
             return
         pane = todo[0]
         got = self._pane_key(pane, res)
         pic = self.one(pane)
-        if got is not None and pic.shown_for != got[0]:  # (else the key leaves it as it is)
+        if got is not None and pic.shown_for != got[0] and got[0] not in self._drawn_before:
             key, w, h = got
             view, k = PANES[pane]
             try:
@@ -389,8 +415,11 @@ class FrameDelivery:
                 self._drawn_ahead[key] = part, lines, pic.size
         if todo[1:]:
             self._after(0.0, self._draw_ahead, res, todo[1:])
-        else:  # its garbage now, not in the middle of the next key (GC_YOUNG)
-            self._collect_young()
+        else:  # its garbage now, not in the middle of the next key (GC_YOUNG); then the
+            self._collect_young()  # next transition's frame
+            shown, then = self._ahead_then
+            if then:
+                self._after(0.0, self.prefetch, shown, then)
 
     def capture_loop(self) -> None:
         """Note the event loop and the app's context (on mount) for the collections."""
@@ -439,18 +468,24 @@ class FrameDelivery:
                                    look.channel))
         return key, w, h
 
-    def _draw(self, pane: str, res: FrameResult) -> None:
+    def _draw(self, pane: str, res: FrameResult, before: dict[tuple, tuple]) -> None:
+        """Show ``pane``'s picture of ``res``: drawn ahead (:meth:`_draw_ahead`), shown just
+        before (``before``: a key and the key back, → then ←), or drawn now.  The picture it
+        replaces is kept in :attr:`_drawn_before` until the next frame."""
         pic = self.one(pane)
         got = self._pane_key(pane, res)
+        shown = pic.drawn()
+        if got is not None and shown is not None and shown[0] == got[0]:
+            return
+        if shown is not None:
+            self._drawn_before[shown[0]] = shown[1:]
         if got is None:
             pic.show(Text(f"{pic.size.width}×{pic.size.height}: too small for this pane"), None)
             return
         key, w, h = got
-        if pic.shown_for == key:
-            return
-        ahead = self._drawn_ahead.pop(key, None)
-        if ahead is not None and ahead[2] == pic.size:  # drawn while idle (_draw_ahead), for
-            pic.show(ahead[0], key, ahead[1])  # this size (a map's key has its pixels')
+        ready = self._drawn_ahead.pop(key, None) or before.get(key)
+        if ready is not None and ready[2] == pic.size:  # drawn already, for this size (a
+            pic.show(ready[0], key, ready[1])  # map's key has its pixel grid's, not this)
             return
         view, k = PANES[pane]
         try:

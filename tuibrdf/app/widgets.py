@@ -13,7 +13,7 @@ from rich.style import Style
 from rich.text import Text
 from textual.css.scalar import Unit
 from textual.filter import ANSIToTruecolor
-from textual.geometry import Region
+from textual.geometry import Region, Size
 from textual.strip import Strip
 from textual.style import Style as TextualStyle
 from textual.widget import Widget
@@ -181,6 +181,12 @@ class Picture(Rows):
         if lines is None:
             lines = pane_lines(renderable, self.app.console, w, h, like)
         self._set(lines, w, h)
+
+    def drawn(self) -> tuple[object, RenderableType, list[list[Segment]], Size] | None:
+        """What is shown, when it was drawn from a key: ``(key, renderable, rows, size)``."""
+        if self.shown_for is None:
+            return None
+        return self.shown_for, self._shown, self._lines, self.size
 
     def on_resize(self, event) -> None:
         self.shown_for = None
