@@ -6,9 +6,11 @@ timestamps the bytes the app writes back:
 * **main view**: from writing the key to the last byte of the first output burst larger than
   ``FRAME_MIN`` bytes (the picture update; bursts are chunks < ``GAP_S`` apart, the app's writer
   thread writes a frame in one go; the largest burst when none is that big: a small update).
-  Parameter change (``+``/``-`` on phong's Kd), θi change (→ only, from θi = 0°: every key
-  asks for an albedo never computed before) and model change (``m``).  p50 / p95 over
-  ``--reps`` keys each.
+  Parameter change (``-`` on phong's Kd), θi change (→ only, from θi = 0°: every key
+  asks for an albedo never computed before), model change (``m``), and → and ``+`` in turn
+  (each key another than the one before it: what the viewer prepares ahead for a repeated
+  key, docs/app.md, is then the frame of the key before).  p50 / p95 over ``--reps`` keys
+  each.
 * **all panes**: key → the last byte before the output stays idle for ``SETTLE_S`` (map, the
   two sections, the status line's albedo and peak from a worker thread), for every key kind.
 * **bytes per update**: all bytes written for one 1° θi key, against the minimum for the cells
@@ -252,8 +254,10 @@ def latency(w: int, h: int, color: str, reps: int) -> dict:
         out["startup"] = term.until("sr⁻¹".encode()) - term.t0
         term.drain()
         # "-" from Kd = 0.2 in steps of 0.01 and → from θi = 0°: a material or an incidence
-        # never seen before at every key (no albedo from the cache)
-        for name, seq in (("param", ("minus",)), ("theta", ("right",)), ("model", ("m",))):
+        # never seen before at every key (no albedo from the cache); then → and + in turn
+        # (each key another than the one before, still never seen before)
+        for name, seq in (("param", ("minus",)), ("theta", ("right",)),
+                          ("mixed", ("right", "plus")), ("model", ("m",))):
             times, sizes = [], []
             settled = []
             ratios = []
@@ -385,22 +389,21 @@ def run(args: argparse.Namespace) -> int:
     if args.views:
         views_table(sizes, colors, args.reps)
         return 0
-    print("| size | colours | startup s | main view p50/p95 ms: param | θi | model "
-          "| all panes p50/p95 ms: param | θi | model | bytes per 1° θi / changed cells' "
-          "minimum | CPU per key ms: param | θi | model | catch-up s |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    kinds = ("param", "theta", "model", "mixed")
+    print("| size | colours | startup s | main view p50/p95 ms: param | θi | model | → and + "
+          "| all panes p50/p95 ms: param | θi | model | → and + | bytes per 1° θi / changed "
+          "cells' minimum | CPU per key ms: param | θi | model | → and + | catch-up s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for w, h in sizes:
         for color in colors:
             r = latency(w, h, color, args.reps)
             cu = float("nan") if args.no_catch_up else catch_up(w, h, color)
-            ms = [f"{r[k][0] * 1e3:.0f} / {r[k][1] * 1e3:.0f}" for k in ("param", "theta",
-                                                                          "model")]
-            done = [f"{r[k][3] * 1e3:.0f} / {r[k][4] * 1e3:.0f}" for k in ("param", "theta",
-                                                                           "model")]
+            ms = [f"{r[k][0] * 1e3:.0f} / {r[k][1] * 1e3:.0f}" for k in kinds]
+            done = [f"{r[k][3] * 1e3:.0f} / {r[k][4] * 1e3:.0f}" for k in kinds]
             least = r["theta"][5]
             sent = (f"{least[0] / 1e3:.1f} / {least[1] / 1e3:.1f} kB = {least[0] / least[1]:.2f}×"
                     if least else f"{r['theta'][2] / 1e3:.1f} kB / ?")
-            cpu = [f"{r[k][6] * 1e3:.1f}" for k in ("param", "theta", "model")]
+            cpu = [f"{r[k][6] * 1e3:.1f}" for k in kinds]
             print(f"| {w}×{h} | {color} | {r['startup']:.2f} | {' | '.join(ms)} | "
                   f"{' | '.join(done)} | {sent} | {' | '.join(cpu)} | {cu:.2f} |", flush=True)
     print(f"\n`tuibrdf --help`: {help_time() * 1e3:.0f} ms (median of 5)")

@@ -1011,3 +1011,27 @@ async def test_a_worker_whose_frame_is_complete_is_not_computing():
         app._worker = types.SimpleNamespace(is_running=False)
         assert not app._computing()
         app._worker = None
+
+
+async def test_a_key_pressed_again_has_only_its_own_frame_prepared(monkeypatch):
+    # →, then m twice: the user steps through the models, and only the next model's frame
+    # is prepared ahead, not → again's (after → then m alone, both are: the test above)
+    from tuibrdf.app.text import visible_panes
+
+    log = _prefetch_log(monkeypatch)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        for key in ("right", "m", "m"):
+            await pilot.press(key)
+            assert await pilot_wait_for(pilot, lambda: app.frame.complete
+                                        and app.frame.request == app.request)
+        model = app.request.materials[0].name
+        ahead = dataclasses.replace(app.request, materials=(
+            Side.of(_after_in_table(model, 1)).material,))
+        n = len(visible_panes(app.state))
+        assert await pilot_wait_for(pilot, lambda: (f := scene.cached_frame(ahead)) is not None
+                                    and f.complete and len(app._drawn_ahead) >= n)
+        await pilot.pause(0.3)
+        assert not [c for c in log if c[:2] == ((model,), 41.0 + 1)]  # → again: not prepared
+        assert [c for c in log if c[:2] == ((_after_in_table(model, 1),), 41.0)]

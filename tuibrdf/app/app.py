@@ -98,6 +98,7 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         #: latest first (frames.PREDICT_KEEP): (method, args); those in frames.PREDICTED are
         #: prepared ahead
         self._repeats: tuple[tuple[str, tuple], ...] = ()
+        self._again = False  # the last key's transition was the one before it again
         self._ahead: FrameRequest | None = None  # the frame computed ahead (frames.prefetch)
         #: what to prepare once its pictures are drawn: (the request shown, transitions)
         self._ahead_then: tuple[FrameRequest | None, tuple] = (None, ())
@@ -191,6 +192,7 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         would make again (:meth:`~tuibrdf.app.frames.FrameDelivery.prefetch`); a change
         without one forgets the keys before it."""
         self.message = message or ""
+        self._again = bool(self._repeats) and self._repeats[0] == repeat
         self._repeats = () if repeat is None else (
             repeat, *[r for r in self._repeats if r != repeat])[:PREDICT_KEEP]
         self._relayout = self._relayout or relayout

@@ -83,7 +83,7 @@ PREFETCH_S = 0.04
 PREDICTED = frozenset({"step_theta", "step_phi_i", "step_param", "cycle_model"})
 #: how many of the latest different transitions are prepared ahead, the latest first: a user
 #: who goes from one key to another and back (θi, then a parameter, then θi again) finds
-#: both ready (docs/app.md)
+#: both ready (docs/app.md); after a key pressed twice in a row, only that key's
 PREDICT_KEEP = 2
 #: a θi or parameter key is prepared ahead only when the frames of its kind took less than
 #: this lately (the registered models' frames take 2–25 ms at 160×48): measured data, a
@@ -340,7 +340,9 @@ class FrameDelivery:
         if self._event_loop is not None:  # not in sync mode (tests)
             self._event_loop.call_later(GC_AFTER_S, self._collect_young,
                                         context=self._loop_context)
-            todo = tuple(t for t in self._repeats if t[0] in PREDICTED)
+            # a key pressed again: that key only (m, m, m: not the θi key before them)
+            todo = tuple(t for t in self._repeats[:1 if self._again else None]
+                         if t[0] in PREDICTED)
             if todo and res.complete:
                 self._after(PREFETCH_S, self.prefetch, res.request, todo)
 
