@@ -1035,3 +1035,33 @@ async def test_a_key_pressed_again_has_only_its_own_frame_prepared(monkeypatch):
         await pilot.pause(0.3)
         assert not [c for c in log if c[:2] == ((model,), 41.0 + 1)]  # → again: not prepared
         assert [c for c in log if c[:2] == ((_after_in_table(model, 1),), 41.0)]
+
+
+@pytest.mark.parametrize("seed", [3, 8])
+async def test_after_any_keys_every_picture_is_what_drawing_it_gives(monkeypatch, seed):
+    # a seeded walk over the keys the viewer prepares ahead, their opposites and keys that
+    # change the look, the panes or the side, with pauses of random length (the frames ahead
+    # caught at every stage: computing, half drawn, done): once each key's frame is complete,
+    # every visible picture is cell for cell what drawing it from that frame gives, whether
+    # it was drawn ahead, kept from the frame before or drawn at the key
+    from tuibrdf.app.text import visible_panes
+
+    _prefetch_log(monkeypatch)
+    rng = random.Random(seed)
+    pool = ["right", "left", "right", "left", "plus", "minus", "plus", "minus", "m", "M",
+            "greater_than_sign", "less_than_sign", "l", "k", "a", "up", "down", "c", "tab",
+            "o", "b"]
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        for step in range(30):
+            key = rng.choice(pool)
+            await pilot.press(key)
+            assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete
+                                  and app.frame.request == app.request
+                                  and app.frame_request() == app.request), (step, key)
+            for pane in visible_panes(app.state):
+                if app._pane_key(pane, app.frame) is not None:
+                    assert _cells(_shown_rows(app, pane)) == _cells(
+                        _fresh_rows(app, pane)), (step, key, pane)
+            await pilot.pause(rng.choice([0.0, 0.005, 0.02, 0.05, 0.1]))
