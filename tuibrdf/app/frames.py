@@ -417,10 +417,10 @@ class FrameDelivery:
                 self._drawn_ahead[key] = part, lines, pic.size
         if todo[1:]:
             self._after(0.0, self._draw_ahead, res, todo[1:])
-        else:  # its garbage now, not in the middle of the next key (GC_YOUNG); then the
-            self._collect_young()  # next transition's frame
+        else:  # its garbage now, not in the middle of the next key (GC_YOUNG)
+            self._collect_young()
             shown, then = self._ahead_then
-            if then:
+            if then:  # then the frame of the next transition
                 self._after(0.0, self.prefetch, shown, then)
 
     def capture_loop(self) -> None:
