@@ -11,8 +11,9 @@ the slow part (albedo, albedo curve) when done; the fast part waits up to :data:
 the slow one, so a fast model's key costs one paint: every pane, the panels and the status
 line together (a slow frame lets the panels and status go ahead after :data:`PENDING_S`).
 Once a frame is on the terminal the garbage of its key is collected (:data:`GC_YOUNG`), not in
-the middle of the next one; after a key pressed again and again (:data:`PREDICTED`) the frame
-the same key shows next is computed and drawn while the viewer is idle (:meth:`prefetch`).  A
+the middle of the next one; after a key pressed again and again (:data:`PREDICTED`) the frames
+the latest keys show next are computed and drawn while the viewer is idle (:meth:`prefetch`), and
+the pictures a frame replaces are kept for the key back.  A
 frame waits while Textual's output writer still has frames queued (a slow terminal), and each
 pane is redrawn only when what it shows changed, through
 :func:`tuibrdf.render.lines.pane_lines` (rows of segments, not Rich's line splitting).
@@ -26,6 +27,7 @@ import gc
 import time
 from functools import partial
 
+from rich.console import RenderableType
 from rich.text import Text
 from textual import work
 from textual.worker import get_current_worker
@@ -72,10 +74,11 @@ INLINE_KEEP = 3
 GC_AFTER_S = 0.03
 GC_IDLE_S = 1.0  #: a full collection once no frame has come for this long
 #: after the frame of a key in :data:`PREDICTED` is complete on the screen, the frame the
-#: same key shows next is computed in the worker this long after (its paint and collection
-#: done, :data:`GC_AFTER_S`), and its pictures drawn while idle: stepping θi, a parameter or
-#: the model then costs a key the last drawing steps and the paint (docs/app.md).  Any key
-#: cancels it, and the key it was for waits for it rather than starting again
+#: same key (then the key before it, :data:`PREDICT_KEEP`) shows next is computed in the
+#: worker this long after (its paint and collection done, :data:`GC_AFTER_S`), and its
+#: pictures drawn while idle: stepping θi, a parameter or the model then costs a key the last
+#: drawing steps and the paint (docs/app.md).  Any key cancels it, and the key it was for
+#: waits for it rather than starting again
 PREFETCH_S = 0.04
 #: the transitions prepared ahead: the keys a user presses again and again (θi ←/→, the
 #: light's azimuth </>, a parameter's +/−, the model m/M); a model only when registered, with
@@ -407,9 +410,8 @@ class FrameDelivery:
         pic = self.one(pane)
         if got is not None and pic.shown_for != got[0] and got[0] not in self._drawn_before:
             key, w, h = got
-            view, k = PANES[pane]
             try:
-                part = panes.pane(view, res, k, w, h, self.look)
+                part = self._picture(pane, res, w, h)
                 lines = pane_lines(part, self.console, pic.size.width, pic.size.height)
             except DRAW_ERRORS:
                 pass  # drawn, and the error shown, if the key comes
@@ -470,6 +472,11 @@ class FrameDelivery:
                                    look.channel))
         return key, w, h
 
+    def _picture(self, pane: str, res: FrameResult, w: int, h: int) -> RenderableType:
+        """``pane``'s renderable of ``res`` at ``w`` × ``h`` (:meth:`_pane_key`'s size)."""
+        view, k = PANES[pane]
+        return panes.pane(view, res, k, w, h, self.look)
+
     def _draw(self, pane: str, res: FrameResult, before: dict[tuple, tuple]) -> None:
         """Show ``pane``'s picture of ``res``: drawn ahead (:meth:`_draw_ahead`), shown just
         before (``before``: a key and the key back, → then ←), or drawn now.  The picture it
@@ -489,9 +496,8 @@ class FrameDelivery:
         if ready is not None and ready[2] == pic.size:  # drawn already, for this size (a
             pic.show(ready[0], key, ready[1])  # map's key has its pixel grid's, not this)
             return
-        view, k = PANES[pane]
         try:
-            pic.show(panes.pane(view, res, k, w, h, self.look), key)
+            pic.show(self._picture(pane, res, w, h), key)
         except DRAW_ERRORS as e:
             pic.show(Text(f"cannot draw {pane}: {e}"), None)
 
