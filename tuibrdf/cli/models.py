@@ -8,13 +8,12 @@ from __future__ import annotations
 
 import argparse
 
-from .common import TYPE_CHECKING
+from .common import TYPE_CHECKING, fmt, print_json
 
 if TYPE_CHECKING:
     from typing import Any
 
     from ..core.params import Model, Param
-from .common import fmt, print_json
 
 COLUMNS = ("name", "symbol", "range", "default", "unit", "meaning")
 
