@@ -180,9 +180,9 @@ def drive(model: str, key: str, n: int, w: int,
 
     drain(3.0)
     cpu0 = cpu_seconds(pid)
+    cycle = key.split(",")
     for i in range(n):
         sends.append(time.perf_counter())
-        cycle = key.split(",")
         os.write(fd, KEYS[cycle[i % len(cycle)]])
         drain(0.15)
     cpu = tuple((b - a) / n for a, b in zip(cpu0, cpu_seconds(pid), strict=True))
