@@ -18,7 +18,8 @@ git revision REV (run in a subprocess from ``git archive``), against the same re
 
 References: the default rule at ``rtol = 1e-13`` (up to 5 million evaluations), itself checked
 here against an independent tensor Gauss-Legendre rule over (θo, φo) with panels graded around
-θo = θi, the horizon and the mirror azimuth (the "ref check" table; tests/test_polar.py checks
+θo = θi, the horizon and the mirror azimuth (the "ref check" table;
+tests/core/sphere/test_albedo.py checks
 more cases, the closed forms and the 1-D integrals).  Times are best of several runs on a
 shared machine (noisy); errors and evaluation counts do not depend on the machine.
 """
@@ -38,12 +39,12 @@ from pathlib import Path
 import numpy as np
 from revtree import extract
 
-from tuibrdf.core import quadrature as q
+from tuibrdf.core.directions import from_degrees, mirror
 from tuibrdf.core.evaluate import evaluate_resolved
-from tuibrdf.core.frame import from_degrees, mirror
-from tuibrdf.core.mesh import hemisphere, interpolate, refine_adaptive
-from tuibrdf.core.models import MODELS, get_model
-from tuibrdf.core.peak import find_peaks
+from tuibrdf.core.registry import MODELS, get_model
+from tuibrdf.core.sphere import albedo as q
+from tuibrdf.core.sphere.mesh import hemisphere, interpolate, refine_adaptive
+from tuibrdf.core.sphere.peak import find_peaks
 
 THETAS = [0.0, 30.0, 60.0, 75.0, 85.0, 89.0, 89.9, 90.0]
 HARD_THETAS = [0.0, 60.0, 85.0, 89.0, 89.9, 90.0]
@@ -265,7 +266,7 @@ def ablation_table(refs):
     """Each refinement choice undone (or a constant changed) in turn, on the analytic models'
     defaults (80 cases) and the hard cases (48): evaluations and kernel calls (the same on
     every machine), worst error and estimate, and the summed time (best of 3 each)."""
-    from tuibrdf.core import polar
+    from tuibrdf.core.sphere import integrator as polar
 
     print("\nRefinement choices, one changed at a time: analytic models' defaults (80 cases) | "
           "hard cases (48)")
@@ -320,7 +321,8 @@ def curve_table():
 MERL_CHILD = r"""
 import sys, time, json
 import numpy as np
-from tuibrdf.core import merl, quadrature as q
+from tuibrdf.core.formats import merl
+from tuibrdf.core.sphere import albedo as q
 f, lookup = sys.argv[1], sys.argv[2]
 merl.load_cached(f)
 out = []
@@ -366,8 +368,8 @@ def merl_table():
 BEFORE_CHILD = r"""
 import json, sys, time
 import numpy as np
-from tuibrdf.core.models import get_model
-from tuibrdf.core.quadrature import albedo_resolved
+from tuibrdf.core.registry import get_model
+from tuibrdf.core.sphere.albedo import albedo_resolved
 out = []
 for name, params, th in json.loads(sys.stdin.read()):
     try:
@@ -391,8 +393,8 @@ print(json.dumps(out))
 TIMING_CHILD = r"""
 import json, sys, time
 import numpy as np
-from tuibrdf.core import quadrature as q
-from tuibrdf.core.models import get_model
+from tuibrdf.core.sphere import albedo as q
+from tuibrdf.core.registry import get_model
 cases, repeat = json.loads(sys.stdin.read())
 # a fresh process's heap gives the temporaries back to the system after every call (glibc
 # trims above 128 KB) and page-faults them in again on the next: up to 3x the kernel's time

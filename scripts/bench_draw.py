@@ -30,8 +30,8 @@ SEQUENCE = 31  # frames computed, whatever --frames is (so two runs differ only 
 
 async def run(model: str, kind: str, frames: int, size: tuple[int, int]) -> float:
     from tuibrdf.app.app import BrdfApp
-    from tuibrdf.app.state import Side, ViewerState
-    from tuibrdf.core import scene
+    from tuibrdf.core.views import frame as scene
+    from tuibrdf.state.viewer import Side, ViewerState
 
     app = BrdfApp(ViewerState(sides=[Side.of(model)]), color="truecolor")
     async with app.run_test(size=size) as pilot:

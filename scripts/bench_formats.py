@@ -21,9 +21,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
 
-from tuibrdf.core import userfiles  # noqa: E402
-from tuibrdf.core.hemimap import map_values  # noqa: E402
-from tuibrdf.core.models import get_model  # noqa: E402
+from tuibrdf.core.formats import userfiles  # noqa: E402
+from tuibrdf.core.registry import get_model  # noqa: E402
+from tuibrdf.core.views.hemimap import map_values  # noqa: E402
 
 DATA = ROOT / "tests" / "data" / "brdf"
 PAIRS = [

@@ -30,9 +30,9 @@ ROOT = Path(__file__).resolve().parent.parent
 THETAS = (30.0, 60.0, 85.0, 89.9)
 CHILD = r"""
 import json, statistics, sys, time
-from tuibrdf.core import scene
+from tuibrdf.core.views import frame as scene
 from tuibrdf.core.material import Material
-from tuibrdf.core.models import MODELS
+from tuibrdf.core.registry import MODELS
 reps, idle = int(sys.argv[1]), float(sys.argv[3])
 out = {}
 for rnd in range(2):  # the first round warms imports, caches and the heap; the second counts

@@ -1,4 +1,4 @@
-"""Time the horizon check of a frame (tuibrdf/core/horizon.py::assess: the growth test toward
+"""Time the horizon check of a frame (tuibrdf/core/sphere/horizon.py::assess: the growth test toward
 the horizon and the refinement of a peak missed next to it) against the peak search it follows
 (find_peaks), for every built-in model's defaults at θi = 30°, 60°, 85° and 89.9°.  Process CPU
 time, median of ``--reps``.
@@ -12,10 +12,10 @@ import argparse
 import statistics
 import time
 
-from tuibrdf.core.horizon import assess
 from tuibrdf.core.material import Material
-from tuibrdf.core.models import MODELS
-from tuibrdf.core.peak import find_peaks
+from tuibrdf.core.registry import MODELS
+from tuibrdf.core.sphere.horizon import assess
+from tuibrdf.core.sphere.peak import find_peaks
 
 THETAS = (30.0, 60.0, 85.0, 89.9)
 

@@ -93,10 +93,10 @@ def _hard(rng: np.random.Generator, n: int) -> np.ndarray:
 
 def values(out: str) -> None:
     """Evaluate every model on the comparison cases and save them to ``out`` (.npz)."""
+    from tuibrdf.core.brdf.materials import material_names
+    from tuibrdf.core.directions import incident
     from tuibrdf.core.evaluate import evaluate_resolved
-    from tuibrdf.core.frame import incident
-    from tuibrdf.core.materials import material_names
-    from tuibrdf.core.models import MODELS
+    from tuibrdf.core.registry import MODELS
 
     rng = np.random.default_rng(16)
     wo = _hard(rng, 400)
@@ -123,9 +123,9 @@ def values(out: str) -> None:
 def measure(names: list[str], dump: str) -> dict[str, list[float]]:
     """``{model: [t(1), t(10), t(100), t(10⁴)]}`` in seconds; values saved to ``dump`` (if
     not empty)."""
+    from tuibrdf.core.directions import incident
     from tuibrdf.core.evaluate import evaluate_resolved
-    from tuibrdf.core.frame import incident
-    from tuibrdf.core.models import MODELS
+    from tuibrdf.core.registry import MODELS
 
     if dump:
         values(dump)
@@ -162,8 +162,8 @@ def measure_albedo(names: list[str], dump: str) -> dict[str, list[float]]:
     ``dump`` (if not empty)."""
     import time
 
-    from tuibrdf.core import quadrature
-    from tuibrdf.core.models import MODELS
+    from tuibrdf.core.registry import MODELS
+    from tuibrdf.core.sphere import albedo as quadrature
 
     if not os.environ.get("BENCH_KERNELS_COLD"):
         warm = np.ones(2**21)
@@ -193,7 +193,8 @@ def _replayed(m, v, theta: float) -> float:
     recorded, then returned in order (the same values, so the same quadrature path)."""
     import time
 
-    from tuibrdf.core import evaluate, quadrature
+    from tuibrdf.core import evaluate
+    from tuibrdf.core.sphere import albedo as quadrature
 
     real, rec = m.kernel, []
 

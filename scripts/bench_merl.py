@@ -24,9 +24,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from merl_writer import table_from_directions, write_merl  # noqa: E402
 
-from tuibrdf.core import fit, merl  # noqa: E402
+from tuibrdf.core import fit
+from tuibrdf.core.directions import from_degrees  # noqa: E402
 from tuibrdf.core.evaluate import evaluate  # noqa: E402
-from tuibrdf.core.frame import from_degrees  # noqa: E402
+from tuibrdf.core.formats import merl  # noqa: E402
 
 GGX = [{"alpha": 0.2, "f0": 0.9, "kd": 0.1}, {"alpha": 0.2, "f0": 0.6, "kd": 0.2},
        {"alpha": 0.2, "f0": 0.3, "kd": 0.05}]
@@ -37,7 +38,7 @@ CT = [{"m": 0.3, "f0": f0, "kd": 0.3} for f0 in (0.9, 0.6, 0.3)]
 # from the parent across fork + exec
 RSS_CHILD = """
 import sys
-from tuibrdf.core import merl
+from tuibrdf.core.formats import merl
 def hwm():
     for line in open("/proc/self/status"):
         if line.startswith("VmHWM:"):

@@ -27,9 +27,9 @@ async def run(model: str, frames: int, w: int, h: int, viewer: bool) -> tuple[li
     from textual.widget import Widget
 
     from tuibrdf.app.app import BrdfApp
-    from tuibrdf.app.state import Side, ViewerState
     from tuibrdf.app.widgets import Rows
-    from tuibrdf.core import scene
+    from tuibrdf.core.views import frame as scene
+    from tuibrdf.state.viewer import Side, ViewerState
 
     try:
         from tuibrdf.app import paint

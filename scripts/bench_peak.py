@@ -1,7 +1,7 @@
-"""Time the peak finder (tuibrdf/core/peak.py::find_peaks) and count its kernel calls, over every
+"""Time the peak finder (``find_peaks``) and count its kernel calls, over every
 built-in model's defaults (θi = 0°, 45°, 80°) plus sharp and grazing cases, with f and with
 f·cos θr; compare with another version of the finder (by default the one on ``main``, read with
-``git show main:tuibrdf/core/peak.py``): its time, its calls and the largest change in value
+``git show main:tuibrdf/core/sphere/peak.py``): its time, its calls and the largest change in value
 (relative, over every peak: Y, R, G, B for RGB models).
 
     PYTHONPATH=$PWD python scripts/bench_peak.py [--reps 7] [--against main] [--quick]
@@ -24,10 +24,10 @@ from pathlib import Path
 
 import numpy as np
 
-import tuibrdf.core.peak as new_peak
-from tuibrdf.core import scene
+import tuibrdf.core.sphere.peak as new_peak
 from tuibrdf.core.material import Material
-from tuibrdf.core.models import MODELS
+from tuibrdf.core.registry import MODELS
+from tuibrdf.core.views import frame as scene
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -63,13 +63,15 @@ CASES += [
 
 
 def load_other(ref: str) -> types.ModuleType:
-    """``tuibrdf/core/peak.py`` as of git ``ref``, as a module of the package ``tuibrdf.core``."""
-    src = subprocess.run(["git", "show", f"{ref}:tuibrdf/core/peak.py"], cwd=ROOT, check=True,
+    """``tuibrdf/core/sphere/peak.py`` as of git ``ref``, as a module of the package
+    ``tuibrdf.core``."""
+    src = subprocess.run(["git", "show", f"{ref}:tuibrdf/core/sphere/peak.py"],
+                         cwd=ROOT, check=True,
                          capture_output=True, text=True).stdout
     mod = types.ModuleType("tuibrdf.core._peak_" + ref.replace("/", "_"))
     mod.__package__ = "tuibrdf.core"
     sys.modules[mod.__name__] = mod
-    exec(compile(src, f"{ref}:tuibrdf/core/peak.py", "exec"), mod.__dict__)
+    exec(compile(src, f"{ref}:tuibrdf/core/sphere/peak.py", "exec"), mod.__dict__)
     return mod
 
 

@@ -22,8 +22,8 @@ import time
 
 from rich.console import Console
 
-from tuibrdf.core import scene
 from tuibrdf.core.material import Material
+from tuibrdf.core.views import frame as scene
 from tuibrdf.render import panes, polar, polar_braille
 
 CASES = [

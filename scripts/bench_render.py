@@ -16,8 +16,8 @@ import time
 import numpy as np
 from rich.console import Console
 
-from tuibrdf.core.hemimap import map_values
-from tuibrdf.core.models import MODELS
+from tuibrdf.core.registry import MODELS
+from tuibrdf.core.views.hemimap import map_values
 from tuibrdf.render.colormap import colorize
 from tuibrdf.render.halfblock import HalfBlockImage
 from tuibrdf.render.views import VIEWS, render_view

@@ -7,7 +7,7 @@ a 240×70 terminal (upper bounds: the whole width, two pixel rows per cell).
 import timeit
 
 from tuibrdf.core.material import Material
-from tuibrdf.core.scene import FrameRequest, compute_frame
+from tuibrdf.core.views.frame import FrameRequest, compute_frame
 from tuibrdf.render.solid import solid_image
 
 

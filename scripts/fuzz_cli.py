@@ -14,7 +14,7 @@ real subprocesses (stdin not a terminal).  A case passes when:
 * the viewer is never opened (``view`` must stop at its checks: no terminal here).
 
 Prints the counts (cases, exit 0, exit 2, failures by kind) and the first failures.  The test
-suite runs a few hundred cases of the same generator (``tests/test_fuzz_cli.py``).
+suite runs a few hundred cases of the same generator (``tests/cli/test_fuzz.py``).
 """
 
 from __future__ import annotations

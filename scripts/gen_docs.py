@@ -15,7 +15,7 @@ import sys
 from pathlib import Path
 
 from tuibrdf.cli.models import model_text
-from tuibrdf.core.models import MODELS
+from tuibrdf.core.registry import MODELS
 
 DOCS = Path(__file__).resolve().parent.parent / "docs"
 OUT = DOCS / "models.md"
@@ -116,7 +116,7 @@ exit 2; plain `tuibrdf` without one prints the help).
 
 `scripts/fuzz_cli.py` runs thousands of generated command lines (hostile values, files and
 presets) in-process and as subprocesses and checks each ends with exit 0, or exit 2 and one
-line, without a traceback, a warning or a hang; `tests/test_fuzz_cli.py` runs 300 of them.
+line, without a traceback, a warning or a hang; `tests/cli/test_fuzz.py` runs 300 of them.
 `python scripts/fuzz_cli.py --cases 3000 --subprocess 100 --timeout 5` (seed 17): 0 failures
 of 3,100; the same command lines on the code before these checks failed 73 times (44 opened
 the viewer without a terminal, 14 hung on a FIFO, 12 printed a newline from an argument as

@@ -1,17 +1,17 @@
-"""Write ``tuibrdf/core/data/material_albedo.tsv``: the albedos ``tuibrdf materials`` lists.
+"""Write ``tuibrdf/core/brdf/data/material_albedo.tsv``: the albedos ``tuibrdf materials`` lists.
 
     python scripts/gen_material_albedo.py          # rewrite it (about 10 s)
     python scripts/gen_material_albedo.py --check  # exit 1 if it differs from a fresh run
 
 Run it after changing the abc or sgd kernels or the albedo quadrature
-(``tuibrdf/core/quadrature.py``); the tests recompute a sample of the entries.
+(``tuibrdf/core/sphere/albedo.py``); the tests recompute a sample of the entries.
 """
 
 from __future__ import annotations
 
 import sys
 
-from tuibrdf.core.material_albedo import STORED, stored_text
+from tuibrdf.core.sphere.material_albedo import STORED, stored_text
 
 
 def main(argv: list[str]) -> int:

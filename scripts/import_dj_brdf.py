@@ -1,4 +1,4 @@
-"""Write ``tuibrdf/core/data/abc.tsv`` and ``sgd.tsv`` from the text of ``dj_brdf.h``.
+"""Write ``tuibrdf/core/brdf/data/abc.tsv`` and ``sgd.tsv`` from the text of ``dj_brdf.h``.
 
     python scripts/import_dj_brdf.py PATH/TO/dj_brdf.h
 
@@ -6,8 +6,8 @@ The header (public domain, https://github.com/jdupuy/dj_brdf) tabulates the ABC 
 2012) and the Shifted Gamma Distribution fits (Bagher, Soler, Holzschuch 2012) of the 100 MERL
 materials in ``djb::abc::s_data`` and ``djb::sgd::s_data``.  Every number is copied as the
 decimal text the header writes (no float round trip), in the header's row order, so the files
-are a transcription of the header's tables and nothing else.  ``tuibrdf/core/materials.py``
-parses them; ``tests/test_materials.py`` checks rows against the header's text.
+are a transcription of the header's tables and nothing else.  ``tuibrdf/core/brdf/materials.py``
+parses them; ``tests/core/brdf/test_materials.py`` checks rows against the header's text.
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Mutation check: does changing any one constant of any model formula fail a core test?
 
-For every numeric literal in the formula modules (``tuibrdf/core/fresnel.py``,
-``tuibrdf/core/microfacet.py``, ``tuibrdf/core/models/*.py``) this makes two mutants, the
+For every numeric literal in the formula modules (``tuibrdf/core/brdf/*.py``
+but the tables' reader) this makes two mutants, the
 literal scaled by ``1 ± delta`` (a zero becomes ``± delta``), one at a time, in a temporary copy
 of the package, and runs the non-snapshot core tests on each (``pytest -x``: the first failure
 kills the mutant).  A mutant that passes every test *survives*: either a test is missing, or
@@ -41,20 +41,22 @@ from dataclasses import dataclass
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-FILES = ["tuibrdf/core/fresnel.py", "tuibrdf/core/microfacet.py",
-         *sorted(str(p.relative_to(ROOT)) for p in (ROOT / "tuibrdf/core/models").glob("*.py"))]
+FILES = sorted(str(p.relative_to(ROOT)) for p in (ROOT / "tuibrdf/core/brdf").glob("*.py")
+               if p.name != "materials.py")  # the published tables' reader: no formula
 #: the non-snapshot core tests, in stages: a mutant that survives a stage runs the next one
 #: (the slow hypothesis stability suite only runs for the few mutants the fast tests miss)
-STAGES = [["tests/test_fitted_fast.py", "tests/test_reference_values.py", "tests/test_models.py",
-           "tests/test_materials.py", "tests/test_kernel_paths.py"], ["tests/test_stability.py"]]
+STAGES = [["tests/core/brdf/test_fitted.py", "tests/core/brdf/test_reference_values.py",
+           "tests/core/brdf/test_models.py", "tests/core/brdf/test_materials.py",
+           "tests/core/brdf/test_kernel_paths.py"],
+          ["tests/core/brdf/test_stability.py"]]
 DECLARATIONS = {"Param", "Model", "replace", "Constraint"}
 
 #: Mutants that cannot change any result, keyed as printed (``file::function::literal#k::±``),
 #: with the reason.  Most are guards whose threshold cannot matter for unit directions and the
 #: parameters' ranges, or fills that a later ``np.where`` replaces.
-_MF = "tuibrdf/core/microfacet.py"
-_DF = "tuibrdf/core/models/diffuse.py"
-_MM = "tuibrdf/core/models/microfacet_models.py"
+_MF = "tuibrdf/core/brdf/microfacet.py"
+_DF = "tuibrdf/core/brdf/diffuse.py"
+_MM = "tuibrdf/core/brdf/microfacet_models.py"
 _GGX_DEN = ("den = 2(cos θ + √(cos²θ + α² sin²θ)) ≥ 2α ≥ 0.002 for a unit vector and "
             "α ≥ ALPHA_MIN = 0.001: 'den > t' holds everywhere for any t < 0.002")
 _TAN_FILL = ("tan β's fill where `ok` is False: oren_nayar and oren_nayar_simple return "
@@ -86,7 +88,8 @@ _SGD_LEVEL = ("sgd's 1/(cos θi cos θo) has no limit on the horizon (it diverge
               "so below a level of cos θi cos θo the specular term counts as 0: within 0.1% of "
               "1e-290 a direction is within 1e-290 of the horizon (the other at most 1 away)")
 _CROSSOVER = ("a speed crossover (integer powers by squaring; RGB channels together or one by "
-              "one): both paths give the same values to the ulps tests/test_kernel_paths.py "
+              "one): both paths give the same values to the ulps "
+              "tests/core/brdf/test_kernel_paths.py "
               "bounds; an integer size or exponent ≤ 64/256 is ≤ 64.064/256.256 as well")
 _ABC_ETA = ("η ∈ [1.039, 100] in the abc table (η comes only from it): η² − 1 ≥ 0.080, so "
             "'η² − 1 ≤ ±0.001' is False everywhere, as 'η² − 1 ≤ 0' is")
@@ -118,8 +121,8 @@ _G1_BAND = ("the width of the band around t* where sgd's G1 takes the logarithmi
             "(≲ 1e-13) and ~1e-3 every G1 is the value as written (below the band 1 − Λ·expm1(x) "
             "> 0 and the test says live; above it the clipped x gives < −5.6e-9, clamped to 0, "
             "and the test says dead), so 1e-9·(1 ± 0.001) gives the same bits")
-_PH = "tuibrdf/core/models/phong.py"
-_FT = "tuibrdf/core/models/fitted.py"
+_PH = "tuibrdf/core/brdf/phong.py"
+_FT = "tuibrdf/core/brdf/fitted.py"
 EQUIVALENT: dict[str, str] = {
     f"{_MF}::beckmann_d::1.0#0::+": _EXP_CAP,
     f"{_MF}::beckmann_d::1.0#0::-": _EXP_CAP,
@@ -219,13 +222,13 @@ THRESHOLDS: dict[str, str] = {
     f"{_FT}::<module>::1e-9#0::-": _G1_BAND,
     f"{_FT}::_sgd_g1_cached::64#0::+": (
         "a cache size: 65 lights' G1 kept per material instead of 64; the cached G1 is the "
-        "uncached one to the bit (tests/test_fitted_fast.py)"),
+        "uncached one to the bit (tests/core/brdf/test_fitted.py)"),
     f"{_FT}::fresnel_dielectric::0.0#1::+": (
         "the fast branch for η² − 1 > 0 (no total reflection possible) against the general "
         "one: for 0 < η² − 1 ≤ 0.001 the general branch computes the same expression, to the "
         "bit (no mask acts there)"),
-    "tuibrdf/core/models/rgb.py::<module>::256#0::+": _CROSSOVER,
-    "tuibrdf/core/models/rgb.py::<module>::256#0::-": _CROSSOVER,
+    "tuibrdf/core/brdf/rgb.py::<module>::256#0::+": _CROSSOVER,
+    "tuibrdf/core/brdf/rgb.py::<module>::256#0::-": _CROSSOVER,
 }
 
 

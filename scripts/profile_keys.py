@@ -18,7 +18,7 @@ import time
 
 async def profile(n: int, key: str, w: int, h: int, top: int) -> None:
     from tuibrdf.app.app import BrdfApp
-    from tuibrdf.app.state import ViewerState
+    from tuibrdf.state.viewer import ViewerState
 
     app = BrdfApp(ViewerState(), color="truecolor")
     async with app.run_test(size=(w, h)) as pilot:

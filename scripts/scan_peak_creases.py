@@ -2,9 +2,11 @@
 
     PYTHONPATH=. python scripts/scan_peak_creases.py
 
-Compares :func:`tuibrdf.core.peak.find_peaks` with the largest value in the plane of incidence,
+Compares :func:`~tuibrdf.core.sphere.peak.find_peaks` with the largest value in the plane of
+incidence,
 both sides of the normal (a 20,000-point scan and golden section on each side, the check of
-tests/test_peak.py) for cook-torrance with kd = 0 over m = 0.300…1 (step 0.025) × θi = 3…40°
+tests/core/sphere/test_peak.py) for cook-torrance with kd = 0 over m = 0.300…1 (step 0.025) × θi =
+3…40°
 (step 1°), f and f·cos θr (2,204 cases), and prints the cases more than 1e-10 below it and the
 finder's kernel calls.  Before the finder checked the plane of incidence itself, 116 cases
 were below (95 against the mirror side alone; m ≥ 0.325, θi 3–36°, the worst 4.2e-3: the 2-D
@@ -19,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-import tuibrdf.core.peak as peak_module
+import tuibrdf.core.sphere.peak as peak_module
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))

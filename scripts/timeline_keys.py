@@ -64,7 +64,7 @@ def child(out: str, argv: list[str]) -> None:
 
     from tuibrdf.app import app as viewer
     from tuibrdf.app import frames
-    from tuibrdf.core import scene
+    from tuibrdf.core.views import frame as scene
 
     marks: list[tuple[float, str]] = []
     clock = time.perf_counter

@@ -1,4 +1,4 @@
-"""Write the golden outputs of ``tuibrdf render`` that ``tests/test_cli_render.py`` compares
+"""Write the golden outputs of ``tuibrdf render`` that ``tests/cli/test_render.py`` compares
 byte for byte.
 
 Usage: ``python scripts/update_goldens.py`` (then look at every file it wrote: a golden is only

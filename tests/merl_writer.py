@@ -1,6 +1,6 @@
 """A writer of MERL ``.binary`` files in the exact SPEC §6 format, for the tests.
 
-Written from SPEC §6 alone (not from ``tuibrdf.core.merl``), so a reader bug cannot cancel a
+Written from SPEC §6 alone (not from ``tuibrdf.core.formats.merl``), so a reader bug cannot cancel a
 writer bug: header of 3 little-endian int32 ``(90, 90, 180)``, then all R, all G, all B as
 little-endian float64, sample ``(iθh, iθd, iφd)`` at ``iφd + 180·(iθd + 90·iθh)``, file values
 equal to the BRDF divided by the channel scale (R 1/1500, G 1.15/1500, B 1.66/1500).
@@ -48,7 +48,7 @@ def write_merl(path: Path, brdf: np.ndarray, *, header=DIMS, raw: bool = False,
 def table_from_directions(fn) -> np.ndarray:
     """``(3, 90, 90, 180)`` of ``fn(wi, wo)`` (RGB, shape ``(..., 3)``) at the samples, with
     ``-1`` (invalid, as in MERL's files) where a direction is below the horizon."""
-    from tuibrdf.core.merl import from_half_diff  # checked against half_diff in test_merl
+    from tuibrdf.core.formats.merl import from_half_diff  # checked against half_diff in test_merl
 
     wi, wo = from_half_diff(*np.broadcast_arrays(*sample_angles()))
     f = np.asarray(fn(wi, wo), dtype=float)

@@ -1,4 +1,4 @@
-"""Reference quadrature for tests, independent of :mod:`tuibrdf.core.mesh`.
+"""Reference quadrature for tests, independent of :mod:`tuibrdf.core.sphere.mesh`.
 
 Gauss-Legendre in ``u = cos θ`` (or in a mapped polar angle) times the midpoint rule in φ: a
 tensor rule whose accuracy is classical, so a test of a model's integral does not lean on the
@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 import tuibrdf
-from tuibrdf.core.frame import incident
+from tuibrdf.core.directions import incident
 
 
 def gauss(a: float, b: float, n: int) -> tuple[np.ndarray, np.ndarray]:

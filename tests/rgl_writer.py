@@ -1,5 +1,5 @@
 """A writer of RGL-EPFL ``.bsdf`` tensor files, for the tests (written from the format as the
-issue and powitacq's Python loader describe it, not from tuibrdf.core.rgl_bsdf).
+issue and powitacq's Python loader describe it, not from tuibrdf.core.formats.rgl_bsdf).
 
 Container: ``tensor_file\\0``, version ``1, 0``, ``u32`` field count; per field ``u16`` name
 length, name, ``u16`` ndim, ``u8`` dtype code (Mitsuba's Struct: 1 u8 … 10 f32, 11 f64),

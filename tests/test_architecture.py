@@ -5,6 +5,8 @@ import sys
 
 import pytest
 
+from tests import ROOT
+
 
 def loaded_after(statement: str) -> set[str]:
     code = f"{statement}\nimport sys\nprint(' '.join(sorted(sys.modules)))"
@@ -13,7 +15,7 @@ def loaded_after(statement: str) -> set[str]:
 
 
 @pytest.mark.parametrize("statement", ["import tuibrdf", "import tuibrdf.core",
-                                       "import tuibrdf.core.models"])
+                                       "import tuibrdf.core.registry"])
 def test_core_imports_neither_textual_nor_rich(statement):
     mods = loaded_after(statement)
     assert "textual" not in mods
@@ -24,9 +26,8 @@ def import_graph() -> dict[str, set[str]]:
     """``tuibrdf`` module → the ``tuibrdf`` modules it imports (anywhere in its code, function
     bodies included), from the source with ``ast``."""
     import ast
-    from pathlib import Path
 
-    root = Path(__file__).resolve().parents[1] / "tuibrdf"
+    root = ROOT / "tuibrdf"
     names = {}
     for path in root.rglob("*.py"):
         parts = path.relative_to(root.parent).with_suffix("").parts
@@ -52,8 +53,8 @@ def import_graph() -> dict[str, set[str]]:
 
 def test_no_import_cycle_and_layers_point_down():
     graph = import_graph()
-    # layers: core ← render ← app ← cli (a lower layer never imports a higher one)
-    rank = {"core": 0, "render": 1, "app": 2, "cli": 3}
+    # layers: core ← render ← state ← app ← cli (a lower layer never imports a higher one)
+    rank = {"core": 0, "render": 1, "state": 2, "app": 3, "cli": 4}
 
     def layer(m: str) -> int:
         parts = m.split(".")
@@ -82,8 +83,10 @@ def test_no_import_cycle_and_layers_point_down():
             visit(m, [])
 
 
-@pytest.mark.parametrize("statement", ["import tuibrdf.core.scene", "import tuibrdf.core.material",
-                                       "import tuibrdf.core.peak"])
+@pytest.mark.parametrize("statement", ["import tuibrdf.core.views.frame",
+                                       "import tuibrdf.core.material",
+                                       "import tuibrdf.core.sphere.peak",
+                                       "import tuibrdf.state.viewer, tuibrdf.state.presets"])
 def test_the_frame_computation_is_numpy_only(statement):
     mods = loaded_after(statement)
     assert "textual" not in mods and "rich" not in mods
@@ -95,15 +98,14 @@ def test_no_frame_of_a_built_in_model_imports_numpy_ma():
     # Every built-in model's whole frame (map, sections, peak, albedo and its curve) must
     # go without it.
     code = """
-from tuibrdf.core import scene
 from tuibrdf.core.material import Material
-from tuibrdf.core.models import MODELS
-from tuibrdf.core.scene import FrameRequest
+from tuibrdf.core.registry import MODELS
+from tuibrdf.core.views.frame import FrameRequest, compute_frame
 for name, m in MODELS.items():
     if any(p.kind == "path" for p in m.params):  # measured data: needs a file
         continue
     req = FrameRequest((Material(name),), 80.0, map_px=(40, 40), curve=True)
-    scene.compute_frame(req)
+    compute_frame(req)
 """
     full = subprocess.run([sys.executable, "-c", code + "\nimport sys\nprint('numpy.ma' in "
                            "sys.modules)"], capture_output=True, text=True, check=True)
@@ -116,3 +118,34 @@ def test_the_viewer_starts_without_plotext_or_tomllib():
     mods = loaded_after("import tuibrdf.cli.view, tuibrdf.app.app, tuibrdf.render.panes")
     assert "textual" in mods  # the viewer was imported
     assert "plotext" not in mods and "tomllib" not in mods
+
+
+def test_the_core_is_grouped_by_trade():
+    # the core's floors, bottom up: base (params, numerics, conventions, directions) ←
+    # brdf ← formats ← registry, evaluate, material ← sphere ← views, fit.  A trade never
+    # imports a trade above it.
+    floor = {"params": 0, "numerics": 0, "conventions": 0, "directions": 0, "lru": 0,
+             "brdf": 1, "formats": 2, "registry": 3, "evaluate": 3, "material": 3,
+             "sphere": 4, "views": 5, "fit": 5}
+    graph = import_graph()
+    for mod, deps in graph.items():
+        parts = mod.split(".")
+        if parts[:2] != ["tuibrdf", "core"] or len(parts) < 3:
+            continue
+        assert parts[2] in floor, f"{mod}: a module of the core outside its trades"
+        for d in deps:
+            dp = d.split(".")
+            if dp[:2] == ["tuibrdf", "core"] and len(dp) > 2:
+                # the registry's lazy lookup of user files is the one arrow up (a name that
+                # is not registered may be a path)
+                if mod == "tuibrdf.core.registry" and d.startswith("tuibrdf.core.formats"):
+                    continue
+                assert floor[dp[2]] <= floor[parts[2]], f"{mod} imports {d}"
+
+
+def test_no_module_is_too_long_to_read():
+
+    root = ROOT / "tuibrdf"
+    long = {str(p.relative_to(root)): n for p in root.rglob("*.py")
+            if (n := len(p.read_text(encoding="utf-8").splitlines())) > 720}
+    assert not long, long

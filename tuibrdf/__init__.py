@@ -22,18 +22,18 @@ def __getattr__(name: str) -> Any:
     """``evaluate``, ``MODELS`` and ``get_model`` are imported on first use (PEP 562), so
     that ``tuibrdf --help`` does not pay for numpy."""
     if name == "evaluate":
-        from .core.evaluate import evaluate
+        from tuibrdf.core.evaluate import evaluate
 
         return evaluate
     if name in ("MODELS", "get_model"):
-        from .core import models
+        from tuibrdf.core import registry as models
 
         return getattr(models, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def albedo(model, params=None, theta_i_deg=0.0, **kwargs):
-    """Directional albedo ``a(θi) = ∫ f cos θr dω`` (see :mod:`tuibrdf.core.quadrature`)."""
-    from .core.quadrature import albedo as _albedo
+    """Directional albedo ``a(θi) = ∫ f cos θr dω`` (see :mod:`tuibrdf.core.sphere.albedo`)."""
+    from tuibrdf.core.sphere.albedo import albedo as _albedo
 
     return _albedo(model, params, theta_i_deg, **kwargs)

@@ -1,2 +1,1 @@
-"""The interactive viewer (Textual).  ``state`` and ``presets`` are plain Python; only
-``tuibrdf.app.app`` and ``tuibrdf.app.widgets`` import Textual."""
+"""The interactive viewer (Textual): wiring only.  Its state is :mod:`tuibrdf.state`."""

@@ -1,5 +1,5 @@
 """The Textual viewer: wiring only.  A key calls one :class:`ViewerState` transition (plain
-Python, :mod:`.state`); the panes show one :class:`~tuibrdf.core.scene.FrameResult` through
+Python, :mod:`.state`); the panes show one :class:`~tuibrdf.core.views.frame.FrameResult` through
 :mod:`tuibrdf.render.panes`, delivered by :class:`.frames.FrameDelivery` (the data flow is
 described there).
 """
@@ -17,23 +17,30 @@ from textual.css.query import NoMatches
 from textual.widgets import Footer, Static
 from textual.worker import Worker
 
-from ..core.frame import from_degrees
-from ..core.hemimap import dir_to_uv, geometry
-from ..core.params import _fmt
-from ..core.scene import FrameRequest, FrameResult, section_directions
-from ..core.sections import great_circle
-from ..render import panes
-from ..render.polar_braille import angle_at
-from . import keys
-from .frames import GC_IDLE_S, GC_YOUNG, PREDICT_KEEP, FrameDelivery
-from .layout import CSS, arrange
-from .loading import MeasuredData
-from .paint import ViewerScreen
-from .presets import PresetError, apply_loaded, list_presets, load_preset, preset_dir, save_preset
-from .screens import HelpScreen, SafeCommandPalette, SaveScreen, ValueScreen
-from .state import ViewerState
-from .text import PANES
-from .widgets import ParamPanel, Picture, QuietStatic, StatusLine
+from tuibrdf.app import keys
+from tuibrdf.app.frames import GC_IDLE_S, GC_YOUNG, PREDICT_KEEP, FrameDelivery
+from tuibrdf.app.layout import CSS, arrange
+from tuibrdf.app.loading import MeasuredData
+from tuibrdf.app.paint import ViewerScreen
+from tuibrdf.app.screens import HelpScreen, SafeCommandPalette, SaveScreen, ValueScreen
+from tuibrdf.app.text import PANES
+from tuibrdf.app.widgets import ParamPanel, Picture, QuietStatic, StatusLine
+from tuibrdf.core.directions import from_degrees
+from tuibrdf.core.params import _fmt
+from tuibrdf.core.views.frame import FrameRequest, FrameResult, section_directions
+from tuibrdf.core.views.hemimap import dir_to_uv, geometry
+from tuibrdf.core.views.sections import great_circle
+from tuibrdf.render import panes
+from tuibrdf.render.polar_braille import angle_at
+from tuibrdf.state.presets import (
+    PresetError,
+    apply_loaded,
+    list_presets,
+    load_preset,
+    preset_dir,
+    save_preset,
+)
+from tuibrdf.state.viewer import ViewerState
 
 #: after start-up (Textual, numpy, the models: ≈ 10⁵ objects kept for the whole session) the
 #: collector stops scanning what exists then: a full collection took 23–48 ms here, a stall

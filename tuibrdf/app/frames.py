@@ -1,5 +1,7 @@
-"""How a frame reaches the screen: the viewer's state → a :class:`~tuibrdf.core.scene.FrameRequest`
-→ the core's :func:`~tuibrdf.core.scene.compute_frame` (in a thread worker) → every visible pane,
+"""How a frame reaches the screen: the viewer's state → a
+:class:`~tuibrdf.core.views.frame.FrameRequest`
+→ the core's :func:`~tuibrdf.core.views.frame.compute_frame` (in a thread worker) → every visible
+pane,
 the panels and the status line, drawn from that one result.
 
 A request computed before is shown at once (the core caches results by request); otherwise
@@ -32,14 +34,14 @@ from rich.text import Text
 from textual import work
 from textual.worker import get_current_worker
 
-from ..core import scene
-from ..core.models import MODELS
-from ..core.scene import FrameRequest, FrameResult
-from ..render import EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, panes
-from ..render.lines import pane_lines
-from ..render.views import extra_pixels, map_pixels
-from .state import ViewerState
-from .text import PANES, TERSE_FORMS, legend_text, side_files, status_text, visible_panes
+from tuibrdf.app.text import PANES, TERSE_FORMS, legend_text, side_files, status_text, visible_panes
+from tuibrdf.core.registry import MODELS
+from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views.frame import FrameRequest, FrameResult
+from tuibrdf.render import EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, panes
+from tuibrdf.render.lines import pane_lines
+from tuibrdf.render.views import extra_pixels, map_pixels
+from tuibrdf.state.viewer import ViewerState
 
 RETRY_S = 0.02  # re-check a busy writer after this long
 #: a frame not computed by then: the panels and status line go ahead of it (a key's new value

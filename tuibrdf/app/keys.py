@@ -1,7 +1,7 @@
 """The key table, declared once: Textual's bindings, the footer, the help screen and the
 command palette are all generated from :data:`KEYS`.
 
-An action ``state('METHOD', (ARGS…))`` calls :class:`~tuibrdf.app.state.ViewerState`'s
+An action ``state('METHOD', (ARGS…))`` calls :class:`~tuibrdf.state.viewer.ViewerState`'s
 transition of that name (``BrdfApp.action_state``); the others (help, save, load a saved
 preset, quit) are the app's own.  :data:`RELAYOUT` names the transitions that change which
 panes are shown.

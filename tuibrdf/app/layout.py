@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from rich.text import Text
 
-from ..core.models import MODELS
-from .state import panel_rows
-from .text import PANES, visible_panes
+from tuibrdf.app.text import PANES, visible_panes
+from tuibrdf.core.registry import MODELS
+from tuibrdf.state.viewer import panel_rows
 
 MIN_W, MIN_H = 60, 18
 #: compare mode draws three maps, two panels and two sections: below this it says so

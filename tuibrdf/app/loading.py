@@ -6,9 +6,9 @@ from __future__ import annotations
 import threading
 from functools import partial
 
-from ..core import merl
-from .state import Side
-from .text import side_files
+from tuibrdf.app.text import side_files
+from tuibrdf.core.formats import merl
+from tuibrdf.state.viewer import Side
 
 
 class MeasuredData:

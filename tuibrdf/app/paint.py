@@ -16,7 +16,7 @@ from the map's left edge.
 :class:`ViewerCompositor` fills only the pieces that overlap a span, front to back, so a widget
 renders only when one of its pieces is written and no widget in front has filled it;
 :class:`SpansUpdate` writes each span from its first cell.  The cells on the terminal are the
-same as with Textual's own update after every paint (tests/test_paint.py replays both into a
+same as with Textual's own update after every paint (tests/app/test_paint.py replays both into a
 terminal model); the bytes are fewer.  :meth:`ViewerScreen.paint_now` runs the screen's paint
 right after a frame is drawn instead of a round of idle events later.  The Textual internals
 this relies on are checked once (:data:`SUPPORTED`, :data:`PAINT_NOW`); without them the

@@ -10,7 +10,7 @@ from textual.containers import Vertical, VerticalScroll
 from textual.screen import ModalScreen
 from textual.widgets import Input, OptionList, Static
 
-from .keys import help_text
+from tuibrdf.app.keys import help_text
 
 
 class HelpScreen(ModalScreen):

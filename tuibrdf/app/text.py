@@ -6,9 +6,9 @@ from __future__ import annotations
 
 from rich.text import Text
 
-from ..core.scene import FrameResult
-from ..render import VIEW_TITLES, panes
-from .state import COMPARE_PRESETS, Side, ViewerState
+from tuibrdf.core.views.frame import FrameResult
+from tuibrdf.render import VIEW_TITLES, panes
+from tuibrdf.state.viewer import COMPARE_PRESETS, Side, ViewerState
 
 #: pane → (view, side)
 PANES = {"map-a": ("map", 0), "map-b": ("map", 1), "diff": ("diff", 0), "solid-a": ("solid", 0),

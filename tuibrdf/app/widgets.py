@@ -19,10 +19,10 @@ from textual.style import Style as TextualStyle
 from textual.widget import Widget
 from textual.widgets import Static
 
-from ..core.params import _fmt
-from ..render.lines import BLANK, fit_row, pane_lines, render_rows
-from ..render.rowdiff import ChangedRow
-from .state import Side, ViewerState
+from tuibrdf.core.params import _fmt
+from tuibrdf.render.lines import BLANK, fit_row, pane_lines, render_rows
+from tuibrdf.render.rowdiff import ChangedRow
+from tuibrdf.state.viewer import Side, ViewerState
 
 
 def changed_span(sa: list[Segment], sb: list[Segment], width: int) -> tuple[int, int]:

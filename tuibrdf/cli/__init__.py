@@ -12,9 +12,9 @@ import os
 import sys
 from collections.abc import Collection
 
-from .. import __version__
-from . import text
-from .common import Parser, UsageError, isatty, unknown
+from tuibrdf import __version__
+from tuibrdf.cli import text
+from tuibrdf.cli.common import Parser, UsageError, isatty, unknown
 
 #: (name, module, one-line help) — the order of ``tuibrdf --help``; the module is
 #: ``tuibrdf.cli.<module>``, imported when its command runs (:func:`build_parser`)

@@ -5,8 +5,8 @@ channel.  Each row carries the quadrature's estimate of its absolute error (``±
 largest of the channels) and shows the digits the error leaves (JSON: every digit and
 ``"error"``).  A value above 1 by more than its error reflects more energy than arrives: the row
 is flagged ``not energy-conserving`` (the JSON has ``"energy_conserving": false``); the test is
-:func:`tuibrdf.core.quadrature.exceeds_one`.  The integral is
-:func:`tuibrdf.core.quadrature.albedo_estimate_resolved` (adaptive Gauss–Kronrod about the
+:func:`tuibrdf.core.sphere.albedo.exceeds_one`.  The integral is
+:func:`tuibrdf.core.sphere.albedo.albedo_estimate_resolved` (adaptive Gauss–Kronrod about the
 lobe, docs/accuracy.md).
 """
 
@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import argparse
 
-from .common import (
+from tuibrdf.cli.common import (
     add_model_args,
     add_phi_i,
     add_theta_i,
@@ -39,7 +39,7 @@ def albedos(model, params, thetas, phi_i: float = 180.0):
     """``(a, error)`` for each θi: shapes ``(n,)``, or ``(n, 3)`` for an RGB model."""
     import numpy as np
 
-    from ..core.quadrature import albedo_estimate_resolved
+    from tuibrdf.core.sphere.albedo import albedo_estimate_resolved
 
     est = [albedo_estimate_resolved(model, params, t, phi_i) for t in thetas]
     return (np.array([np.asarray(e.value, dtype=float) for e in est]),
@@ -49,8 +49,8 @@ def albedos(model, params, thetas, phi_i: float = 180.0):
 def run(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from ..core.conventions import decimals_for
-    from ..core.quadrature import exceeds_one
+    from tuibrdf.core.conventions import decimals_for
+    from tuibrdf.core.sphere.albedo import exceeds_one
 
     model, params = resolve(args)
     thetas = [float(t) for t in args.theta_i]

@@ -31,7 +31,7 @@ TYPE_CHECKING = False  # typing itself costs --help ≈ 3 ms: for annotations on
 if TYPE_CHECKING:  # the declarations import dataclasses and difflib: not for --help
     from typing import Any
 
-    from ..core.params import Model, Param
+    from tuibrdf.core.params import Model, Param
 
 
 class UsageError(Exception):
@@ -72,7 +72,7 @@ class Parser(argparse.ArgumentParser):
         super().__init__(*args, **kw)
 
     def error(self, message: str):  # noqa: D401 — argparse's hook
-        from .text import one_line  # a newline typed in an argument stays escaped
+        from tuibrdf.cli.text import one_line  # a newline typed in an argument stays escaped
 
         print(f"{self.prog}: error: {one_line(message)} (see '{self.prog} --help')",
               file=sys.stderr)
@@ -215,14 +215,14 @@ def unknown(what: str, name: str, valid: Sequence[str]) -> str:
     folded = [v for v in valid if v.casefold() == name.casefold()]
     if folded:
         return f"{what} {name!r} (did you mean {folded[0]!r}?); valid: {', '.join(valid)}"
-    from ..core.params import unknown_message
+    from tuibrdf.core.params import unknown_message
 
     return unknown_message(what, name, valid)
 
 
 def find_model(name: str) -> Model:
     """The registered model ``name``; :class:`UsageError` with a close match otherwise."""
-    from ..core.models import MODELS, get_model  # numpy: only once a command runs
+    from tuibrdf.core.registry import MODELS, get_model  # numpy: only once a command runs
 
     if isinstance(name, str) and name not in MODELS:
         folded = [m for m in MODELS if m.casefold() == name.casefold()]
@@ -257,7 +257,7 @@ def parse_value(model: Model, p: Param, raw: str) -> Any:
     if p.kind == "choice" and p.choice(raw) is None:
         raise UsageError(p.unknown_choice(raw, model.name))
     if p.kind == "path":
-        from ..core.files import describe
+        from tuibrdf.core.formats.files import describe
 
         problem = describe(raw) if raw else "empty file name"
         if problem:  # "no such file", "is a directory, not a regular file", ...

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import argparse
 
-from .common import (
+from tuibrdf.cli.common import (
     add_model_args,
     add_phi_i,
     add_theta_i,
@@ -45,8 +45,8 @@ def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False,
     for an RGB model)."""
     import numpy as np  # here, not at the top: --help stays light
 
-    from ..core.evaluate import evaluate_resolved
-    from ..core.frame import from_degrees, incident
+    from tuibrdf.core.directions import from_degrees, incident
+    from tuibrdf.core.evaluate import evaluate_resolved
 
     wi = incident(theta_i, phi_i)
     wo = from_degrees(np.asarray(theta_r, dtype=float)[:, None],

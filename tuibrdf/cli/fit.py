@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import argparse
 
-from .common import UsageError, fmt, fmt_params, json_params, parse_params, print_json
+from tuibrdf.cli.common import UsageError, fmt, fmt_params, json_params, parse_params, print_json
 
 #: ``tuibrdf.core.fit.STRIDE``, repeated so that ``--help`` does not import numpy (a test
 #: checks that they agree)
@@ -45,7 +45,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
 
 
 def stride_type(text: str) -> tuple[int, int, int]:
-    from .common import parse_int
+    from tuibrdf.cli.common import parse_int
 
     try:
         vals = tuple(parse_int(v) for v in text.split(","))
@@ -61,13 +61,13 @@ def run(args: argparse.Namespace) -> int:
     import sys
     import time
 
-    from ..core.fit import albedo_ratio, albedo_table, at_bounds, fit_file, published_scores
-    from .common import find_model
+    from tuibrdf.cli.common import find_model
+    from tuibrdf.core.fit import albedo_ratio, albedo_table, at_bounds, fit_file, published_scores
 
     model = find_model(args.model)
     fixed = parse_params(model, args.param)
     if args.save_preset:
-        from ..app.presets import check_can_save  # plain Python, no Textual
+        from tuibrdf.state.presets import check_can_save  # plain Python, no Textual
 
         check_can_save(args.save_preset)  # a bad name or place fails now, not after the fit
         if not model.rgb and not args.mean:
@@ -149,7 +149,7 @@ def albedo_lines(rows: list[dict]) -> str:
 
 def judgement(bounds: list[dict], ratio: dict) -> list[str]:
     """The verdict lines: parameters stuck at a bound, a poor albedo match, or "fit ok"."""
-    from ..core.fit import POOR_ALBEDO_RATIO
+    from tuibrdf.core.fit import POOR_ALBEDO_RATIO
 
     out = []
     for b in bounds:
@@ -169,8 +169,8 @@ def save_comparison(name: str, path: str, result):
     """Preset ``name``: A the measured file (absolute path), B the fitted model, θi 45°."""
     import os
 
-    from ..app.presets import save_preset
-    from ..app.state import Side, ViewerState
+    from tuibrdf.state.presets import save_preset
+    from tuibrdf.state.viewer import Side, ViewerState
 
     sides = [Side.of("merl", {"file": os.path.abspath(path)}),
              Side.of(result.model.name, result.params[0])]

@@ -4,8 +4,9 @@ One line per material, sorted by name: a colour swatch of each fit (its albedo a
 sRGB colour) where stdout is a colour terminal, then the directional albedo a(θi) (R,G,B) of the
 ABC and SGD fits at θi = 0° and 60°.  Colour follows ``tuibrdf render``'s rule (``--color auto``:
 plain text when piped, with ``NO_COLOR`` or ``TERM=dumb``).  The albedos are read from
-``tuibrdf/core/data/material_albedo.tsv`` (computed by the albedo quadrature, see
-:mod:`tuibrdf.core.material_albedo`), so the listing takes milliseconds and is the same on every
+``tuibrdf/core/brdf/data/material_albedo.tsv`` (computed by the albedo quadrature, see
+:mod:`~tuibrdf.core.sphere.material_albedo`), so the listing takes milliseconds and is the same on
+every
 machine.  ``--json`` adds each material's other name in the SGD data (accepted as an alias) and the
 stored digits.
 """
@@ -16,8 +17,8 @@ import argparse
 import io
 import sys
 
-from .common import choices_type, print_json
-from .render import COLORS, color_system
+from tuibrdf.cli.common import choices_type, print_json
+from tuibrdf.cli.render import COLORS, color_system
 
 SWATCH = "██"
 HEADER = "# {n} MERL materials (fits: abc = Löw et al. 2012, sgd = Bagher et al. 2012, numbers " \
@@ -50,8 +51,8 @@ def _rgb(v) -> str:
 
 def rows():
     """``[(name, other name, {"abc": (2, 3), "sgd": (2, 3)}), ...]`` sorted by name."""
-    from ..core.material_albedo import stored
-    from ..core.materials import material_names, table
+    from tuibrdf.core.brdf.materials import material_names, table
+    from tuibrdf.core.sphere.material_albedo import stored
 
     sgd = table("sgd")
     data = stored()
@@ -91,7 +92,7 @@ def text(color: str) -> str:
 
 def run(args: argparse.Namespace) -> int:
     if args.json:
-        from ..core.material_albedo import THETAS
+        from tuibrdf.core.sphere.material_albedo import THETAS
 
         doc = {
             "source": "dj_brdf.h (jdupuy/dj_brdf, public domain): djb::abc::s_data, "

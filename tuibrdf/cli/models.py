@@ -8,12 +8,12 @@ from __future__ import annotations
 
 import argparse
 
-from .common import TYPE_CHECKING, fmt, print_json
+from tuibrdf.cli.common import TYPE_CHECKING, fmt, print_json
 
 if TYPE_CHECKING:
     from typing import Any
 
-    from ..core.params import Model, Param
+    from tuibrdf.core.params import Model, Param
 
 COLUMNS = ("name", "symbol", "range", "default", "unit", "meaning")
 
@@ -72,8 +72,8 @@ def model_text(m: Model) -> list[str]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..core.models import MODELS
-    from .common import find_model
+    from tuibrdf.cli.common import find_model
+    from tuibrdf.core.registry import MODELS
 
     models = [find_model(n) for n in args.names] if args.names else list(MODELS.values())
     if args.json:

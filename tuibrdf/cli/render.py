@@ -26,8 +26,7 @@ import io
 import os
 import sys
 
-from ..render import CMAPS, EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, VIEWS
-from .common import (
+from tuibrdf.cli.common import (
     TYPE_CHECKING,
     add_model_args,
     add_phi_i,
@@ -38,6 +37,7 @@ from .common import (
     isatty,
     resolve,
 )
+from tuibrdf.render import CMAPS, EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, VIEWS
 
 if TYPE_CHECKING:
     from typing import Any
@@ -127,8 +127,8 @@ def picture(model, values, args: argparse.Namespace, color: str) -> str:
     """The text ``run`` prints (ANSI escapes unless ``color == "none"``)."""
     from rich.console import Console
 
-    from ..render.braille import charset_for
-    from ..render.views import render_view
+    from tuibrdf.render.braille import charset_for
+    from tuibrdf.render.views import render_view
 
     views = ALL if args.view == "all" else (args.view,)
     buf = io.StringIO()
@@ -159,7 +159,7 @@ PICTURE_ASCII = {"·": "."}
 
 
 def run(args: argparse.Namespace) -> int:
-    from .text import can_encode, to_stream
+    from tuibrdf.cli.text import can_encode, to_stream
 
     model, values = resolve(args)
     color = color_system(args.color)

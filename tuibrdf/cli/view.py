@@ -3,7 +3,7 @@
 ``tuibrdf view [MODEL | FILE] [-p NAME=VALUE ...] [--theta-i DEG] [--preset NAME]
 [--color auto|truecolor|256|none | --no-color]``.  A ``.binary`` path opens the measured MERL
 material (model ``merl`` with ``file=PATH``); a ``.brdf``, ``.bparam``, ``.py`` or ``.bsdf`` file
-opens through the model registry (:mod:`tuibrdf.core.userfiles`).  ``--preset NAME`` loads a
+opens through the model registry (:mod:`tuibrdf.core.formats.userfiles`).  ``--preset NAME`` loads a
 saved preset (``s`` in the viewer saves one) or, when no file has that name, one of the seed's
 comparisons (``diffuse``, ``specular``).  Everything is validated before Textual is imported (a
 MERL file is read whole, as ``eval`` reads it), so bad input is one line on stderr and exit
@@ -24,7 +24,15 @@ import argparse
 import os
 import sys
 
-from .common import UsageError, add_phi_i, add_theta_i, choices_type, isatty, parse_params, unknown
+from tuibrdf.cli.common import (
+    UsageError,
+    add_phi_i,
+    add_theta_i,
+    choices_type,
+    isatty,
+    parse_params,
+    unknown,
+)
 
 COLORS = ("auto", "truecolor", "256", "none")
 FITS = ("abc", "sgd")
@@ -61,8 +69,8 @@ def add_args(parser: argparse.ArgumentParser) -> None:
 def material_sides(args: argparse.Namespace):
     """The sides ``--material`` asks for (one, or two in compare mode), or None without it;
     raises UsageError for a bad combination or name."""
-    from ..app.state import Side
-    from ..core.models import MODELS
+    from tuibrdf.core.registry import MODELS
+    from tuibrdf.state.viewer import Side
 
     material = getattr(args, "material", None)
     extra = [flag for flag, on in (("--fit", args.fit), ("--compare-fit", args.compare_fit),
@@ -94,10 +102,16 @@ def material_sides(args: argparse.Namespace):
 
 def build_state(args: argparse.Namespace):
     """The viewer's initial state from the arguments (no Textual); raises UsageError."""
-    from ..app.presets import PresetError, apply_loaded, list_presets, load_preset, preset_path
-    from ..app.state import COMPARE_PRESETS, Side, ViewerState
-    from ..core.merl import check_file, load_cached
-    from ..core.models import MODELS
+    from tuibrdf.core.formats.merl import check_file, load_cached
+    from tuibrdf.core.registry import MODELS
+    from tuibrdf.state.presets import (
+        PresetError,
+        apply_loaded,
+        list_presets,
+        load_preset,
+        preset_path,
+    )
+    from tuibrdf.state.viewer import COMPARE_PRESETS, Side, ViewerState
 
     sides = material_sides(args)
     if sides is not None:
@@ -109,7 +123,7 @@ def build_state(args: argparse.Namespace):
         if "merl" not in MODELS:
             raise UsageError(f"{name}: MERL files need the 'merl' model, which this build "
                              "does not have yet")
-        from ..core.files import describe
+        from tuibrdf.core.formats.files import describe
 
         problem = describe(name)  # "no such file", "is a FIFO (named pipe), ..."
         if problem:
@@ -117,8 +131,8 @@ def build_state(args: argparse.Namespace):
         tokens = [f"file={name}", *tokens]
         name = "merl"
     if name not in MODELS:
-        from ..core.models import get_model
-        from ..core.userfiles import looks_like_path
+        from tuibrdf.core.formats.userfiles import looks_like_path
+        from tuibrdf.core.registry import get_model
 
         if not looks_like_path(name):
             raise UsageError(unknown("unknown model", name, list(MODELS)))
@@ -172,7 +186,7 @@ def check_terminal(stdin=None, stdout=None) -> None:
 
 def open_viewer(state, color: str | None) -> int:
     """Run the Textual app (the only place Textual is imported); its exit status."""
-    from ..app.app import BrdfApp
+    from tuibrdf.app.app import BrdfApp
 
     app = BrdfApp(state, color=color)
     app.run()  # a crash: Textual restores the terminal, prints the error, sets return_code 1

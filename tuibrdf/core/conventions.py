@@ -1,6 +1,6 @@
 """What every front end (viewer, ``tuibrdf render``, the CLI tables) agrees on, declared once.
 
-- The energy test is :func:`tuibrdf.core.quadrature.exceeds_one`: an albedo is flagged "not
+- The energy test is :func:`tuibrdf.core.sphere.albedo.exceeds_one`: an albedo is flagged "not
   energy-conserving" only when it exceeds 1 by more than its error estimate.
 - :func:`luminance`: Rec.709 luminance ``0.2126 R + 0.7152 G + 0.0722 B`` of linear RGB values
   (ITU-R BT.709-6, item 3.3): how an RGB model becomes one number (peak ranking, maps).

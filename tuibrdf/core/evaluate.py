@@ -24,9 +24,9 @@ from typing import Any
 
 import numpy as np
 
-from .models import BROADCAST_KERNELS, get_model
-from .numerics import kernel_errstate
-from .params import Model
+from tuibrdf.core.numerics import kernel_errstate
+from tuibrdf.core.params import Model
+from tuibrdf.core.registry import BROADCAST_KERNELS, get_model
 
 
 def _first(mask: np.ndarray) -> str:

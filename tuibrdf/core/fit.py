@@ -3,7 +3,7 @@
 **Samples.**  A fixed, deterministic subset of the MERL bins: every ``stride``-th sample along
 θh, θd and φd (default ``(1, 3, 15)``: all 90 θh samples — the √ mapping already concentrates
 them at the specular peak — 30 θd and 12 φd samples), at each bin's sample position (its centre,
-as :mod:`tuibrdf.core.merl` defines it), keeping those where both directions are strictly
+as :mod:`tuibrdf.core.formats.merl` defines it), keeping those where both directions are strictly
 above the horizon: 24 772 samples.  The data values are the table entries themselves (no
 interpolation), so a file written from a model is matched exactly by that model.
 
@@ -49,12 +49,12 @@ from typing import Any
 
 import numpy as np
 
-from .evaluate import evaluate_resolved
-from .merl import MERL, MerlData, from_half_diff, load_cached
-from .models import get_model
-from .numerics import kernel_errstate
-from .params import Model
-from .quadrature import albedo_resolved
+from tuibrdf.core.evaluate import evaluate_resolved
+from tuibrdf.core.formats.merl import MERL, MerlData, from_half_diff, load_cached
+from tuibrdf.core.numerics import kernel_errstate
+from tuibrdf.core.params import Model
+from tuibrdf.core.registry import get_model
+from tuibrdf.core.sphere.albedo import albedo_resolved
 
 #: default sample strides along (θh, θd, φd) bins
 STRIDE = (1, 3, 15)
@@ -380,7 +380,7 @@ def albedo_ratio(rows: list[dict[str, Any]]) -> dict[str, Any]:
 
 def albedo_table(data: MerlData, result: Fit, thetas=ALBEDO_THETAS) -> list[dict[str, Any]]:
     """``[{"theta_i": θ, "data": [r, g, b], "fit": [r, g, b]}, ...]``: directional albedos by
-    the mesh quadrature (:func:`tuibrdf.core.quadrature.albedo_resolved`, its default level),
+    the mesh quadrature (:func:`tuibrdf.core.sphere.albedo.albedo_resolved`, its default level),
     the data through the ``merl`` model (trilinear lookup)."""
     measured = {"file": data.path, "lookup": "trilinear"}
     rows = []
@@ -419,7 +419,7 @@ def material_of(path: str) -> str | None:
     (``gold-metallic-paint.binary``) or one of the SGD data's other names; else None."""
     from pathlib import Path
 
-    from .models.fitted import MATERIAL
+    from tuibrdf.core.brdf.fitted import MATERIAL
 
     return MATERIAL.choice(Path(path).stem)
 
@@ -427,7 +427,7 @@ def material_of(path: str) -> str | None:
 def published_scores(data: MerlData, stride: tuple[int, int, int] = STRIDE
                      ) -> dict[str, Any] | None:
     """``{"material": name, "abc": √E, "sgd": √E}`` when the file is named after a MERL
-    material: how the tabulated ABC and SGD fits (:mod:`tuibrdf.core.models.fitted`) score on
+    material: how the tabulated ABC and SGD fits (:mod:`tuibrdf.core.brdf.fitted`) score on
     the objective :func:`fit` minimises; None otherwise."""
     name = material_of(data.path)
     if name is None:

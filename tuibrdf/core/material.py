@@ -13,8 +13,8 @@ import os
 from collections.abc import Mapping
 from typing import Any
 
-from .models import MODELS, get_model
-from .params import Model, Value, _fmt
+from tuibrdf.core.params import Model, Value, _fmt
+from tuibrdf.core.registry import MODELS, get_model
 
 
 def file_stamp(name: str) -> tuple[int, int] | None:

@@ -4,7 +4,7 @@ The names every front end lists are declared here, with no import, so ``tuibrdf 
 show them without loading numpy or Rich.
 """
 
-#: the lit and half/difference views (issue 13; ``tuibrdf.core.scene.EXTRA_VIEWS``)
+#: the lit and half/difference views (issue 13; ``tuibrdf.core.views.frame.EXTRA_VIEWS``)
 EXTRA_VIEWS: tuple[str, ...] = ("sphere", "plane", "slice", "theta-h", "theta-d")
 #: every picture: the map, the two cross-sections, the 3D solid, the albedo curve, the extras
 VIEWS: tuple[str, ...] = ("map", "incidence", "perpendicular", "solid", "albedo",

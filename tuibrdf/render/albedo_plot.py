@@ -1,7 +1,7 @@
 """Directional albedo curve a(θi) over 0–90° (SPEC §4 view 4), drawn with plotext.
 
 The curve, ``a(θi) = ∫ f(wi, wo) cos θr dω`` at every 3°, comes with the frame
-(:func:`tuibrdf.core.scene.albedo_curve`, cached per material: moving θi only moves the
+(:func:`tuibrdf.core.views.frame.albedo_curve`, cached per material: moving θi only moves the
 marker); the pane with its title is :func:`tuibrdf.render.panes.albedo_pane`.  The axis is
 scaled to the curves (a specular albedo of 0.05 fills the plot; the line ``a = 1`` is drawn
 when it is in range) and labelled; θi is marked by a vertical line and a point on each curve,
@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .polar import GUIDE_COLOR, INCIDENT_COLOR, PLOT_LOCK, curve_color, finish_plot
+from tuibrdf.render.polar import GUIDE_COLOR, INCIDENT_COLOR, PLOT_LOCK, curve_color, finish_plot
 
 
 def albedo_plot(

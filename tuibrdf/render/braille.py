@@ -36,7 +36,7 @@ from rich.measure import Measurement
 from rich.segment import Segment
 from rich.style import Style
 
-from .rowdiff import kept_rows, mark_changed
+from tuibrdf.render.rowdiff import kept_rows, mark_changed
 
 BRAILLE_BASE = 0x2800
 #: bit of the dot at (row 0..3, column 0..1) of a cell (Unicode braille numbering 1-8)

@@ -35,9 +35,9 @@ import numpy as np
 from rich.console import Group
 from rich.text import Text
 
-from ..core.conventions import fmt_value, luminance
-from . import CMAPS
-from .halfblock import TRANSPARENT, HalfBlockImage
+from tuibrdf.core.conventions import fmt_value, luminance
+from tuibrdf.render import CMAPS
+from tuibrdf.render.halfblock import TRANSPARENT, HalfBlockImage
 
 RGB_MODES: tuple[str, ...] = ("color", "luminance")
 DEFAULT_LEVELS = 256

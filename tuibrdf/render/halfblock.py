@@ -44,8 +44,8 @@ from rich.measure import Measurement
 from rich.segment import Segment
 from rich.style import Style
 
-from ..core.conventions import REC709  # here applied to 8-bit values: a luma
-from .rowdiff import kept_rows, mark_changed
+from tuibrdf.core.conventions import REC709  # here applied to 8-bit values: a luma
+from tuibrdf.render.rowdiff import kept_rows, mark_changed
 
 ColorSystem = Literal["truecolor", "256", "none"]
 COLOR_SYSTEMS: tuple[str, ...] = ("truecolor", "256", "none")

@@ -1,4 +1,4 @@
-"""Half/difference-angle views (:mod:`tuibrdf.core.halfdiff`): the θh × θd image at fixed φd
+"""Half/difference-angle views (:mod:`tuibrdf.core.views.halfdiff`): the θh × θd image at fixed φd
 and the line plots f(θh) at fixed θd, f(θd) at fixed θh.
 
 **Image slice** (:func:`slice_view`): θh along x (0° left … 90° right, uniform in √θh by
@@ -22,7 +22,8 @@ from rich.measure import Measurement
 from rich.segment import Segment
 from rich.text import Text
 
-from ..core.halfdiff import (
+from tuibrdf.core.params import Model
+from tuibrdf.core.views.halfdiff import (
     DEFAULT_PHI_D,
     SCALE_LIMIT_DEG,
     scale_max,
@@ -30,12 +31,18 @@ from ..core.halfdiff import (
     theta_d_curve,
     theta_h_curve,
 )
-from ..core.params import Model
-from .braille import NULL_STYLE, BrailleCanvas, curve_layers, draw_legend, nice_ticks
-from .colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize, fmt_value
-from .halfblock import HalfBlockImage
-from .polar import channel_curves, curve_color
-from .text import first_fitting
+from tuibrdf.render.braille import NULL_STYLE, BrailleCanvas, curve_layers, draw_legend, nice_ticks
+from tuibrdf.render.colormap import (
+    DEFAULT_LEVELS,
+    LOG_DECADES,
+    Scale,
+    colorbar,
+    colorize,
+    fmt_value,
+)
+from tuibrdf.render.halfblock import HalfBlockImage
+from tuibrdf.render.polar import channel_curves, curve_color
+from tuibrdf.render.text import first_fitting
 
 #: width of the y tick labels and the space after them
 MARGIN = 8

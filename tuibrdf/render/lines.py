@@ -6,7 +6,7 @@ again at each newline, measuring every segment's cells on the way: ≈ 5 ms for 
 map at 160×48, most of a key's drawing time.  The pictures of this package already know their
 rows (:meth:`HalfBlockImage.rows`, :meth:`BrailleCanvas.rows`, each exactly their width), so
 :func:`pane_lines` takes those as they are and sends only the rest (one-line titles, colour
-bar ticks) through Rich.  tests/test_render_lines.py checks the two agree cell for cell on
+bar ticks) through Rich.  tests/render/test_lines.py checks the two agree cell for cell on
 every pane.
 """
 
@@ -18,9 +18,9 @@ from rich.segment import Segment
 from rich.style import Style
 from rich.text import Text
 
-from .braille import BrailleCanvas
-from .halfblock import HalfBlockImage, console_system
-from .halfdiff_view import LeftLabelled
+from tuibrdf.render.braille import BrailleCanvas
+from tuibrdf.render.halfblock import HalfBlockImage, console_system
+from tuibrdf.render.halfdiff_view import LeftLabelled
 
 BLANK = Style()  # never None: Textual's NO_COLOR filter crashes on a None style
 

@@ -1,4 +1,4 @@
-"""The lit sphere and the lit plane as half-block pictures (:mod:`tuibrdf.core.lit`).
+"""The lit sphere and the lit plane as half-block pictures (:mod:`tuibrdf.core.views.lit`).
 
 ``lit_view(kind, ...)`` draws a title line and the tone-mapped image in ``width × (height − 1)``
 cells (``width × 2(height − 1)`` square pixels).  Outside the sphere the terminal background
@@ -19,12 +19,18 @@ from typing import Any
 import numpy as np
 from rich.console import Group
 
-from ..core.lit import DEFAULT_EXPOSURE, DEFAULT_FOV_DEG, DEFAULT_GAMMA, lit_plane, lit_sphere
-from ..core.lit import tone_map as tone_map_core
-from ..core.params import Model
-from .colormap import fmt_value
-from .halfblock import HalfBlockImage
-from .text import title
+from tuibrdf.core.params import Model
+from tuibrdf.core.views.lit import (
+    DEFAULT_EXPOSURE,
+    DEFAULT_FOV_DEG,
+    DEFAULT_GAMMA,
+    lit_plane,
+    lit_sphere,
+)
+from tuibrdf.core.views.lit import tone_map as tone_map_core
+from tuibrdf.render.colormap import fmt_value
+from tuibrdf.render.halfblock import HalfBlockImage
+from tuibrdf.render.text import title
 
 KINDS = ("sphere", "plane")
 #: levels per channel of the drawn picture (see the module docstring)

@@ -1,11 +1,11 @@
-"""Panes: one :class:`~tuibrdf.core.scene.FrameResult` in, Rich renderables out.
+"""Panes: one :class:`~tuibrdf.core.views.frame.FrameResult` in, Rich renderables out.
 
 Every number a pane shows comes from the result, so the panes agree: the map's title, its
 colour bar's top, the solid's scale and the status line show the same peak
 (:func:`shown_peak`: for an RGB model the luminance ``Y``, or the largest channel when the map
 shows the channels in colour, and the text says which) and the same scale (:func:`shown_scale`:
 the peak, or the largest value at θ ≤ 89° (drawn, or a shown lobe) when the peak is above 89° or
-unbounded, "f → ∞"; :mod:`tuibrdf.core.horizon`); the cross-sections say "section max" (the
+unbounded, "f → ∞"; :mod:`tuibrdf.core.sphere.horizon`); the cross-sections say "section max" (the
 largest value along the two planes, below the peak when it lies off them).  In compare mode
 both maps share one colour scale topped by the larger of the two scales, and the bar says
 whose it is.
@@ -27,18 +27,18 @@ import numpy as np
 from rich.console import Group, RenderableType
 from rich.text import Text
 
-from ..core.conventions import decimals_for, fmt_value, luminance
-from ..core.hemimap import geometry
-from ..core.horizon import HORIZON_DEG, Horizon, PeakScale
-from ..core.peak import Peak
-from ..core.scene import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
-from .albedo_plot import albedo_plot
-from .colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize
-from .halfblock import HalfBlockImage, Mark
-from .polar import CHANNEL_WORDS, caption_parts, plot_body, side_curves
-from .polar_braille import fwhm_text, polar_canvas
-from .solid import solid_image
-from .text import (
+from tuibrdf.core.conventions import decimals_for, fmt_value, luminance
+from tuibrdf.core.sphere.horizon import HORIZON_DEG, Horizon, PeakScale
+from tuibrdf.core.sphere.peak import Peak
+from tuibrdf.core.views.frame import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
+from tuibrdf.core.views.hemimap import geometry
+from tuibrdf.render.albedo_plot import albedo_plot
+from tuibrdf.render.colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize
+from tuibrdf.render.halfblock import HalfBlockImage, Mark
+from tuibrdf.render.polar import CHANNEL_WORDS, caption_parts, plot_body, side_curves
+from tuibrdf.render.polar_braille import fwhm_text, polar_canvas
+from tuibrdf.render.solid import solid_image
+from tuibrdf.render.text import (
     INCIDENT_MARK,
     MIRROR_MARK,
     RING_RGB,
@@ -84,7 +84,7 @@ class Look:
         return self.rgb_mode
 
 
-#: how the texts name a scale that is not the peak (:mod:`tuibrdf.core.horizon`)
+#: how the texts name a scale that is not the peak (:mod:`tuibrdf.core.sphere.horizon`)
 CAP_TEXT = f"max θ≤{HORIZON_DEG:g}°"
 
 
@@ -111,7 +111,7 @@ def peak_horizon(side: SideFrame, view: str, look: Look) -> Horizon:
 
 def scale_text(scale: PeakScale, short: bool = False) -> str:
     """``scale: max θ≤89° 513`` (``scale 513 (θ≤89°)`` short), with the channel for RGB: the
-    largest value at θ ≤ 89° (:meth:`~tuibrdf.core.scene.SideFrame.scale_for`)."""
+    largest value at θ ≤ 89° (:meth:`~tuibrdf.core.views.frame.SideFrame.scale_for`)."""
     ch = channel_tag(scale)
     if short:
         return f"scale {fmt_value(scale.value)}{ch} (θ≤{HORIZON_DEG:g}°)"
@@ -358,7 +358,7 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
 def extra_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> RenderableType:
     """The request's extra view (sphere, plane, slice, θh or θd curve) of side ``k``; in
     compare mode both sides on one scale (the same exposure, the larger maximum)."""
-    from . import halfdiff_view, lit_view
+    from tuibrdf.render import halfdiff_view, lit_view
 
     req, side = res.request, res.sides[k]
     name = _label(res, k)
@@ -409,7 +409,7 @@ def solid_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
 def albedo_pane(res: FrameResult, w: int, h: int, look: Look) -> RenderableType:
     """a(θi) over 0–90° per side (channels for one RGB model, luminance in compare mode), θi
     marked, the line a = 1 drawn; flagged when a curve exceeds 1 by more than its error estimate
-    (:func:`tuibrdf.core.quadrature.exceeds_one`)."""
+    (:func:`tuibrdf.core.sphere.albedo.exceeds_one`)."""
     if any(s.curve is None for s in res.sides):
         return Text("computing a(θi) over 0–90° …", justify="center")
     t = res.request.theta_i

@@ -1,5 +1,5 @@
 """Polar cross-sections with plotext (SPEC §4 view 2): curves in, text out (the values come from
-:mod:`tuibrdf.core.scene`, the pane from :mod:`.panes`).
+:mod:`tuibrdf.core.views.frame`, the pane from :mod:`.panes`).
 
 plotext has no polar axes: a curve is drawn as ``x = r sin θr``, ``y = r cos θr`` for
 ``θr ∈ [−90°, 90°]`` with braille dots; negative ``θr`` is the left half of the plot.
@@ -105,7 +105,7 @@ def channel_curves(label: str, values: np.ndarray, channel: str = "rgb"
     if values.ndim != 2:
         return [(label, values)]
     if channel == "lum":
-        from ..core.conventions import luminance
+        from tuibrdf.core.conventions import luminance
 
         return [("lum", luminance(values))]
     if channel in ("R", "G", "B"):

@@ -8,7 +8,7 @@ on screen in x and y (a cell is twice as tall as wide).  Titles and captions are
 :mod:`.polar`.
 
 - :func:`polar_canvas` draws curves (the frame's section arrays,
-  :mod:`tuibrdf.core.scene`; nothing is evaluated here) for :func:`tuibrdf.render.panes.
+  :mod:`tuibrdf.core.views.frame`; nothing is evaluated here) for :func:`tuibrdf.render.panes.
   section_pane`, which also draws the section through the lobe's peak: the great circle through
   the frame's peak turned by the *section azimuth* ψ about it (90° = across the peak's vertical
   plane, the seed's "largeur … dans un plan perpendiculaire"; 0° = that plane itself), the peak
@@ -27,17 +27,17 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..core.frame import sincos_deg
-from .braille import BrailleCanvas, curve_layers, draw_legend
-from .colormap import LOG_DECADES, fmt_value
-from .polar import (
+from tuibrdf.core.directions import sincos_deg
+from tuibrdf.render.braille import BrailleCanvas, curve_layers, draw_legend
+from tuibrdf.render.colormap import LOG_DECADES, fmt_value
+from tuibrdf.render.polar import (
     CELL_ASPECT,
     SIDE_MARKERS,
     curve_color,
     nice_step,
     radius,
 )
-from .text import LIGHT_RGB
+from tuibrdf.render.text import LIGHT_RGB
 
 GUIDE = "color(244)"
 #: the light in the sections: the colour of its mark on the map and of its line in the solid

@@ -1,6 +1,6 @@
 """3D photometric solid (SPEC §4 view 3): the surface ``p = f(wi, wo)·wo`` over the hemisphere.
 
-- Directions: :func:`tuibrdf.core.scene.solid_samples`, the triangles of a hemisphere mesh,
+- Directions: :func:`tuibrdf.core.views.frame.solid_samples`, the triangles of a hemisphere mesh,
   each sampled on a barycentric grid, so the surface stays closed where a sharp lobe stretches
   it; the values come with the frame (one kernel call).  RGB models use their Rec.709
   luminance for the radius, and the radius scale is the frame's scale (its peak, or the largest
@@ -27,13 +27,13 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..core.conventions import luminance
-from ..core.frame import incident
-from ..core.scene import SOLID_SUBDIV, solid_samples
-from .colormap import LOG_DECADES, palette, quantise
-from .halfblock import TRANSPARENT
-from .polar import radius
-from .text import LIGHT_RGB, RING_RGB
+from tuibrdf.core.conventions import luminance
+from tuibrdf.core.directions import incident
+from tuibrdf.core.views.frame import SOLID_SUBDIV, solid_samples
+from tuibrdf.render.colormap import LOG_DECADES, palette, quantise
+from tuibrdf.render.halfblock import TRANSPARENT
+from tuibrdf.render.polar import radius
+from tuibrdf.render.text import LIGHT_RGB, RING_RGB
 
 SHADE_LEVELS = 64
 AXIS_RGB = RING_RGB
@@ -51,7 +51,8 @@ def camera(azimuth_deg: float, elevation_deg: float) -> np.ndarray:
 def _grid_triangles(n_faces: int, subdiv: int) -> np.ndarray:
     """``(n_faces·subdiv², 3)`` sample indices of the small triangles of every face's
     barycentric grid, the samples listed face by face as
-    :func:`tuibrdf.core.scene.solid_samples` lists them (``(i, j)`` row-major, ``i + j ≤ n``)."""
+    :func:`~tuibrdf.core.views.frame.solid_samples` lists them (``(i, j)`` row-major, ``i + j ≤
+    n``)."""
     i, j = np.meshgrid(np.arange(subdiv + 1), np.arange(subdiv + 1), indexing="ij")
     keep = i + j <= subdiv
     local = np.full((subdiv + 1, subdiv + 1), -1, dtype=np.int64)
@@ -124,7 +125,7 @@ def solid_image(
 ) -> tuple[np.ndarray, np.ndarray]:
     """``(index (px_h, px_w), palette)`` of the shaded solid (the light's guide at θi, φi).
 
-    ``values``: :func:`tuibrdf.core.scene.solid_values` (at the samples, then at the face
+    ``values``: :func:`tuibrdf.core.views.frame.solid_values` (at the samples, then at the face
     corners; RGB values are drawn by their luminance); ``rmax``: the radius scale, the frame's
     scale (its peak, or the largest value at θ ≤ 89°: larger values are clipped to it), so the
     solid's size and its title agree with every other pane."""

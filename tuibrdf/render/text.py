@@ -61,7 +61,7 @@ def first_fitting(variants: Sequence[Sequence[tuple[str, int]]], width: int,
 #: colour of the horizon ring drawn just outside the disc and of the solid's guides: a muted
 #: blue that quantises to xterm colour 61 (95, 95, 175), which no colour map (grey, viridis,
 #: inferno at any level count) quantises to in 256 colours, so "outside" never reads as a
-#: value (tests/test_render_views.py); plain text draws it as ``~`` (halfblock.RING_CHAR)
+#: value (tests/render/test_views.py); plain text draws it as ``~`` (halfblock.RING_CHAR)
 RING_RGB = (72, 72, 160)
 LIGHT_RGB = (40, 220, 255)
 MIRROR_MARK = dict(glyph="×", ascii="X", rgb=(255, 40, 40))

@@ -3,7 +3,8 @@
 Views (:data:`VIEWS`):
 
 =================  ================================================================================
-``map``            Lambert equal-area map (:mod:`tuibrdf.core.hemimap`) as half blocks: a title
+``map``            Lambert equal-area map (:mod:`~tuibrdf.core.views.hemimap`) as half blocks: a
+title
                    line with the peak, the disc (horizon ring, ``×`` on the mirror direction S,
                    ``o`` on the incident direction's Lambert point) and a colour bar from 0 (or
                    3 decades below, in log) to the peak
@@ -13,7 +14,7 @@ Views (:data:`VIEWS`):
 ``albedo``         directional albedo a(θi) over 0–90° (:mod:`.albedo_plot`)
 =================  ================================================================================
 
-The numbers come from one :class:`~tuibrdf.core.scene.FrameRequest` (the same computation the
+The numbers come from one :class:`~tuibrdf.core.views.frame.FrameRequest` (the same computation the
 viewer uses), the picture from :func:`tuibrdf.render.panes.pane`.
 
 ``color``: ``truecolor``, ``256`` (quantised to the xterm palette before runs are merged) or
@@ -31,14 +32,14 @@ from typing import Any
 
 from rich.console import RenderableType
 
-from ..core.hemimap import DEFAULT_METHOD
-from ..core.material import Material
-from ..core.params import Model
-from ..core.scene import FrameRequest, compute_frame
-from . import CMAPS, EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, VIEWS
-from .colormap import DEFAULT_LEVELS, check_cmap
-from .halfblock import COLOR_SYSTEMS
-from .panes import Look, pane
+from tuibrdf.core.material import Material
+from tuibrdf.core.params import Model
+from tuibrdf.core.views.frame import FrameRequest, compute_frame
+from tuibrdf.core.views.hemimap import DEFAULT_METHOD
+from tuibrdf.render import CMAPS, EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, VIEWS
+from tuibrdf.render.colormap import DEFAULT_LEVELS, check_cmap
+from tuibrdf.render.halfblock import COLOR_SYSTEMS
+from tuibrdf.render.panes import Look, pane
 
 __all__ = ["CMAPS", "VIEWS", "MIN_WIDTH", "MIN_HEIGHT", "render_view", "request_for"]
 
@@ -67,7 +68,7 @@ def extra_pixels(view: str, width: int, height: int) -> tuple[int, int] | None:
     if view in ("sphere", "plane"):
         return int(width), 2 * (int(height) - 1)
     if view == "slice":
-        from .halfdiff_view import slice_pixels
+        from tuibrdf.render.halfdiff_view import slice_pixels
 
         return slice_pixels(width, height)
     return None
@@ -77,7 +78,7 @@ def request_for(view: str, materials: tuple[Material, ...], theta_i_deg: float, 
                 height: int, *, cosine: bool = False, method: str = DEFAULT_METHOD,
                 **extra: Any) -> FrameRequest:
     """The frame request of ``view`` in a ``width × height`` pane; ``extra``: the request's
-    section azimuth and fixed angles (:class:`~tuibrdf.core.scene.FrameRequest`)."""
+    section azimuth and fixed angles (:class:`~tuibrdf.core.views.frame.FrameRequest`)."""
     ex = view if view in EXTRA_VIEWS else None
     return FrameRequest(materials, theta_i_deg, cosine=cosine and view != "albedo",
                         map_px=map_pixels(width, height) if view == "map" else None,

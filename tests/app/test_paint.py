@@ -1,0 +1,293 @@
+"""The viewer's own way to the terminal (tuibrdf/app/paint.py, ``Rows.render_lines``, the
+hand-offs in tuibrdf/app/frames.py): the same cells as Textual's own way, fewer steps.
+
+The references are Textual's: its compositor's partial update and its styles cache's lines,
+run on the same screen state; the cells the terminal shows are compared through a small
+terminal model written here (cursor moves, SGR, text).  No timings.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+import threading
+import unicodedata
+
+import pytest
+from rich.color import ColorSystem
+from rich.console import Console
+from rich.segment import Segment
+from rich.style import Style
+from textual._compositor import Compositor
+from textual.geometry import Region
+from textual.screen import Screen
+from textual.strip import Strip
+from textual.widget import Widget
+
+from tests.pilot import wait_for
+from tuibrdf.app import frames, paint
+from tuibrdf.app.app import BrdfApp
+from tuibrdf.app.paint import ViewerCompositor, _cells
+from tuibrdf.app.widgets import Rows
+from tuibrdf.core.views import frame as scene
+from tuibrdf.state.viewer import Side, ViewerState
+
+
+@pytest.fixture(autouse=True)
+def config_home(tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path))
+
+
+class Terminal:
+    """The cells of a terminal as the viewer's output sets them: ``CSI row;col H`` moves the
+    cursor, ``CSI … m`` sets the SGR attributes (``0`` or none resets them), ``\\n`` moves a
+    line down, OSC strings (links) change no cell, every other character fills its cells
+    (two for East Asian wide and full-width ones) with the attributes in force."""
+
+    CSI = re.compile(r"\x1b\[([0-9;?]*)([A-Za-z])")
+
+    def __init__(self, width: int, height: int) -> None:
+        self.cells = [[(" ", ())] * width for _ in range(height)]
+        self.x = self.y = 0
+        self.sgr: tuple[str, ...] = ()
+
+    def feed(self, data: str) -> None:
+        i = 0
+        while i < len(data):
+            c = data[i]
+            if data.startswith("\x1b]", i):  # OSC, up to the string terminator
+                i = data.index("\x1b\\", i) + 2
+                continue
+            if c == "\x1b":
+                m = self.CSI.match(data, i)
+                assert m is not None, f"unexpected escape {data[i:i + 12]!r}"
+                params, command = m.groups()
+                if command == "H":
+                    row, col = params.split(";")
+                    self.y, self.x = int(row) - 1, int(col) - 1
+                elif command == "m":
+                    self.sgr = () if params in ("", "0") else (*self.sgr, params)
+                else:
+                    raise AssertionError(f"unexpected sequence {m.group(0)!r}")
+                i = m.end()
+                continue
+            if c == "\n":
+                self.y += 1
+            else:
+                wide = unicodedata.east_asian_width(c) in ("W", "F")
+                self.cells[self.y][self.x] = (c, self.sgr)
+                if wide:
+                    self.cells[self.y][self.x + 1] = ("", self.sgr)
+                self.x += 2 if wide else 1
+            i += 1
+
+
+def rendered(update, console: Console) -> str:
+    return update.render_segments(console)
+
+
+class Twin:
+    """Every paint of the viewer's screen fed to one terminal, and Textual's own update for
+    the same dirty regions (its compositor, its styles cache's lines) fed to another."""
+
+    def __init__(self, monkeypatch, width: int, height: int) -> None:
+        self.ours, self.ref = Terminal(width, height), Terminal(width, height)
+        self.partial = 0  # partial updates compared
+        self.console: Console | None = None
+        real = ViewerCompositor.render_update
+        twin = self
+
+        def render_update(comp, full=False, screen_stack=None, simplify=False):
+            full_update = full or comp.size.region in comp._dirty_regions
+            regions = set(comp._dirty_regions)
+            update = real(comp, full, screen_stack, simplify)
+            if update is None:
+                return None
+            text = rendered(update, twin.console)
+            twin.ours.feed(text)
+            if full_update:
+                twin.ref.feed(text)
+                return update
+            comp._dirty_regions.update(regions)
+            with monkeypatch.context() as m:  # Textual's lines for the rows, too
+                m.setattr(Rows, "render_lines", Widget.render_lines)
+                reference = Compositor.render_partial_update(comp)
+            twin.ref.feed(rendered(reference, twin.console))
+            twin.partial += 1
+            assert twin.ours.cells == twin.ref.cells, "a cell differs from Textual's paint"
+            return update
+
+        monkeypatch.setattr(ViewerCompositor, "render_update", render_update)
+
+
+KEYS = ["right", "right", "minus", "plus", "shift+right", "b", "L", "I", "m", "greater_than_sign",
+        "a", "o", "l", "k", "c", "tab", "minus", "right", "question_mark", "escape", "c",
+        "v", "right", "v", "v", "x", "g", "v", "y", "v", "d", "v", "d", "v", "left", "v"]
+
+
+@pytest.mark.parametrize("size", [(160, 48), (100, 30)])
+async def test_every_paint_shows_the_cells_textuals_own_paint_shows(monkeypatch, size):
+    # keys through every view, compare mode (bordered pictures: Textual's own lines), the
+    # help screen over the viewer and back; after each partial paint the terminal fed the
+    # viewer's bytes and the one fed Textual's own update for the same regions agree
+    assert paint.SUPPORTED and paint.PAINT_NOW  # the Textual this runs with (8.2)
+    twin = Twin(monkeypatch, *size)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
+    twin.console = app.console
+    async with app.run_test(size=size) as pilot:
+        await pilot.pause(0.3)
+        for key in KEYS:
+            await pilot.press(key)
+            for _ in range(40):  # the key's frame, albedo included
+                await pilot.pause(0.02)
+                if app.frame is not None and app.frame.request == app.request \
+                        and app.frame.complete:
+                    break
+        assert app.state.view == "map" and app.frames > len(KEYS) // 2
+    assert twin.partial >= len(KEYS)
+
+
+async def test_without_colour_every_paint_shows_textuals_cells(monkeypatch, no_color):
+    # NO_COLOR: Textual's Monochrome filter applies to the rows, which then go its own way
+    twin = Twin(monkeypatch, 100, 30)
+    app = BrdfApp(ViewerState(sides=[Side.of("gltf")]))
+    twin.console = app.console
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.pause(0.3)
+        for key in ("right", "plus", "right", "c", "minus"):
+            await pilot.press(key)
+            await pilot.pause(0.3)
+    assert twin.partial >= 5
+
+
+async def test_rows_hand_over_the_lines_textuals_styles_cache_makes():
+    # a picture (no padding), the status line (padding at both sides) and, in compare mode,
+    # a bordered picture (Textual's own way): the same segments as the styles cache's
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
+    async with app.run_test(size=(120, 36)) as pilot:
+        await pilot.pause(0.3)
+        await pilot.press("right")
+        await pilot.pause(0.3)
+        checked = []
+        for compare in (False, True):
+            if compare:
+                await pilot.press("c")
+                await pilot.pause(0.5)
+            for wid in ("map-a", "incidence", "perpendicular", "status"):
+                w = app.query_one(f"#{wid}")
+                if not w.display:
+                    continue
+                width, height = w.outer_size
+                for crop in (Region(0, 0, width, height), Region(3, 1, width - 5, height - 1)):
+                    ours = [list(line) for line in w.render_lines(crop)]
+                    w._styles_cache.clear()
+                    theirs = [list(line) for line in Widget.render_lines(w, crop)]
+                    assert ours == theirs, (wid, compare, crop)
+                    checked.append(wid)
+        assert {"map-a", "status"} <= set(checked)
+
+
+def test_a_span_starts_where_it_starts_unless_inside_a_wide_character():
+    # cells: a b 漢漢 字字 c d (漢 and 字 two cells each); the reference for the text is
+    # Textual's own crop of the strip from the cell returned
+    console = Console(color_system="truecolor", force_terminal=True)
+    red, blue = Style(color="red"), Style(bgcolor="blue")
+    strip = Strip([Segment("ab", red), Segment("漢字", blue), Segment("cd", None)], 8)
+    for start, stop, first in [(1, 7, 1), (3, 7, 2), (2, 8, 2), (5, 8, 2), (6, 8, 6),
+                               (0, 3, 0), (0, 8, 0)]:
+        got_first, text = _cells(strip, start, stop, ColorSystem.TRUECOLOR)
+        assert got_first == first, (start, stop)
+        assert text == strip.crop(first, stop).render(console), (start, stop)
+    assert "漢" in _cells(strip, 3, 5, ColorSystem.TRUECOLOR)[1]  # never split into spaces
+
+
+async def test_a_frame_is_painted_before_show_frame_returns(monkeypatch):
+    # the paint runs within show_frame (no round of idle events first); with a layout
+    # pending the screen leaves it to Textual, which paints it after the layout
+    paints = []
+    real = Screen._compositor_refresh
+    monkeypatch.setattr(Screen, "_compositor_refresh",
+                        lambda screen: (paints.append(screen), real(screen))[1])
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
+    async with app.run_test(size=(120, 36)) as pilot:
+        await pilot.pause(0.3)
+        for theta, layout in ((31.0, False), (32.0, True)):
+            req = app.frame_request()
+            res = scene.compute_frame(dataclasses.replace(req, theta_i=theta))
+            app.state.theta_i, app.request = theta, res.request
+            if layout:
+                app.query_one("#legend").refresh(layout=True)
+            before = len(paints)
+            app.show_frame(res)
+            status = app.query_one("#status")
+            if not layout:
+                assert len(paints) == before + 1 and not status._repaint_required
+            else:
+                assert len(paints) == before and status._repaint_required
+                await pilot.pause(0.1)
+                assert len(paints) > before and not status._repaint_required
+            assert f"θi {theta:g}°" in str(status.render())
+
+
+def held_compute(monkeypatch, slow_only: bool):
+    """``scene.compute_frame`` held by an event for θi = 31° (its albedo part only, or the
+    whole frame), in the frame worker (every frame goes there: none on the event loop)."""
+    monkeypatch.setattr(frames, "INLINE_S", 0.0)
+    release = threading.Event()
+    real = scene.compute_frame
+
+    def compute(req, **kw):
+        if req.theta_i == 31.0 and (not slow_only or kw.get("slow", True)) and \
+                threading.current_thread() is not threading.main_thread():
+            release.wait(10.0)
+        return real(req, **kw)
+
+    monkeypatch.setattr(scene, "compute_frame", compute)
+    return release
+
+
+async def test_a_slow_frame_lets_the_status_line_go_ahead(monkeypatch):
+    # the frame of θi 31° is held: after PENDING_S the status line shows θi 31° with its
+    # numbers pending ("…") while the pictures still show θi 30°; then the frame arrives
+    scene.clear_caches()
+    release = held_compute(monkeypatch, slow_only=False)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
+    async with app.run_test(size=(120, 36)) as pilot:
+        await pilot.pause(0.3)
+        await pilot.press("right")
+        status = lambda: str(app.query_one("#status").render())  # noqa: E731
+        assert await wait_for(pilot, lambda: "θi 31°" in status())
+        assert "a(θi) …" in status() and app.frame.request.theta_i == 30.0
+        release.set()
+        assert await wait_for(pilot, lambda: app.frame.request.theta_i == 31.0
+                              and app.frame.complete and "a(θi)=" in status())
+
+
+async def test_pictures_stop_waiting_for_a_slow_albedo(monkeypatch):
+    # the albedo of θi 31° is held: the pictures (maps, sections, peak) are shown without
+    # it after HOLD_S, then with it when it comes
+    scene.clear_caches()
+    release = held_compute(monkeypatch, slow_only=True)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
+    async with app.run_test(size=(120, 36)) as pilot:
+        await pilot.pause(0.3)
+        await pilot.press("right")
+        assert await wait_for(pilot, lambda: app.frame.request.theta_i == 31.0)
+        assert not app.frame.complete
+        release.set()
+        assert await wait_for(pilot, lambda: app.frame.complete
+                              and app.frame.request.theta_i == 31.0)
+
+
+async def test_a_bug_in_a_frame_timer_ends_the_viewer_with_status_1():
+    def boom() -> None:
+        raise RuntimeError("boom from a frame timer")
+
+    app = BrdfApp(ViewerState())
+    with pytest.raises(RuntimeError, match="boom from a frame timer"):
+        async with app.run_test(size=(100, 30)) as pilot:
+            await pilot.pause(0.3)
+            app._after(0.0, boom)
+            for _ in range(20):
+                await pilot.pause(0.05)
+    assert app.return_code == 1

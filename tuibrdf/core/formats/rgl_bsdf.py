@@ -1,0 +1,513 @@
+"""RGL-EPFL measured materials (``.bsdf``; Dupuy & Jakob 2018, "An Adaptive Parameterization
+for Efficient Material Acquisition and Rendering"): reader and evaluation.
+
+**Container** ("tensor_file", little-endian): magic ``tensor_file\\0`` (12 bytes), version
+``u8 1, u8 0``, ``u32`` field count; per field ``u16`` name length, the name (UTF-8), ``u16``
+ndim, ``u8`` dtype (Mitsuba's ``Struct`` codes: 1 u8, 2 i8, 3 u16, 4 i16, 5 u32, 6 i32, 7 u64,
+8 i64, 9 f16, 10 f32, 11 f64), ``u64`` offset of the data from the start of the file, and
+``ndim × u64`` shape.  Every field is validated before anything is allocated: its data must lie
+inside the file, so a huge declared shape is an error, not a huge allocation.
+
+**Fields** (as the reference reader ``powitacq_rgb.h`` and Mitsuba 3's ``measured`` plugin check
+them): ``description`` (u8), ``phi_i``, ``theta_i`` (f32, the incidence grid, radians,
+increasing), ``ndf``, ``sigma`` (f32 2-D), ``vndf``, ``luminance`` (f32, ``(φi, θi, n, n)``),
+``rgb`` (f32, ``(φi, θi, 3, n, n)``) or, in spectral files, ``spectra`` ``(φi, θi, λ, n, n)``
+with ``wavelengths`` (f32, nm), and ``jacobian`` (u8, one value).  ``valid`` and ``version``
+are read as information.  Float fields may be f32 or f64 (converted to f64).
+
+**Evaluation** follows ``powitacq_rgb::BRDF::eval`` (whose ``Warp2D`` is Mitsuba's
+``Marginal2D``), vectorised over directions, in float64:
+
+1. both directions above the horizon, else 0; files covering half or a quarter of the
+   incidence azimuths (Mitsuba 3's "reduction" 2 or 4, from the φi range) bring ``wi`` and
+   ``wo`` into the measured range as Mitsuba 3 does (reduction 2: a half turn about the normal
+   when ``wi.y ≥ 0``; 4: x and y made ≤ 0); powitacq accepts reduction 1 only;
+2. ``wm = normalize(wi + wo)``; elevations by ``2 asin(|d − N|/2)``; azimuths by ``atan2``;
+   ``u(θ) = √(2θ/π)``, ``u(φ) = (φ + π)/2π``; for isotropic files (≤ 2 φi samples) the
+   half-vector's azimuth is taken relative to ``φi``, wrapped to [0, 1);
+3. the VNDF warp (a piecewise-bilinear 2-D distribution whose marginal/conditional CDFs are
+   built at load time, interpolated over (φi, θi)) maps ``u(wm)`` back to the unit square
+   (``Marginal2D::invert``);
+4. the ``rgb`` (or converted ``spectra``) tensor is interpolated there: bilinear in the square,
+   linear in φi and θi (clamped at the grid's ends);
+5. if the file's ``jacobian`` flag is set, times ``ndf(u(wm)) / (4 σ(u(wi)))`` (Mitsuba 3
+   applies this factor only when the flag is set; powitacq always does — RGL files set it);
+6. that is ``f·cos θo``: tuibrdf divides by ``cos θo``, held at ``cos 89.9°`` within 0.1° of
+   the horizon (measured values there are noisy and need not vanish: the division amplifies
+   them at most 573×); on the horizon itself the value is 0, as powitacq.
+
+Negative RGB values (out-of-gamut spectra) are clamped to 0 for display.  The ``valid`` mask is
+not applied (powitacq and Mitsuba ignore it); the count of invalid entries is reported.
+
+**Spectral files** are converted to linear sRGB at load time, with the CIE 1931 2° observer
+under illuminant D65 (:mod:`tuibrdf.core.formats.cie`): the conversion is linear, so converting the
+tensor and then interpolating equals interpolating and then converting.
+"""
+
+from __future__ import annotations
+
+import os
+import struct
+from dataclasses import dataclass
+from functools import partial
+
+import numpy as np
+
+from tuibrdf.core.formats.files import UserFileError
+from tuibrdf.core.numerics import safe_div
+from tuibrdf.core.params import Model
+
+MAGIC = b"tensor_file\0"
+DTYPES = {1: "<u1", 2: "<i1", 3: "<u2", 4: "<i2", 5: "<u4", 6: "<i4", 7: "<u8", 8: "<i8",
+          9: "<f2", 10: "<f4", 11: "<f8"}
+DTYPE_NAMES = {1: "uint8", 2: "int8", 3: "uint16", 4: "int16", 5: "uint32", 6: "int32",
+               7: "uint64", 8: "int64", 9: "float16", 10: "float32", 11: "float64"}
+MAX_FIELDS = 256
+MAX_NDIM = 8
+#: ``cos θo`` floor of step 6: cos 89.9°
+COS_FLOOR = float(np.cos(np.radians(89.9)))
+
+
+class BsdfError(UserFileError):
+    """A file that is not a valid RGL ``.bsdf``: the message names the file and the problem."""
+
+
+@dataclass(frozen=True)
+class Field:
+    dtype: int
+    offset: int
+    shape: tuple[int, ...]
+
+    @property
+    def nbytes(self) -> int:
+        n = np.dtype(DTYPES[self.dtype]).itemsize
+        for s in self.shape:
+            n *= s
+        return n
+
+
+def read_header(f, path: str, size: int) -> dict[str, Field]:
+    """Parse the header of an open tensor file; every field's data lies inside the file."""
+
+    def bad(msg):
+        return BsdfError(f"{path}: not an RGL .bsdf tensor file: {msg}")
+
+    def read(n, what):
+        b = f.read(n)
+        if len(b) < n:
+            raise bad(f"truncated header (ends inside {what}; the file has {size} bytes)")
+        return b
+
+    magic = f.read(12)
+    if magic != MAGIC:
+        if len(magic) < 12 and MAGIC.startswith(magic):
+            raise bad(f"truncated header (ends inside the magic; the file has {size} bytes)")
+        raise bad(f"wrong magic {magic[:12]!r}, expected {MAGIC!r}")
+    major, minor = read(2, "the version")
+    if (major, minor) != (1, 0):
+        raise bad(f"unknown version {major}.{minor}, expected 1.0")
+    (count,) = struct.unpack("<I", read(4, "the field count"))
+    if count > MAX_FIELDS:
+        raise bad(f"{count} fields declared (at most {MAX_FIELDS})")
+    fields: dict[str, Field] = {}
+    for k in range(count):
+        (nlen,) = struct.unpack("<H", read(2, f"field {k}'s name length"))
+        try:
+            name = read(nlen, f"field {k}'s name").decode("utf-8")
+        except UnicodeDecodeError:
+            raise bad(f"field {k}'s name is not UTF-8") from None
+        ndim, dtype = struct.unpack("<HB", read(3, f"field {name!r}'s rank and type"))
+        (offset,) = struct.unpack("<Q", read(8, f"field {name!r}'s offset"))
+        if ndim > MAX_NDIM:
+            raise bad(f"field {name!r} has {ndim} dimensions (at most {MAX_NDIM})")
+        shape = struct.unpack(f"<{ndim}Q", read(8 * ndim, f"field {name!r}'s shape"))
+        if dtype not in DTYPES:
+            raise bad(f"field {name!r} has unknown type code {dtype} (1-11)")
+        fld = Field(dtype, offset, tuple(int(s) for s in shape))
+        if offset > size or fld.nbytes > size - offset:
+            raise bad(f"field {name!r} ({DTYPE_NAMES[dtype]} × {fld.shape}: {fld.nbytes:,} "
+                      f"bytes at offset {offset:,}) runs past the end of the file "
+                      f"({size:,} bytes): truncated data or a wrong shape")
+        if name in fields:
+            raise bad(f"field {name!r} appears twice")
+        fields[name] = fld
+    return fields
+
+
+def read_tensor(path: str) -> dict[str, np.ndarray]:
+    """All fields of a tensor file as arrays (validated against the file's size first)."""
+    try:
+        with open(path, "rb") as f:
+            size = os.fstat(f.fileno()).st_size
+            fields = read_header(f, path, size)
+            out = {}
+            for name, fld in fields.items():
+                f.seek(fld.offset)
+                raw = f.read(fld.nbytes)
+                if len(raw) < fld.nbytes:
+                    raise BsdfError(f"{path}: field {name!r} is truncated")
+                out[name] = np.frombuffer(raw, dtype=DTYPES[fld.dtype]).reshape(fld.shape)
+    except OSError as e:
+        raise BsdfError(f"{path}: cannot read: {e.strerror or e}") from None
+    return out
+
+
+# --------------------------------------------------------------------------- the warps
+
+
+class Warp:
+    """Mitsuba's ``Marginal2D`` over a grid ``(ny, nx)`` of values, with ``S`` parameter slices
+    (the flattened (φi, θi) grid) in front: ``data`` is ``(S, ny, nx)``.  ``cdf`` builds the
+    marginal/conditional CDFs and normalises each slice (as ``build_cdf = true``)."""
+
+    def __init__(self, data: np.ndarray, params: list[np.ndarray], cdf: bool):
+        self.params = params
+        self.sizes = [len(p) for p in params]
+        s = int(np.prod(self.sizes)) if params else 1
+        data = np.asarray(data, dtype=np.float64).reshape(s, *data.shape[-2:])
+        self.ny, self.nx = data.shape[1:]
+        if cdf:
+            # conditional CDF along x (trapezoids), marginal along y of the row totals
+            cond = np.zeros_like(data)
+            cond[:, :, 1:] = np.cumsum(0.5 * (data[:, :, 1:] + data[:, :, :-1]), axis=2)
+            rows = cond[:, :, -1]
+            marg = np.zeros((s, self.ny))
+            marg[:, 1:] = np.cumsum(0.5 * (rows[:, 1:] + rows[:, :-1]), axis=1)
+            total = marg[:, -1]
+            norm = safe_div(1.0, total, total > 0)  # a slice of zeros: checked at load
+            self.data = data * norm[:, None, None]
+            self.cond = cond * norm[:, None, None]
+            self.marg = marg * norm[:, None]
+        else:
+            self.data = data
+
+    def corners(self, values: list[np.ndarray]):
+        """``[(slice index, weight)]`` over the 2^D corners of the parameter cell (linear
+        interpolation, clamped at the ends; a parameter with one value has weight 1)."""
+        out = [(np.zeros(np.shape(values[0]) if values else (), dtype=np.intp), 1.0)]
+        stride = 1
+        strides = []
+        for n in reversed(self.sizes):
+            strides.append(stride)
+            stride *= n
+        strides.reverse()
+        for grid, v, st in zip(self.params, values, strides, strict=True):
+            n = len(grid)
+            if n == 1:
+                continue
+            i0 = np.clip(np.searchsorted(grid, v, side="right") - 1, 0, n - 2)
+            p0, p1 = grid[i0], grid[i0 + 1]
+            w1 = np.clip((v - p0) / (p1 - p0), 0.0, 1.0)  # grid strictly increasing: p1 > p0
+            out = [(idx + i0 * st, w * (1.0 - w1)) for idx, w in out] + \
+                  [(idx + (i0 + 1) * st, w * w1) for idx, w in out]
+        return out
+
+    @staticmethod
+    def lookup(arr: np.ndarray, corners, *index) -> np.ndarray:
+        """``Σ_corners w · arr[slice, *index]``: one flat ``take`` per corner (2–3× faster
+        than fancy indexing); trailing axes of ``arr`` beyond ``index`` are kept (channels)."""
+        n_tail = 1
+        tail = 0
+        for k, i in enumerate(index):
+            tail = tail * arr.shape[1 + k] + i
+            n_tail *= arr.shape[1 + k]
+        rest = arr.shape[1 + len(index):]
+        flat = arr.reshape(arr.shape[0] * n_tail, *rest)
+        if len(corners) == 1 and np.ndim(corners[0][0]) == 0 and corners[0][1] == 1.0:
+            return flat.take(corners[0][0] * n_tail + tail, axis=0)  # one table (collapsed)
+        out = 0.0
+        for idx, w in corners:
+            v = flat.take(idx * n_tail + tail, axis=0)
+            out = out + (w[..., None] if rest and np.ndim(w) else w) * v
+        return out
+
+    def collapse(self, corners) -> Warp:
+        """This warp at one parameter point (``corners`` of a single incidence): the slices
+        mixed once, so that later lookups gather from one table.  Identical to interpolating
+        at every lookup, since every lookup is linear in the slices."""
+        w = Warp.__new__(Warp)
+        w.params, w.sizes = [], []
+        w.ny, w.nx = self.ny, self.nx
+
+        def mix(a):
+            return sum(float(np.ravel(wt)[0]) * a[int(np.ravel(ix)[0])]
+                       for ix, wt in corners)[None]
+
+        w.data = mix(self.data)
+        if hasattr(self, "cond"):
+            w.cond, w.marg = mix(self.cond), mix(self.marg)
+        return w
+
+    def cell(self, pos: np.ndarray, n: int):
+        """Cell index and fraction of unit-square coordinate ``pos`` on an axis of n samples."""
+        p = np.clip(pos, 0.0, 1.0) * (n - 1)
+        i = np.minimum(p.astype(np.intp), n - 2)
+        return i, p - i
+
+    def eval(self, u: np.ndarray, corners) -> np.ndarray:
+        """Bilinear interpolation of the (un-normalised) data at ``u = (x, y)``."""
+        ix, fx = self.cell(u[0], self.nx)
+        iy, fy = self.cell(u[1], self.ny)
+        d = self.data
+        if d.ndim == 4:  # (S, ny, nx, channels): weights broadcast over the channels
+            fx, fy = fx[:, None], fy[:, None]
+
+        def at(dy, dx):
+            return self.lookup(d, corners, iy + dy, ix + dx)
+
+        return (1 - fy) * ((1 - fx) * at(0, 0) + fx * at(0, 1)) + \
+            fy * ((1 - fx) * at(1, 0) + fx * at(1, 1))
+
+    def invert(self, u: np.ndarray, corners) -> tuple[np.ndarray, np.ndarray]:
+        """``Marginal2D::invert``: the unit-square sample that ``sample()`` maps to ``u``."""
+        ix, sx = self.cell(u[0], self.nx)
+        iy, sy = self.cell(u[1], self.ny)
+        L = partial(self.lookup, self.data, corners)
+        v00, v10 = L(iy, ix), L(iy, ix + 1)
+        v01, v11 = L(iy + 1, ix), L(iy + 1, ix + 1)
+        c0 = (1 - sy) * v00 + sy * v01
+        c1 = (1 - sy) * v10 + sy * v11
+        x = sx * (c0 + 0.5 * sx * (c1 - c0))
+        C = partial(self.lookup, self.cond, corners)
+        x = x + (1 - sy) * C(iy, ix) + sy * C(iy + 1, ix)
+        r0, r1 = C(iy, self.nx - 1), C(iy + 1, self.nx - 1)
+        row = (1 - sy) * r0 + sy * r1
+        x = safe_div(x, row, row > 0)  # an all-zero row (no density): 0
+        y = sy * (r0 + 0.5 * sy * (r1 - r0))
+        y = y + self.lookup(self.marg, corners, iy)
+        return x, y
+
+
+# --------------------------------------------------------------------------- the material
+
+
+@dataclass
+class RglData:
+    path: str
+    description: str
+    isotropic: bool
+    jacobian: bool
+    reduction: int
+    spectral: bool
+    n_wavelengths: int
+    n_invalid: int | None
+    phi_i: np.ndarray
+    theta_i: np.ndarray
+    ndf: Warp
+    sigma: Warp
+    vndf: Warp
+    rgb: Warp  # (S, ny, nx, 3) float64, linear sRGB; shares the vndf's parameter grid
+
+    def __call__(self, wi, wo):
+        return evaluate(self, wi, wo)
+
+
+def _check_float(path, arrays, name, ndim):
+    if name not in arrays:
+        raise BsdfError(f"{path}: missing field {name!r}")
+    a = arrays[name]
+    if a.dtype.kind != "f" or a.dtype.itemsize not in (4, 8):
+        raise BsdfError(f"{path}: field {name!r} has type {a.dtype}, expected float32")
+    if a.ndim != ndim:
+        raise BsdfError(f"{path}: field {name!r} has {a.ndim} dimensions, expected {ndim}")
+    a = a.astype(np.float64)
+    if not np.all(np.isfinite(a)):
+        n = int((~np.isfinite(a)).sum())
+        raise BsdfError(f"{path}: field {name!r} has {n} NaN or infinite values")
+    return a
+
+
+def load(path: str | os.PathLike) -> RglData:
+    """Read, validate and prepare an RGL ``.bsdf`` file (raises :class:`BsdfError`)."""
+    path = os.fspath(path)
+    arrays = read_tensor(path)
+
+    def need(name):
+        if name not in arrays:
+            raise BsdfError(f"{path}: missing field {name!r} (an RGL material has "
+                            "description, phi_i, theta_i, ndf, sigma, vndf, luminance, rgb or "
+                            "spectra + wavelengths, jacobian)")
+        return arrays[name]
+
+    desc = need("description")
+    jac = need("jacobian")
+    if desc.dtype != np.uint8 or desc.ndim != 1:
+        raise BsdfError(f"{path}: field 'description' must be uint8 text")
+    if jac.dtype != np.uint8 or jac.shape != (1,):
+        raise BsdfError(f"{path}: field 'jacobian' must be one uint8, found {jac.dtype} × "
+                        f"{jac.shape}")
+    phi = _check_float(path, arrays, "phi_i", 1)
+    theta = _check_float(path, arrays, "theta_i", 1)
+    ndf = _check_float(path, arrays, "ndf", 2)
+    sigma = _check_float(path, arrays, "sigma", 2)
+    vndf = _check_float(path, arrays, "vndf", 4)
+    lum = _check_float(path, arrays, "luminance", 4)
+    spectral = "rgb" not in arrays and "spectra" in arrays
+    if not spectral:
+        need("rgb")
+    values = _check_float(path, arrays, "spectra" if spectral else "rgb", 5)
+    n_phi, n_theta = len(phi), len(theta)
+    for name, grid in (("phi_i", phi), ("theta_i", theta)):
+        if len(grid) < 1 or (len(grid) > 1 and not np.all(np.diff(grid) > 0)):
+            raise BsdfError(f"{path}: field {name!r} must be a non-empty, strictly increasing "
+                            "grid")
+    for name, a in (("ndf", ndf), ("sigma", sigma)):
+        if min(a.shape) < 2:
+            raise BsdfError(f"{path}: field {name!r} has shape {a.shape}: each side ≥ 2")
+    if vndf.shape[:2] != (n_phi, n_theta) or min(vndf.shape[2:]) < 2:
+        raise BsdfError(f"{path}: field 'vndf' has shape {vndf.shape}, expected "
+                        f"({n_phi}, {n_theta}, ny ≥ 2, nx ≥ 2)")
+    if lum.shape[:2] != (n_phi, n_theta) or lum.shape[2] != lum.shape[3]:
+        raise BsdfError(f"{path}: field 'luminance' has shape {lum.shape}, expected "
+                        f"({n_phi}, {n_theta}, n, n)")
+    name = "spectra" if spectral else "rgb"
+    if values.shape[:2] != (n_phi, n_theta) or values.shape[3:] != lum.shape[2:]:
+        raise BsdfError(f"{path}: field {name!r} has shape {values.shape}, expected "
+                        f"({n_phi}, {n_theta}, {'λ' if spectral else 3}, {lum.shape[2]}, "
+                        f"{lum.shape[3]})")
+    if spectral:
+        wl = _check_float(path, arrays, "wavelengths", 1)
+        if len(wl) != values.shape[2] or (len(wl) > 1 and not np.all(np.diff(wl) > 0)):
+            raise BsdfError(f"{path}: field 'wavelengths' must list the {values.shape[2]} "
+                            "wavelengths of 'spectra', increasing")
+        from tuibrdf.core.formats.cie import spectrum_to_srgb_matrix
+
+        try:
+            m = spectrum_to_srgb_matrix(wl)
+        except ValueError as e:
+            raise BsdfError(f"{path}: {e}") from None
+        rgb = np.einsum("pwl...,lc->pwc...", values, m)
+    else:
+        if values.shape[2] != 3:
+            raise BsdfError(f"{path}: field 'rgb' has {values.shape[2]} channels, expected 3")
+        rgb = values
+    if np.any(vndf < 0):
+        raise BsdfError(f"{path}: field 'vndf' has negative values (it is a density)")
+    isotropic = n_phi <= 2
+    reduction = 1
+    if not isotropic:
+        span = phi[-1] - phi[0]
+        reduction = int(np.rint(2 * np.pi / span)) if span > 0 else 0
+        if reduction not in (1, 2, 4):
+            raise BsdfError(f"{path}: the φi grid spans {np.degrees(span):.4g}°: expected "
+                            "360°, 180° or 90° (symmetry reduction 1, 2 or 4)")
+    params = [phi.astype(np.float64), theta.astype(np.float64)]
+    vwarp = Warp(vndf, params, cdf=True)
+    empty = vwarp.marg[:, -1] <= 0.0
+    if np.any(empty):
+        raise BsdfError(f"{path}: field 'vndf' is zero everywhere in {int(empty.sum())} "
+                        "incidence slice(s)")
+    valid = arrays.get("valid")
+    n_invalid = int(np.count_nonzero(valid == 0)) if valid is not None else None
+    return RglData(
+        path=path,
+        description=bytes(desc).decode("utf-8", errors="replace").strip("\0 \n"),
+        isotropic=isotropic, jacobian=bool(jac[0]), reduction=reduction, spectral=spectral,
+        n_wavelengths=int(values.shape[2]) if spectral else 0, n_invalid=n_invalid,
+        phi_i=params[0], theta_i=params[1],
+        ndf=Warp(ndf, [], cdf=False), sigma=Warp(sigma, [], cdf=False), vndf=vwarp,
+        rgb=_channels_last(rgb, params),
+    )
+
+
+def _channels_last(rgb: np.ndarray, params: list[np.ndarray]) -> Warp:
+    """The ``(φi, θi, 3, ny, nx)`` tensor as a warp over ``(S, ny, nx, 3)`` (no CDFs)."""
+    w = Warp.__new__(Warp)
+    w.params = params
+    w.sizes = [len(p) for p in params]
+    s = int(np.prod(w.sizes))
+    w.ny, w.nx = rgb.shape[3:]
+    w.data = np.ascontiguousarray(np.moveaxis(rgb.reshape(s, 3, w.ny, w.nx), 1, -1),
+                                  dtype=np.float64)
+    return w
+
+
+def _elevation(d: np.ndarray) -> np.ndarray:
+    """``acos(d.z)`` computed as ``2 asin(|d − N| / 2)`` (powitacq's robust form)."""
+    dist = np.sqrt(d[..., 0] ** 2 + d[..., 1] ** 2 + (d[..., 2] - 1.0) ** 2)
+    return 2.0 * np.arcsin(np.minimum(0.5 * dist, 1.0))
+
+
+def _theta2u(t):
+    return np.sqrt(np.maximum(t, 0.0) * (2.0 / np.pi))
+
+
+def _phi2u(p):
+    return (p + np.pi) / (2.0 * np.pi)
+
+
+def evaluate(data: RglData, wi: np.ndarray, wo: np.ndarray, clamp: bool = True) -> np.ndarray:
+    """RGB BRDF values (sr⁻¹, no cosine factor), shape ``(..., 3)``; negative values clamped to
+    0 unless ``clamp`` is False (module docstring)."""
+    one_light = np.asarray(wi).size == 3  # one incidence for all (a map): mix slices once
+    wi, wo = np.broadcast_arrays(np.asarray(wi, dtype=float), np.asarray(wo, dtype=float))
+    shape = wi.shape[:-1]
+    wi = wi.reshape(-1, 3).copy()
+    wo = wo.reshape(-1, 3).copy()
+    active = (wi[:, 2] > 0) & (wo[:, 2] > 0)
+    if data.reduction >= 2:  # into the measured half/quadrant (Mitsuba 3's mulsign_neg)
+        sy = wi[:, 1]
+        sx = wi[:, 0] if data.reduction == 4 else sy
+        fx = np.where(sx >= 0, -1.0, 1.0)
+        fy = np.where(sy >= 0, -1.0, 1.0)
+        wi[:, 0] *= fx
+        wo[:, 0] *= fx
+        wi[:, 1] *= fy
+        wo[:, 1] *= fy
+    s = wi + wo
+    n = np.sqrt(np.sum(s * s, axis=-1))
+    ok = active & (n > 0)
+    wm = s / np.where(ok, n, 1.0)[:, None]  # wi = −wo: H undefined (inactive anyway)
+    theta_i, phi_i = _elevation(wi), np.arctan2(wi[:, 1], wi[:, 0])
+    theta_m, phi_m = _elevation(wm), np.arctan2(wm[:, 1], wm[:, 0])
+    u_wi = np.stack([_theta2u(theta_i), _phi2u(phi_i)])
+    um_y = _phi2u(phi_m - phi_i if data.isotropic else phi_m)
+    u_wm = np.stack([_theta2u(theta_m), um_y - np.floor(um_y)])
+    vndf, rgb = data.vndf, data.rgb
+    if one_light and len(wi):
+        corners = vndf.corners([phi_i[:1], theta_i[:1]])
+        vndf, rgb = vndf.collapse(corners), rgb.collapse(corners)
+        corners = [(np.intp(0), 1.0)]
+    else:
+        corners = vndf.corners([phi_i, theta_i])
+    x, y = vndf.invert(u_wm, corners)
+    sample = np.stack([x, y])
+    out = rgb.eval(sample, corners)  # (N, 3): all channels in one gather per corner
+    if data.jacobian:
+        num = data.ndf.eval(u_wm, data.ndf.corners([]))
+        den = 4.0 * data.sigma.eval(u_wi, data.sigma.corners([]))
+        out *= safe_div(num, den, den > 0)[:, None]  # σ = 0: no projected area, value 0
+    cos_o = np.maximum(wo[:, 2], COS_FLOOR)  # the data is f·cos θo (powitacq's eval)
+    out /= cos_o[:, None]
+    if clamp:
+        out = np.maximum(out, 0.0)  # out-of-gamut spectra give negative RGB: shown as 0
+    out = np.where(ok[:, None], out, 0.0)
+    return out.reshape(*shape, 3)
+
+
+# --------------------------------------------------------------------------- the model
+
+def _kernel(data: RglData, wi, wo):
+    return evaluate(data, wi, wo)
+
+
+def load_model(path: str, name: str) -> Model:
+    """A ``.bsdf`` file as an RGB model named ``name`` (no parameters)."""
+    data = load(path)
+    kind = f"spectral ({data.n_wavelengths} λ → sRGB, D65)" if data.spectral else "RGB"
+    sym = "isotropic" if data.isotropic else f"anisotropic (reduction {data.reduction})"
+    notes = [f"{kind}, {sym}, jacobian {int(data.jacobian)}",
+             "negative RGB (out-of-gamut spectra) clamped to 0 for display"]
+    if data.n_invalid is not None:
+        notes.append(f"'valid' mask: {data.n_invalid} invalid entries (not applied, as "
+                     "powitacq and Mitsuba)")
+    title = os.path.basename(path) + (f" — {data.description[:40]}" if data.description else "")
+    return Model(
+        name, title, (), partial(_kernel, data), rgb=True, reciprocal=False,
+        summary="RGL-EPFL measured material (Dupuy & Jakob 2018), evaluated as powitacq",
+        horizon="0 on the horizon (as powitacq); cos θo held at cos 89.9° within 0.1° of it",
+        notes=tuple(notes),
+    )
+
+
+__all__ = ["BsdfError", "RglData", "evaluate", "load", "load_model", "read_tensor"]

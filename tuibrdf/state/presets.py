@@ -1,0 +1,268 @@
+"""Saved parameter sets: one small TOML file per preset (no Textual).
+
+Files live in ``$XDG_CONFIG_HOME/tuibrdf/presets/NAME.toml`` (``~/.config`` when the variable
+is unset), are read with :mod:`tomllib`, and are written atomically (a temporary file in the
+same directory, then :func:`os.replace`), so a crash never leaves half a preset behind.  A
+preset holds θi and one or two sides (two in compare mode)::
+
+    # tuibrdf preset
+    theta_i = 45.0
+
+    [[sides]]
+    model = "phong"
+    params = { kd = 0.0, ks = 0.08, n = 70.0 }
+
+A malformed file raises :class:`PresetError` with a one-line message naming the file: the
+reader checks that the path is a regular file of at most :data:`MAX_BYTES` before opening it
+(a FIFO never blocks it, see :mod:`tuibrdf.core.formats.files`), and a hostile TOML document (a
+400-digit integer, 600-deep nesting, a 5 000-digit number) is a message, not an exception.
+Saving and listing remove temporary files that a killed save left behind (``.NAME.*.partial``,
+older than :data:`STALE_SECONDS`); a failed save (read-only or full disk, the presets path is
+a file) is a :class:`PresetError` too.
+
+Nothing here blocks for long, but it does touch the disk: a caller with an event loop runs
+:func:`load_preset` and :func:`save_preset` in a worker thread.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+from tuibrdf.core.formats.files import read_regular
+from tuibrdf.core.registry import get_model
+from tuibrdf.state.viewer import THETA_MAX, THETA_MIN, Side, ViewerState
+
+NAME_RE = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]{0,63}$")
+
+
+#: a preset is a few hundred bytes; anything much larger is not one
+MAX_BYTES = 64 * 1024
+#: suffix of the temporary file a save writes before renaming it (recognisable, so a stale one
+#: left by a killed save can be removed)
+TMP_SUFFIX = ".partial"
+#: a temporary file older than this is left over from a killed save (a save takes milliseconds)
+STALE_SECONDS = 60.0
+
+
+class PresetError(ValueError):
+    """A preset that cannot be saved or loaded (bad name, unreadable or malformed file)."""
+
+
+def preset_dir() -> Path:
+    base = os.environ.get("XDG_CONFIG_HOME") or os.path.join(os.path.expanduser("~"), ".config")
+    return Path(base) / "tuibrdf" / "presets"
+
+
+def preset_path(name: str) -> Path:
+    if not NAME_RE.match(name):
+        raise PresetError(f"preset name {name!r} is invalid: use letters, digits, _ . - "
+                          "(at most 64 characters)")
+    return preset_dir() / f"{name}.toml"
+
+
+def list_presets() -> list[str]:
+    """Names of the saved presets (regular files ``NAME.toml`` with a valid name), sorted.
+    Never raises: an unreadable directory lists nothing."""
+    d = preset_dir()
+    try:
+        if not d.is_dir():
+            return []
+        clean_stale(d)
+        return sorted(p.stem for p in d.glob("*.toml") if NAME_RE.match(p.stem) and p.is_file())
+    except OSError:
+        return []
+
+
+def clean_stale(d: Path, now: float | None = None) -> int:
+    """Remove temporary files of killed saves (``.NAME.toml.XXXX.partial`` older than
+    :data:`STALE_SECONDS`) from ``d``; returns how many.  Errors are ignored (a read-only
+    directory keeps its leftovers)."""
+    now = time.time() if now is None else now
+    removed = 0
+    try:
+        entries = list(d.glob(f".*.toml.*{TMP_SUFFIX}"))
+    except OSError:
+        return 0
+    for p in entries:
+        try:
+            st = p.lstat()
+            if p.is_file() and not p.is_symlink() and now - st.st_mtime > STALE_SECONDS:
+                p.unlink()
+                removed += 1
+        except OSError:
+            continue
+    return removed
+
+
+# -- writing: a tiny TOML emitter for the few types a preset holds ---------------------------
+def _toml_value(v: Any) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, int | float):
+        v = float(v)
+        if not math.isfinite(v):  # validated values are finite; TOML's inf/nan would load back
+            raise PresetError(f"cannot save a non-finite value {v!r}")
+        return repr(v)
+    if isinstance(v, str):
+        return json.dumps(v)  # a JSON string (\" \\ \uXXXX escapes) is a TOML basic string
+    if isinstance(v, tuple | list):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    raise PresetError(f"cannot save a value of type {type(v).__name__}")
+
+
+def _key(k: str) -> str:
+    return k if re.match(r"^[A-Za-z0-9_-]+$", k) else json.dumps(k)
+
+
+def to_toml(state: ViewerState) -> str:
+    lines = ["# tuibrdf preset", f"theta_i = {_toml_value(state.theta_i)}"]
+    for side in state.sides:
+        params = ", ".join(f"{_key(k)} = {_toml_value(v)}" for k, v in side.values.items())
+        lines += ["", "[[sides]]", f"model = {_toml_value(side.model)}",
+                  f"params = {{ {params} }}"]
+    return "\n".join(lines) + "\n"
+
+
+def check_can_save(name: str) -> Path:
+    """Raise :class:`PresetError` now if preset ``name`` could not be saved (bad name, the
+    directory cannot be created or written): for a caller about to spend time computing
+    what it will save (``tuibrdf fit --save-preset``).  Returns the path."""
+    path = preset_path(name)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise PresetError(f"cannot save preset {name!r}: cannot create {path.parent}: "
+                          f"{_why(e)}") from None
+    if path.is_dir():
+        raise PresetError(f"cannot save preset {name!r}: {path} is a directory")
+    if not os.access(path.parent, os.W_OK | os.X_OK):
+        raise PresetError(f"cannot save preset {name!r} to {path.parent}: permission denied")
+    return path
+
+
+def save_preset(state: ViewerState, name: str) -> Path:
+    """Write ``state`` as preset ``name`` atomically; return the path.  Raises
+    :class:`PresetError` naming the path and the problem when it cannot be written (read-only
+    or full disk, no permission, the presets directory is a file)."""
+    path = preset_path(name)
+    text = to_toml(state)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise PresetError(f"cannot save preset {name!r}: cannot create {path.parent}: "
+                          f"{_why(e)}") from None
+    if path.is_dir():  # os.replace onto a directory: say what it is
+        raise PresetError(f"cannot save preset {name!r}: {path} is a directory")
+    clean_stale(path.parent)
+    tmp = ""
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{name}.toml.", suffix=TMP_SUFFIX, dir=path.parent)
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except OSError as e:
+        if tmp:
+            _unlink_quietly(tmp)
+        raise PresetError(f"cannot save preset {name!r} to {path}: {_why(e)}") from None
+    except BaseException:
+        if tmp:
+            _unlink_quietly(tmp)
+        raise
+    return path
+
+
+def _why(e: OSError) -> str:
+    return e.strerror or str(e)
+
+
+def _unlink_quietly(path: str) -> None:
+    try:
+        os.unlink(path)
+    except OSError:
+        pass
+
+
+# -- reading ------------------------------------------------------------------------------
+def from_toml(text: str, where: str = "preset") -> tuple[float, list[Side]]:
+    """Parse and validate a preset: ``(theta_i, sides)``.  Raises :class:`PresetError`."""
+    import tomllib  # ≈ 20 ms (its regular expressions): when a preset is read, not at start
+
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise PresetError(f"{where}: not valid TOML ({e})") from None
+    except RecursionError:  # tomllib recurses once per nesting level
+        raise PresetError(f"{where}: not a preset: nested too deeply") from None
+    except ValueError as e:  # int() of a number beyond Python's digit limit, etc.
+        msg = str(e)
+        if "digits" in msg:
+            msg = "a number has too many digits"
+        raise PresetError(f"{where}: not a preset: {_one_line(msg)}") from None
+    theta = data.get("theta_i", 30.0)
+    if isinstance(theta, bool) or not isinstance(theta, int | float) \
+            or not THETA_MIN <= theta <= THETA_MAX:
+        raise PresetError(f"{where}: theta_i = {_one_line(repr(theta), 40)} is invalid: "
+                          "expected a number in [0, 90]")
+    raw = data.get("sides")
+    if not isinstance(raw, list) or not 1 <= len(raw) <= 2:
+        raise PresetError(f"{where}: expected one or two [[sides]] tables")
+    sides = []
+    for entry in raw:
+        if not isinstance(entry, dict) or not isinstance(entry.get("model"), str):
+            raise PresetError(f"{where}: each [[sides]] needs model = \"NAME\"")
+        params = entry.get("params", {})
+        if not isinstance(params, dict):
+            raise PresetError(f"{where}: params must be a table")
+        try:
+            model = get_model(entry["model"])
+            for k, v in params.items():  # float() of a 400-digit integer overflows
+                if isinstance(v, int) and not isinstance(v, bool) and abs(v) > 1e300:
+                    raise ValueError(f"{model.name}: {k} = an integer of {len(str(abs(v)))} "
+                                     "digits is invalid: expected a number")
+            sides.append(Side(model.name, model.resolve(params)))
+        except (ValueError, OverflowError) as e:  # OverflowError: float() of a 400-digit int
+            raise PresetError(f"{where}: {_one_line(str(e))}") from None
+    return float(theta), sides
+
+
+def _one_line(text: str, limit: int = 300) -> str:
+    """A message from a hostile file on one line of bounded length (its values are echoed)."""
+    text = " ".join(text.split())
+    return text if len(text) <= limit else text[:limit] + "…"
+
+
+def load_preset(name: str) -> tuple[float, list[Side]]:
+    """``(theta_i, sides)`` of the saved preset ``name``; raises :class:`PresetError` (one
+    line naming the file) for a missing, non-regular, oversized, undecodable or malformed
+    file.  Never blocks on a FIFO."""
+    path = preset_path(name)
+    try:
+        text = read_regular(path, MAX_BYTES).decode("utf-8")
+    except FileNotFoundError:
+        have = list_presets()
+        hint = f"; saved presets: {', '.join(have)}" if have else ""
+        raise PresetError(f"no preset named {name!r} in {path.parent}{hint}") from None
+    except OSError as e:
+        raise PresetError(f"cannot read {path}: {_why(e)}") from None
+    except UnicodeDecodeError as e:
+        raise PresetError(f"cannot read {path}: not UTF-8 text (byte {e.start})") from None
+    return from_toml(text, str(path))
+
+
+def apply_loaded(state: ViewerState, theta_i: float, sides: list[Side]) -> None:
+    """Put a loaded preset into ``state`` (compare mode iff it has two sides)."""
+    state.theta_i = theta_i
+    state.sides = sides
+    state.active = 0
+    state.preset = ""
+    for s in sides:
+        state.memory[s.model] = dict(s.values)
