@@ -267,6 +267,11 @@ def ablation_table(refs):
     defaults (80 cases) and the hard cases (48): evaluations and kernel calls (the same on
     every machine), worst error and estimate, and the summed time (best of 3 each)."""
     from tuibrdf.core.sphere import integrator as polar
+    from tuibrdf.core.sphere.integrator import adaptive, geometry, horizon_cut, rules
+
+    # a constant is read in the module that defines it (and albedo reads the ones the package
+    # re-exports): a change is set in every module that binds the name
+    modules = (polar, adaptive, geometry, horizon_cut, rules)
 
     print("\nRefinement choices, one changed at a time: analytic models' defaults (80 cases) | "
           "hard cases (48)")
@@ -278,9 +283,11 @@ def ablation_table(refs):
         _run_counted(model, model.resolve(params), th, q.DEFAULT_RTOL)
     for label, change in ABLATIONS:
         rtol = change.get("rtol", q.DEFAULT_RTOL)
-        old = {k: getattr(polar, k) for k in change if k != "rtol"}
-        for k in old:
-            setattr(polar, k, change[k])
+        old = {(m, k): getattr(m, k) for k in change if k != "rtol" for m in modules
+               if hasattr(m, k)}
+        assert {k for _, k in old} == set(change) - {"rtol"}, change  # every name found
+        for m, k in old:
+            setattr(m, k, change[k])
         try:
             stats = {True: [], False: []}
             for name, params, th in cases:
@@ -292,8 +299,8 @@ def ablation_table(refs):
                 est = float(np.max(np.asarray(r.error[0]) / np.abs(ref.value).clip(1e-300)))
                 stats[not params].append((n, c, e, est, t))
         finally:
-            for k, v in old.items():
-                setattr(polar, k, v)
+            for (m, k), v in old.items():
+                setattr(m, k, v)
         d, h = stats[True], stats[False]
         print(f"{label:<48} {sum(x[0] for x in d):7d} {sum(x[1] for x in d):5d} "
               f"{max(x[1] for x in d):3d} {sum(x[1] > 1 for x in d):3d} "

@@ -24,6 +24,7 @@ from tuibrdf.core.sphere.albedo import (
     albedo_estimate_resolved,
     exceeds_one,
 )
+from tuibrdf.core.sphere.integrator import adaptive, horizon_cut, rules
 
 # ---------------------------------------------------------------------------------------------
 # independent references
@@ -108,7 +109,7 @@ def test_kronrod_constants(n_gauss, degree, margin):
     # exactly for k ≤ degree + 1 (odd k: 0 by symmetry) and not x^(degree + 2):
     # (G7, K15) for wide panels, (G3, K7) for small ones
     n = 2 * n_gauss + 1
-    xs, wg, wk = getattr(polar, f"X{n}"), getattr(polar, f"WG{n}"), getattr(polar, f"WK{n}")
+    xs, wg, wk = getattr(rules, f"X{n}"), getattr(rules, f"WG{n}"), getattr(rules, f"WK{n}")
     x, w = np.polynomial.legendre.leggauss(n_gauss)
     on = wg > 0
     assert np.allclose(xs[on], x, atol=1e-15) and np.allclose(wg[on], w, atol=1e-15)
@@ -318,15 +319,15 @@ def test_tilted_half_frame_axis(theta):
 
 def test_graded_cut_toward_a_panel_end():
     # a panel flagged as ending at the horizon or a break is cut at hi − w/2, hi − w/8,
-    # hi − w/32 (a half, then ratio 4 toward hi; polar.END_LEVELS = 3): the children tile it
+    # hi − w/32 (a half, then ratio 4 toward hi; adaptive.END_LEVELS = 3): the children tile it
     # exactly, the last one ends at hi bit for bit, and only it keeps the flag; an unflagged
     # panel is halved
     lo, hi = np.array([0.3, 0.0]), np.array([1.7, 1.0])
-    a, b, owner, end = polar._divide(lo, hi, np.array([0, 1]), np.array([5.0, 5.0]),
-                                     np.array([True, False]))
+    a, b, owner, end = adaptive._divide(lo, hi, np.array([0, 1]), np.array([5.0, 5.0]),
+                                        np.array([True, False]))
     first = owner == 0
     w = 1.7 - 0.3
-    assert polar.END_LEVELS == 3
+    assert adaptive.END_LEVELS == 3
     np.testing.assert_allclose(b[first], [1.7 - w / 2, 1.7 - w / 8, 1.7 - w / 32, 1.7],
                                rtol=1e-15)
     assert a[first][0] == 0.3 and b[first][-1] == 1.7
@@ -542,14 +543,15 @@ def test_pole_estimate_is_k15_minus_g7_and_falls_beyond_1e_2():
     # checked above); _horizon_cut's quick exit needs it decreasing for δ ≥ 1e-2
     x7, w7 = np.polynomial.legendre.leggauss(7)
     for delta in (1e-4, 5e-3, 0.05, 0.3):
-        t15 = 0.5 * (1.0 - polar.X15)
-        k15 = 0.5 * np.sum(polar.WK15 * delta / (t15 + delta))
+        t15 = 0.5 * (1.0 - rules.X15)
+        k15 = 0.5 * np.sum(rules.WK15 * delta / (t15 + delta))
         g7 = 0.5 * np.sum(w7 * delta / (0.5 * (1.0 - x7) + delta))
-        assert polar._pole_estimate(delta) == pytest.approx(abs(k15 - g7), rel=1e-9, abs=1e-17)
-    b = polar._pole_estimate(np.geomspace(1e-2, 2.0, 2000))
+        assert horizon_cut._pole_estimate(delta) == pytest.approx(abs(k15 - g7), rel=1e-9,
+                                                                  abs=1e-17)
+    b = horizon_cut._pole_estimate(np.geomspace(1e-2, 2.0, 2000))
     assert np.all(np.diff(b) <= 0.0)
-    assert polar._pole_estimate(np.geomspace(2.0, 1e3, 2000)).max() < 1e-13  # rounding
-    assert polar._pole_estimate(np.geomspace(1e-6, 1e-2, 400)).max() < 3e-3
+    assert horizon_cut._pole_estimate(np.geomspace(2.0, 1e3, 2000)).max() < 1e-13  # rounding
+    assert horizon_cut._pole_estimate(np.geomspace(1e-6, 1e-2, 400)).max() < 3e-3
 
 
 def test_horizon_cut_layout():
@@ -565,8 +567,8 @@ def test_horizon_cut_layout():
     rmax = np.array([1.5, 1.5])
     eps = np.array([1e-3, 1.0])
     case, wpsi = np.array([0, 0]), np.array([1.0, 1.0])
-    a, b, nd, e, flag = polar._horizon_cut(lo, hi, node, end, rmax, eps, 0.04, 1e-5, case,
-                                           wpsi)
+    a, b, nd, e, flag = horizon_cut._horizon_cut(lo, hi, node, end, rmax, eps, 0.04, 1e-5,
+                                                 case, wpsi)
     mine = nd == 0
     order = np.argsort(a[mine])
     a0, b0, e0, f0 = a[mine][order], b[mine][order], e[mine][order], flag[mine][order]
@@ -583,21 +585,21 @@ def test_horizon_cut_layout():
     assert not flag[other].any()
     # amplitude 0, or a tolerance the estimate is below: nothing is cut
     for amp, rtol in ((0.0, 1e-5), (0.04, 1.0)):
-        out = polar._horizon_cut(lo, hi, node, end, rmax, eps, amp, rtol, case, wpsi)
+        out = horizon_cut._horizon_cut(lo, hi, node, end, rmax, eps, amp, rtol, case, wpsi)
         np.testing.assert_array_equal(out[0], lo)
         assert not out[4].any()
     # the pole term's estimate on node 0's last panel, written here: amp·w·|K15 − G7| of
     # eps/(d + eps); the incidence's weighted mean of it is that over 2 (node 1: ~0)
-    t = 0.35 * (1.0 - polar.X15)
-    est = 0.04 * 0.35 * abs(np.sum((polar.WK15 - polar.WG15) * 1e-3 / (t + 1e-3)))
-    assert est > polar.HORIZON_SHARE * 1e-5
+    t = 0.35 * (1.0 - rules.X15)
+    est = 0.04 * 0.35 * abs(np.sum((rules.WK15 - rules.WG15) * 1e-3 / (t + 1e-3)))
+    assert est > horizon_cut.HORIZON_SHARE * 1e-5
     # node 0's weight so small that the incidence's mean is below HORIZON_GATE·rtol: no cut
-    small = np.array([1.0, 2.0 * est / (polar.HORIZON_GATE * 1e-5)])
-    out = polar._horizon_cut(lo, hi, node, end, rmax, eps, 0.04, 1e-5, case, small)
+    small = np.array([1.0, 2.0 * est / (horizon_cut.HORIZON_GATE * 1e-5)])
+    out = horizon_cut._horizon_cut(lo, hi, node, end, rmax, eps, 0.04, 1e-5, case, small)
     np.testing.assert_array_equal(out[0], lo)
     # an incidence of its own for node 1, weight 0 (no node there): node 0 is cut alone
-    out = polar._horizon_cut(lo, hi, node, end, rmax, eps, 0.04, 1e-5, np.array([0, 1]),
-                             np.array([1.0, 0.0]))
+    out = horizon_cut._horizon_cut(lo, hi, node, end, rmax, eps, 0.04, 1e-5, np.array([0, 1]),
+                                   np.array([1.0, 0.0]))
     assert len(out[0]) == len(lo) + 3
 
 

@@ -10,11 +10,12 @@ import numpy as np
 import pytest
 
 from tuibrdf.core.sphere import integrator as polar
+from tuibrdf.core.sphere.integrator import adaptive, rules
 
 
 def test_one_minus_tables_are_one_minus_the_nodes():
     # 1 − x of the K15 and K7 nodes, element by element (the rule's distance to a panel's end)
-    for x, table in ((polar.X15, polar._ONE_MINUS[15]), (polar.X7, polar._ONE_MINUS[7])):
+    for x, table in ((rules.X15, rules._ONE_MINUS[15]), (rules.X7, rules._ONE_MINUS[7])):
         assert table.tolist() == [1.0 - float(t) for t in x]
         assert not table.flags.writeable
 
@@ -52,7 +53,7 @@ def test_initial_panels_match_the_loop(with_breaks):
         brk = rng.random(vals.shape) < 0.3
     else:
         vals, brk = grading[:, None], None
-    lo, hi, node, end = polar._initial_panels(vals, brk, rmax)
+    lo, hi, node, end = adaptive._initial_panels(vals, brk, rmax)
     want = _panels_by_loop(np.broadcast_to(vals, (len(vals), n)), brk, rmax)
     assert lo.tolist() == want[0]
     assert hi.tolist() == want[1]
@@ -66,14 +67,14 @@ def test_rule_rgb_is_the_weighted_sum_per_channel():
     rng = np.random.default_rng(3)
     g = rng.standard_normal((25, 15, 3)) * 10.0 ** rng.uniform(-6, 6, (25, 15, 3))
     half = rng.uniform(0.01, 1.0, 25)
-    k, e = polar._rule(g, half)
-    k_3d = np.einsum("pnc,n->pc", g, polar.WK15) * half[:, None]
-    g_3d = np.einsum("pnc,n->pc", g, polar.WG15) * half[:, None]
+    k, e = rules._rule(g, half)
+    k_3d = np.einsum("pnc,n->pc", g, rules.WK15) * half[:, None]
+    g_3d = np.einsum("pnc,n->pc", g, rules.WG15) * half[:, None]
     assert np.array_equal(k, k_3d)
     assert np.array_equal(e, np.abs(k_3d - g_3d))
     for p in range(25):
         for c in range(3):
-            terms = g[p, :, c] * polar.WK15
+            terms = g[p, :, c] * rules.WK15
             seq = 0.0
             for t in terms:
                 seq += t
@@ -82,10 +83,10 @@ def test_rule_rgb_is_the_weighted_sum_per_channel():
             assert abs(k[p, c] - math.fsum(terms) * half[p]) <= 1e-14 * scale
     # K7/G3 and one channel: the same sums
     g7 = g[:, :7, :1]
-    k7, _ = polar._rule(g7, half, polar.WK7, polar.WG7)
+    k7, _ = rules._rule(g7, half, rules.WK7, rules.WG7)
     for p in range(25):
         seq = 0.0
-        for t in g7[p, :, 0] * polar.WK7:
+        for t in g7[p, :, 0] * rules.WK7:
             seq += t
         assert k7[p, 0] == seq * half[p]
 
@@ -94,7 +95,7 @@ def test_sum_by_rgb_adds_rows_in_order():
     rng = np.random.default_rng(5)
     x = rng.standard_normal((200, 3)) * 10.0 ** rng.uniform(-8, 8, (200, 3))
     idx = rng.integers(0, 6, 200)
-    got = polar._sum_by(idx, x, 8)  # groups 6 and 7 are empty: 0
+    got = rules._sum_by(idx, x, 8)  # groups 6 and 7 are empty: 0
     want = np.zeros((8, 3))
     for i, row in zip(idx, x, strict=True):
         want[i] += row
@@ -103,8 +104,8 @@ def test_sum_by_rgb_adds_rows_in_order():
 
 def test_count_is_bincount():
     idx = np.array([0, 2, 2, 1, 2])
-    assert polar._count(idx, 4).tolist() == [1, 1, 3, 0]
-    assert polar._count(np.zeros(7, dtype=int), 1).tolist() == [7]
+    assert rules._count(idx, 4).tolist() == [1, 1, 3, 0]
+    assert rules._count(np.zeros(7, dtype=int), 1).tolist() == [7]
 
 
 def test_cases_frame_vectors():
