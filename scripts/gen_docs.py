@@ -13,7 +13,7 @@ Written whole, from the declarations they document:
 
 Refreshed in place (the prose is left alone): every fenced ``text`` block whose first line is
 ``$ tuibrdf ...`` gets that command's real output, run in-process from the repository's root,
-plain text (stdout is not a terminal): ``docs/reference/materials.md``.
+plain text (stdout is not a terminal): ``docs/guide.md`` and ``docs/reference/materials.md``.
 """
 
 from __future__ import annotations
@@ -34,7 +34,7 @@ MODELS_OUT = REFERENCE / "models.md"
 CLI_OUT = REFERENCE / "cli.md"
 KEYS_OUT = REFERENCE / "keys.md"
 #: hand-written docs whose ``$ tuibrdf ...`` blocks are refreshed
-REFRESHED = (REFERENCE / "materials.md",)
+REFRESHED = (DOCS / "guide.md", REFERENCE / "materials.md")
 
 #: a fenced text block (indented in a list item, or not) that starts with a command line
 #: (its exit status written after it when not 0)

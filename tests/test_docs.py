@@ -54,3 +54,17 @@ def test_readme_picture_is_the_commands_real_output():
     assert first.startswith("$ tuibrdf render ")
     rc, out = gen_docs.run_cli(" ".join(shlex.split(first[2:])))
     assert rc == 0 and out == shown
+
+
+def test_guide_pictures_are_small():
+    # the guide stays readable: every picture at most 64 columns by 20 rows
+    text = (ROOT / "docs/guide.md").read_text(encoding="utf-8")
+    renders = [c for c in gen_docs.commands_in(text) if c.startswith("tuibrdf render ")]
+    assert len(renders) >= 10
+    for line in renders:
+        args = shlex.split(line)
+        assert "--color" in args and args[args.index("--color") + 1] == "none", line
+        width = int(args[args.index("--width") + 1])
+        height = int(args[args.index("--height") + 1])
+        assert width <= 64 and height <= 20, line
+        assert "--view" not in args or args[args.index("--view") + 1] != "all", line
