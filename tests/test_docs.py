@@ -11,11 +11,15 @@ import re
 import shlex
 import subprocess
 import sys
+import unicodedata
 
 from tests import ROOT
 
 sys.path.insert(0, str(ROOT / "scripts"))
 import gen_docs  # noqa: E402
+
+#: a link to a doc another branch writes (scripts/bench_app.py writes docs/benchmarks.md)
+WRITTEN_ELSEWHERE = {"docs/benchmarks.md"}
 
 
 def test_generated_docs_are_current():
@@ -83,3 +87,52 @@ def test_guide_pictures_are_small():
         height = int(args[args.index("--height") + 1])
         assert width <= 64 and height <= 20, line
         assert "--view" not in args or args[args.index("--view") + 1] != "all", line
+
+
+def _anchors(md: str) -> set[str]:
+    """GitHub's anchors of a Markdown file's headings."""
+    out = set()
+    for line in md.splitlines():
+        m = re.match(r"#{1,6} (.*)", line)
+        if m:
+            title = m.group(1).strip().lower().replace("`", "")
+            slug = "".join(c for c in title
+                           if c in " -_" or unicodedata.category(c)[0] in "LN")
+            out.add(slug.replace(" ", "-"))
+    return out
+
+
+def test_links_resolve():
+    # every relative link of the README and docs/ names a file that exists, and a heading
+    # of it when it has an anchor
+    files = [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
+    bad = []
+    for path in files:
+        text = path.read_text(encoding="utf-8")
+        text = re.sub(r"```.*?```", "", text, flags=re.S)  # not in code blocks
+        for target in re.findall(r"\]\(([^)\s]+)\)", text):
+            if re.match(r"[a-z]+:", target):
+                continue
+            file, _, anchor = target.partition("#")
+            dest = (path.parent / file).resolve() if file else path
+            rel = dest.relative_to(ROOT).as_posix() if dest.is_relative_to(ROOT) else str(dest)
+            if not dest.exists():
+                if rel not in WRITTEN_ELSEWHERE:
+                    bad.append(f"{path.relative_to(ROOT)}: {target}")
+                continue
+            if anchor and dest.suffix == ".md" and \
+                    anchor not in _anchors(dest.read_text(encoding="utf-8")):
+                bad.append(f"{path.relative_to(ROOT)}: {target} (no such heading)")
+    assert not bad, bad
+
+
+def test_no_doc_points_at_a_deleted_doc():
+    # docstrings, comments and messages name docs that exist (docs/benchmarks.md aside)
+    pattern = re.compile(r"docs/[\w/.-]+\.md")
+    bad = []
+    for path in [*ROOT.glob("tuibrdf/**/*.py"), *ROOT.glob("tuibrdf/**/*.md"),
+                 *ROOT.glob("scripts/*.py"), *ROOT.glob("tests/**/*.py")]:
+        for ref in pattern.findall(path.read_text(encoding="utf-8")):
+            if not (ROOT / ref).exists() and ref not in WRITTEN_ELSEWHERE:
+                bad.append(f"{path.relative_to(ROOT)}: {ref}")
+    assert not bad, bad

@@ -33,7 +33,7 @@ in log space (t is capped just above the threshold, computed once per material; 
 within 1e-9 of it take the logarithmic test itself); D is 0 where ``exp(−a)`` underflows, and
 ``a`` is capped at 746 for ``a^p`` (which then cannot overflow; beyond, D = 0).
 
-Cost (docs/numerics.md, "Kernel cost"): sgd computes its three channels as the rows of
+Cost (``scripts/bench_kernels.py``): sgd computes its three channels as the rows of
 ``(3, M)`` arrays (one numpy call per operation, each over a contiguous row), and only at the
 points where the specular term can be ≠ 0 (ci·co above its floor, exp(−a) > 0 in some channel):
 elsewhere the value is ρd/π, as the formula gives there.

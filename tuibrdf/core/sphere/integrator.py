@@ -64,7 +64,7 @@ out to ρmax, so a lobe at the axis cannot fall between nodes, with the model's 
 All panels of a round, inner or outer, of every incidence go to the model in one call.  The
 reported error is the sum of the outer ``|K15 − G7|`` and the inner errors integrated over
 ψ: for analytic panels the Kronrod value is far more accurate than that estimate, so the
-estimate is pessimistic (an upper bound in practice, measured in docs/accuracy.md).
+estimate is pessimistic (an upper bound in practice, measured in docs/reference/accuracy.md).
 
 Several incidences are integrated in one batch (one kernel call per refinement round for the
 whole albedo curve); evaluations are capped (``max_evals`` per incidence) so that a
@@ -595,7 +595,7 @@ def _inner(fn: _Integrand, case: np.ndarray, psi: np.ndarray, wpsi: np.ndarray,
 #: pole's distance (at most HORIZON_LEVELS cuts: END_LEVELS, the later rounds' graded cut).
 #: Measured on ggx α = 0.001…1 and gltf roughness 0.1…1 at θi = 60…89.99° (104 albedos):
 #: 414,117 evaluations and 122 kernel calls, against 441,954 and 160 without, and 419,579
-#: and 122 at (0.1, 0) (docs/accuracy.md).
+#: and 122 at (0.1, 0) (scripts/bench_accuracy.py).
 HORIZON_SHARE = 0.3
 HORIZON_GATE = 0.15
 HORIZON_LAST = 8.0
