@@ -1,4 +1,4 @@
-"""Speed against error for the directional albedo (issues 6, 16, 18; docs/accuracy.md).
+"""Speed against error for the directional albedo (issues 6, 16, 18; docs/reference/accuracy.md).
 
     PYTHONPATH=. python scripts/bench_accuracy.py                 # ~2-3 minutes
     PYTHONPATH=. python scripts/bench_accuracy.py --before REV    # and the code of git REV

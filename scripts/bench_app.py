@@ -9,7 +9,7 @@ timestamps the bytes the app writes back:
   Parameter change (``-`` on phong's Kd), θi change (→ only, from θi = 0°: every key
   asks for an albedo never computed before), model change (``m``), and → and ``+`` in turn
   (each key another than the one before it: what the viewer prepares ahead for a repeated
-  key, docs/app.md, is then the frame of the key before).  p50 / p95 over ``--reps`` keys
+  key, docs/benchmarks.md, is then the frame of the key before).  p50 / p95 over ``--reps`` keys
   each.
 * **all panes**: key → the last byte before the output stays idle for ``SETTLE_S`` (map, the
   two sections, the status line's albedo and peak from a worker thread), for every key kind.

@@ -15,7 +15,7 @@ frames and divide the difference by 10 (both runs compute the same frames)::
         --frames 5      # then --frames 15; "Collected" is the count
 
 Usage: ``python scripts/bench_draw.py [--model phong] [--kind theta] [--frames 30]
-[--size 160x48]``.  Not a test (docs/app.md has the numbers).
+[--size 160x48]``.  Not a test (docs/benchmarks.md has the numbers).
 """
 
 from __future__ import annotations

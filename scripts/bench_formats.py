@@ -7,7 +7,7 @@ of ``map_values`` (the Lambert equal-area map, exact per-pixel evaluation, as th
 it) at the main map's pixel size for a 160×48 and an 80×24 terminal (``2·(h − 3)`` pixel rows,
 as scripts/bench_render.py), and the ratio file/built-in.  Also the one-off costs: loading
 (parsing + compiling) a ``.brdf`` file and loading a synthetic ``.bsdf``.  Prints Markdown
-tables (docs/formats.md quotes them).
+tables (docs/reference/formats.md quotes the ratio).
 """
 
 from __future__ import annotations

@@ -9,7 +9,7 @@ CPU time, median of ``--reps`` after a first round that warms imports, caches an
 ``--rev REV`` runs the same in a subprocess on git revision REV (``git archive``).  ``--idle S``
 sleeps S seconds before each timed frame, as between two keys of a user: a frame computed
 after the process was idle takes longer than one computed right after another (the CPU's
-caches hold other work by then; docs/app.md).
+caches hold other work by then; docs/benchmarks.md).
 
 Usage: ``python scripts/bench_frame.py [--reps 15] [--rev b3f6b82] [--idle 0.15]``.
 """

@@ -14,7 +14,7 @@ writes it.
 * ``--against REV``: the same commands on git revision REV (``git archive``) too, the two
   trees alternating run by run, so a machine's slow spell falls on both.
 
-docs/app.md quotes the numbers.
+docs/benchmarks.md has the numbers.
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """Cost of one kernel call, fixed and per point, for every built-in model (issue 16;
-docs/numerics.md, "Kernel cost").
+its output is the record).
 
     PYTHONPATH=$PWD python scripts/bench_kernels.py               # before (git main) and after
     PYTHONPATH=$PWD python scripts/bench_kernels.py --rev REV     # before = git revision REV

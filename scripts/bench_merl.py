@@ -1,6 +1,6 @@
 """MERL reader, lookup and fit: time and memory on full-size synthetic files.
 
-    python scripts/bench_merl.py            # prints a table (numbers go to docs/merl.md)
+    python scripts/bench_merl.py            # prints a table (docs/reference/formats.md quotes it)
 
 Writes two 35 MB files into a temporary directory (removed at the end): one from the ggx model
 (alpha 0.2, per-channel f0 and kd) and one from cook-torrance (m 0.3), with -1 (invalid) below

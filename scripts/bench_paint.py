@@ -9,7 +9,7 @@ paint (``Screen._compositor_refresh``: the compositor and turning its update int
 event loop's thread) and the characters of text it makes.  *textual*: Textual's compositor,
 its styles cache's lines and its update timer; *viewer*: the viewer's screen (a tree without
 it, e.g. ``PYTHONPATH=<tree>``, measures only Textual's, as it paints there).  Not a test:
-the numbers depend on the machine (docs/app.md has them and their command).
+the numbers depend on the machine (docs/benchmarks.md has them and their command).
 """
 
 from __future__ import annotations

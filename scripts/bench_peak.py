@@ -32,7 +32,7 @@ from tuibrdf.core.views import frame as scene
 ROOT = Path(__file__).resolve().parents[1]
 
 # (model, params, θi): every built-in model's defaults (merl needs a file) at three angles,
-# then the sharp, grazing and crease cases of docs/app.md's peak-search paragraph and the issue
+# then the sharp, grazing and crease cases of tests/core/sphere/test_peak.py and the issue
 DEFAULT_MODELS = [n for n in MODELS if n != "merl"]
 CASES: list[tuple[str, dict, float]] = [(n, {}, t) for n in DEFAULT_MODELS
                                         for t in (0.0, 45.0, 80.0)]

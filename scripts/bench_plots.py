@@ -1,6 +1,6 @@
 """Benchmark the polar cross-section pane: the braille canvas drawn straight from the frame's
-section arrays (``tuibrdf.render.polar_braille``; the plotext pane it replaced is gone, its
-numbers stay in docs/render.md).
+section arrays (``tuibrdf.render.polar_braille``; the plotext pane it replaced is
+gone, docs/design.md keeps the comparison that decided it).
 
     python scripts/bench_plots.py [--repeat N] [--size WxH] [--stat median|min]
 
@@ -11,7 +11,7 @@ jobs of a shared machine) of ``--repeat`` runs after one warm-up:
 - *pane*: ``panes.section_pane`` (title included) printed to an ANSI string, for the plane of
   incidence and for the section through the peak (the frame computed once, cached).
 
-Prints a Markdown table (docs/render.md quotes it).
+Prints a Markdown table.
 """
 
 from __future__ import annotations

@@ -3,8 +3,9 @@ mapping + half-block segments, whole views, and ANSI bytes per frame.
 
     python scripts/bench_render.py [--repeat N]
 
-Prints Markdown tables (docs/render.md quotes them).  Times are medians of ``--repeat`` warm runs
-(caches filled by a first call, as in the app, where the size and mesh level rarely change).
+Prints Markdown tables (docs/reference/accuracy.md quotes the map's error).  Times are medians
+of ``--repeat`` warm runs (caches filled by a first call, as in the app, where the size and
+mesh level rarely change).
 """
 
 from __future__ import annotations

@@ -6,7 +6,7 @@ pseudo-terminal, as ``scripts/bench_app.py`` measures it, repeated.
 ``--against REV`` starts git revision REV's viewer (``git archive``) too, the two trees one
 after the other in every round, so a slow spell of the machine falls on both.  The package's
 bytecode is written first (as an install or a first run writes it).  Prints the median and the
-minimum per tree; docs/app.md quotes them.
+minimum per tree; docs/benchmarks.md has them.
 """
 
 from __future__ import annotations

@@ -82,8 +82,8 @@ _G1_FLAT = ("G1 − 1 = −Λ·expm1(c_g·t^k) for t ≤ 0.001 is above −3.3e-
             "ulp of 1, so G1 rounds to 1 either way; sgd's parameters come only from the tables")
 _HUGE_LEVEL = ("a guard's level, 1/HUGE or 0.25/HUGE: it moves a quotient between computed and "
                "'infinite' only within 0.1% of 1e300, i.e. with both directions within ~1e-150 "
-               "of the horizon, where G/(cos θi cos θo) has no limit (docs/numerics.md) and 0 is "
-               "the documented value; exp(−x) is 0 at either side of it in D")
+               "of the horizon, where G/(cos θi cos θo) has no limit (docs/reference/models.md) "
+               "and 0 is the documented value; exp(−x) is 0 at either side of it in D")
 _SGD_LEVEL = ("sgd's 1/(cos θi cos θo) has no limit on the horizon (it diverges like 1/cos θ), "
               "so below a level of cos θi cos θo the specular term counts as 0: within 0.1% of "
               "1e-290 a direction is within 1e-290 of the horizon (the other at most 1 away)")

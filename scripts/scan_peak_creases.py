@@ -11,7 +11,7 @@ tests/core/sphere/test_peak.py) for cook-torrance with kd = 0 over m = 0.300…1
 finder's kernel calls.  Before the finder checked the plane of incidence itself, 116 cases
 were below (95 against the mirror side alone; m ≥ 0.325, θi 3–36°, the worst 4.2e-3: the 2-D
 searches stopped on a crease or at a lower local maximum); now none.  Not a test: a few
-minutes; the numbers are in docs/app.md.
+minutes; the numbers are its output.
 """
 
 from __future__ import annotations

@@ -5,7 +5,7 @@
 
 ``--key right,-`` sends the keys in turn (→, −, →, …): each key then differs from the one
 before, so the frame the viewer prepared ahead for a repeat of the last key is not the one
-asked for (docs/app.md, "the next frame ahead").
+asked for (docs/benchmarks.md).
 
 The viewer runs in a pty as a user sees it (truecolor); inside it, a few of its methods and
 Textual's are wrapped to note a timestamp (``time.perf_counter``, the same monotonic clock in
@@ -32,7 +32,7 @@ viewer's CPU time per key over the keys (``/proc/PID/task/*/schedstat``): all it
 and its main thread (the event loop) alone: what a loaded machine inflates far less than the
 times above.
 
-Not a test: timings depend on the machine (docs/app.md has the numbers and their command).
+Not a test: timings depend on the machine (docs/benchmarks.md has the numbers and their command).
 """
 
 from __future__ import annotations

@@ -114,7 +114,7 @@ for name, m in MODELS.items():
 
 def test_the_viewer_starts_without_plotext_or_tomllib():
     # the viewer's modules import plotext (the albedo plot) and tomllib (presets) when they
-    # draw or read one: ≈ 20 ms each of every start-up otherwise (docs/app.md)
+    # draw or read one: ≈ 20 ms each of every start-up otherwise (docs/benchmarks.md)
     mods = loaded_after("import tuibrdf.cli.view, tuibrdf.app.app, tuibrdf.render.panes")
     assert "textual" in mods  # the viewer was imported
     assert "plotext" not in mods and "tomllib" not in mods

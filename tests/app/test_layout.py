@@ -1,5 +1,5 @@
 """Small terminals with many parameters: the parameter panel keeps a bounded height and
-scrolls, so the polar sections keep a readable size (docs/app.md, "Small terminals").
+scrolls, so the polar sections keep a readable size (docs/guide.md, "The viewer's screen").
 
 Expected values come from outside the viewer: the number of parameter rows from the model
 file's own ``::begin parameters`` block (a ``color`` is three rows, R, G, B; a ``float`` one),

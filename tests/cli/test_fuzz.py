@@ -1,7 +1,7 @@
 """The command-line fuzz (issue 17): a few hundred generated argv per run, in-process and as
 subprocesses.  Each must end with exit 0 (nothing on stderr) or exit 2 (one line starting with
 ``tuibrdf``), with no traceback, no warning, no hang, and without opening the viewer.  The
-generator and the rules are ``scripts/fuzz_cli.py`` (which runs thousands: docs/cli.md).
+generator and the rules are ``scripts/fuzz_cli.py`` (which runs thousands: docs/reference/cli.md).
 
 The seed changes with the day, so CI explores new command lines over time while any one day is
 reproducible: a failure prints its seed and argv (``python scripts/fuzz_cli.py --seed S``).

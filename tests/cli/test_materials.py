@@ -134,7 +134,7 @@ def test_view_material_errors_are_one_line(capsys, argv, expected):
 
 
 def test_materials_doc_outputs_are_current():
-    # every "$ tuibrdf ..." block of docs/materials.md is the command's real output
+    # every "$ tuibrdf ..." block of docs/reference/materials.md is the command's real output
     import subprocess
     import sys
 

@@ -1,6 +1,6 @@
 """The input contract of ``evaluate`` and an adversarial stability sweep (issue 17, item 7).
 
-Contract (docs/numerics.md): shape ``(..., 3)``; finite; any non-zero vector is normalised
+Contract (docs/design.md): shape ``(..., 3)``; finite; any non-zero vector is normalised
 (a direction is a direction); the zero vector, NaN and inf are ``ValueError`` naming the
 argument and the index.  Expected values come from the unit vector's own evaluation (the
 contract says the length does not matter) and from closed forms (Lambert kd/π, Phong at the

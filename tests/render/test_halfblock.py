@@ -194,7 +194,7 @@ def test_plain_horizon_ring_is_a_closed_loop(px_w, px_h):
     # top edge is flat the ring is one pixel row, all of it in cells whose other half is data,
     # and such a cell showed the data alone.  The disc and its ring come from the map's own
     # geometry (hemimap.geometry's inside mask); the ring is computed here as the pixels
-    # outside the disc that touch it (8-neighbourhood), the definition in docs/app.md.  Data
+    # outside the disc that touch it (8-neighbourhood), the definition in docs/design.md.  Data
     # pixels are black, so a cell that shows data is a blank: only ring cells are "~".
     from tuibrdf.core.views.hemimap import geometry
     from tuibrdf.render.halfblock import RING_CHAR

@@ -44,10 +44,10 @@ from tuibrdf.state.viewer import ViewerState
 
 #: after start-up (Textual, numpy, the models: ≈ 10⁵ objects kept for the whole session) the
 #: collector stops scanning what exists then: a full collection took 23–48 ms here, a stall
-#: of any key it fell on; later ones scan only the objects made since (docs/app.md)
+#: of any key it fell on; later ones scan only the objects made since (docs/benchmarks.md)
 FREEZE_S = 1.0
 FILE_POLL_S = 1.0  # how often a model file's mtime is checked (an edit redraws)
-#: colour levels of the maps: 32 keeps a full 160×48 map update near 50 KiB (docs/app.md)
+#: colour levels of the maps: 32 keeps a full 160×48 map update near 50 KiB (docs/benchmarks.md)
 LEVELS = 32
 #: the actions of the viewer itself (not of a modal screen)
 VIEWER_ACTIONS = frozenset({"state", "save", "load_next", "help", "type_value", "type_theta"})
@@ -195,7 +195,7 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         """After any change: the screen follows once the events already queued are handled
         (a burst of keys costs one update, for the last state).  ``at_once`` (a key): with
         no event queued, the update runs now rather than as a message behind an empty queue
-        (≈ 0.2 ms a key, docs/app.md).  ``repeat``: the key's transition, which the same key
+        (≈ 0.2 ms a key, docs/benchmarks.md).  ``repeat``: the key's transition, which the same key
         would make again (:meth:`~tuibrdf.app.frames.FrameDelivery.prefetch`); a change
         without one forgets the keys before it."""
         self.message = message or ""

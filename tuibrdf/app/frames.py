@@ -59,12 +59,12 @@ DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
 #: so at 700 a collection fell inside one key in two, and a middle-generation one (≈ 3 ms) in
 #: one in four.  The young objects are collected after each frame instead
 #: (:meth:`FrameDelivery._collect_young`); this threshold only catches what no frame collects
-#: (a burst of keys, a file read).  docs/app.md has the numbers.
+#: (a burst of keys, a file read).  docs/benchmarks.md has the numbers.
 GC_YOUNG = 10_000
 #: a frame whose kind (:meth:`FrameDelivery._kind`) took less than this to compute lately is
 #: computed on the event loop, not in the worker: handing it to a thread and back cost ≈ 2 ms
 #: of a key's ≈ 14 (the thread's start, the loop and the thread taking turns with the
-#: interpreter lock; docs/app.md).  With the drawing, such a frame still leaves the loop
+#: interpreter lock; docs/benchmarks.md).  With the drawing, such a frame still leaves the loop
 #: free between two keys of a key held at 30 a second; a slower one (measured data, a
 #: file's model, an albedo curve) keeps the worker, which a newer key cancels
 INLINE_S = 0.012
@@ -79,7 +79,7 @@ GC_IDLE_S = 1.0  #: a full collection once no frame has come for this long
 #: same key (then the key before it, :data:`PREDICT_KEEP`) shows next is computed in the
 #: worker this long after (its paint and collection done, :data:`GC_AFTER_S`), and its
 #: pictures drawn while idle: stepping θi, a parameter or the model then costs a key the last
-#: drawing steps and the paint (docs/app.md).  Any key cancels it, and the key it was for
+#: drawing steps and the paint (docs/benchmarks.md).  Any key cancels it, and the key it was for
 #: waits for it rather than starting again
 PREFETCH_S = 0.04
 #: the transitions prepared ahead: the keys a user presses again and again (θi ←/→, the
@@ -88,7 +88,7 @@ PREFETCH_S = 0.04
 PREDICTED = frozenset({"step_theta", "step_phi_i", "step_param", "cycle_model"})
 #: how many of the latest different transitions are prepared ahead, the latest first: a user
 #: who goes from one key to another and back (θi, then a parameter, then θi again) finds
-#: both ready (docs/app.md); after a key pressed twice in a row, only that key's
+#: both ready (docs/benchmarks.md); after a key pressed twice in a row, only that key's
 PREDICT_KEEP = 2
 #: a θi or parameter key is prepared ahead only when the frames of its kind took less than
 #: this lately (the registered models' frames take 2–25 ms at 160×48): measured data, a
@@ -109,7 +109,7 @@ class FrameDelivery:
     def _after(self, delay: float, callback, *args) -> asyncio.TimerHandle | None:
         """``callback(*args)`` on the event loop in ``delay`` s, as a timer of the loop itself
         (a Textual timer is a task of its own: creating, waking and ending it cost the loop
-        ≈ 0.2 ms on every key, docs/app.md); a bug in it ends the app as in a Textual timer.
+        ≈ 0.2 ms on every key, docs/benchmarks.md); a bug in it ends the app as in a Textual timer.
         Before the loop is known (tests in sync mode), a Textual timer."""
         if self._event_loop is None:
             self.set_timer(delay, partial(callback, *args))
@@ -260,7 +260,7 @@ class FrameDelivery:
 
         def hand(callback, *args) -> None:
             """``post`` without waiting for the loop to run it: the albedo starts at once
-            (≈ 0.4 ms sooner a key: the loop first has to wake up, docs/app.md)."""
+            (≈ 0.4 ms sooner a key: the loop first has to wake up, docs/benchmarks.md)."""
             if self._event_loop is None:
                 post(callback, *args)
             elif not worker.is_cancelled:

@@ -111,7 +111,7 @@ RELAYOUT = frozenset({"cycle_model", "cycle_view", "toggle_compare", "switch_sid
 
 #: the viewer's keys are priority bindings: the app acts on a key when it first reaches
 #: it, not after Textual has forwarded it to the screen and it has bubbled back (≈ 0.5 ms a
-#: key, docs/app.md), and keys typed together act in the order typed (a priority key no
+#: key, docs/benchmarks.md), and keys typed together act in the order typed (a priority key no
 #: longer overtakes the ones still bubbling).  While a modal screen is open
 #: ``BrdfApp.check_action`` refuses them and the key goes on to that screen as before; quit
 #: stays an ordinary binding (q closes the help screen, and types a q in a text field).

@@ -178,7 +178,7 @@ class ViewerScreen(Screen):
         Textual's own way from ``Widget.refresh`` to the terminal takes a round of the event
         loop per widget (each sees it is idle and posts ``Update`` to the screen), one for the
         screen (idle: it resumes its update timer) and one for the timer's task: ≈ 1 ms a
-        key after the frame is drawn (docs/app.md).  Returns whether it painted."""
+        key after the frame is drawn (docs/benchmarks.md).  Returns whether it painted."""
         app = self.app
         try:
             if not (PAINT_NOW and self.is_current and not app._batch_count

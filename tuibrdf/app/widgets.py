@@ -125,7 +125,7 @@ class Rows(Widget):
         """The stored strips as they are when Textual would not change them (:meth:`_sides`,
         no line filter, no hovered link), with Textual's side padding: a changed line costs
         the compositor no new strip, an unchanged one no cache look-up (≈ 1 ms a 160×48
-        frame, docs/app.md).  Otherwise Textual's own way."""
+        frame, docs/benchmarks.md).  Otherwise Textual's own way."""
         sides, pad = self._sides()
         hover = self.hover_style
         if (sides is None or self.get_line_filters()
@@ -272,7 +272,7 @@ class ParamPanel(DrawnRows):
     that follows the selected row, the rows above and below it counted in the borders
     ("↑ 3 more", "↓ 5 more").  Rows of segments (:class:`Rows`): a new value repaints the
     cells around it on its row, not the whole panel through Textual's styles cache (a
-    ``Static`` did: ≈ 1.7 ms of compositing a parameter key at 160×48, docs/app.md)."""
+    ``Static`` did: ≈ 1.7 ms of compositing a parameter key at 160×48, docs/benchmarks.md)."""
 
     DEFAULT_CSS = """
     ParamPanel { height: auto; padding: 0 1; border: round $primary-darken-2; }

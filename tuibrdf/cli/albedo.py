@@ -7,7 +7,7 @@ largest of the channels) and shows the digits the error leaves (JSON: every digi
 is flagged ``not energy-conserving`` (the JSON has ``"energy_conserving": false``); the test is
 :func:`tuibrdf.core.sphere.albedo.exceeds_one`.  The integral is
 :func:`tuibrdf.core.sphere.albedo.albedo_estimate_resolved` (adaptive Gauss–Kronrod about the
-lobe, docs/accuracy.md).
+lobe, docs/reference/accuracy.md).
 """
 
 from __future__ import annotations
@@ -71,7 +71,7 @@ def run(args: argparse.Namespace) -> int:
         return 0
     print(f"# {model.name}  {fmt_params(params)}")
     print("# directional albedo a = ∫ f cos θr dω ± the quadrature's error estimate "
-          "(docs/accuracy.md)")
+          "(docs/reference/accuracy.md)")
     cols = ["a_R", "a_G", "a_B"] if model.rgb else ["a"]
     width = max(10, 3 + max(decimals_for(e) for e in err))
     print(" ".join([f"{'theta_i':>8}"] + [f"{c:>{width}}" for c in cols] + ["   error"]))

@@ -1,6 +1,6 @@
 """``evaluate``: validated, broadcasting evaluation of a registered model.
 
-Input contract of the directions (docs/numerics.md, "Input contract of evaluate"):
+Input contract of the directions (docs/design.md, "The API's input contract"):
 
 * ``wi`` and ``wo`` are float arrays of shape ``(..., 3)`` that broadcast together; anything
   else is a ``ValueError`` naming the argument and the shape;

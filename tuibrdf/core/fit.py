@@ -332,7 +332,8 @@ def _minimise(objective: Callable[[np.ndarray], float], k: int, warm=()):
 #: optimiser pushed it there (the model wants a value past the end), so the fit is limited
 BOUND_FRACTION = 1e-3
 #: fit / data albedo outside [1 / R, R] at any θi and channel flags a poor fit: 25 % more or
-#: less reflected energy is visible at a glance in the viewer (a design choice, docs/app.md)
+#: less reflected energy is visible at a glance in the viewer (a design choice,
+#: docs/reference/formats.md)
 POOR_ALBEDO_RATIO = 1.25
 
 

@@ -1,7 +1,7 @@
 """Polar cross-sections drawn straight from numpy on a braille canvas (:mod:`.braille`).
 
 The same pictures as :mod:`.polar` (plotext), at a fraction of the cost (``scripts/
-bench_plots.py``; numbers in ``docs/render.md``): curves ``r(θ)`` drawn at ``x = r sin θ``,
+bench_plots.py``; numbers in ``docs/design.md``): curves ``r(θ)`` drawn at ``x = r sin θ``,
 ``y = r cos θ`` for ``θ ∈ [−90°, 90°]``, guide circles (1-2-5 steps, or one per decade in log
 mode) and the horizon line, the incident direction as a line, one data unit the same length
 on screen in x and y (a cell is twice as tall as wide).  Titles and captions are those of

@@ -3,8 +3,8 @@
 ``tests/core/brdf/test_stability.py`` already sweeps every registered model at each end of every
 parameter, which for ``abc`` and ``sgd`` means every material (a choice's ends are all its
 values).  This file adds a denser grid of hard directions for each of the 200 pairs and checks
-the documented horizon values (``docs/materials.md``): finite, ≥ 0, no floating-point exception
-(the kernels run under the raising errstate), reciprocal to 1e-12 of the batch's maximum.
+the documented horizon values (``docs/reference/materials.md``): finite, ≥ 0, no floating-point
+exception (the kernels run under the raising errstate), reciprocal to 1e-12 of the batch's maximum.
 """
 
 from __future__ import annotations

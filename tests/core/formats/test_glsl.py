@@ -52,7 +52,7 @@ def run_shader(tmp_path, body, helpers="", wi=None, wo=None, params=None, name="
 ])
 def test_undefined_and_builtin_operations(tmp_path, expr, want):
     # each expression is evaluated by the shader at k = 0.5, flag off; expected values are
-    # the documented choice (docs/formats.md) or the closed form
+    # the documented choice (docs/reference/formats.md) or the closed form
     got = run_shader(tmp_path, f"return vec3({expr});")
     np.testing.assert_allclose(got, want, rtol=1e-15)
 

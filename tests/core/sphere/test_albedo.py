@@ -215,8 +215,8 @@ def test_against_tensor_reference(name, params, theta):
 @pytest.mark.parametrize("theta", [0.0, 60.0, 85.0, 89.0, 89.9, 90.0])
 def test_defaults_error_estimate_within_tolerance(name, theta):
     # the estimate reaches the default tolerance at every model's defaults (it bounds the
-    # error: checked against the references above, and in docs/accuracy.md, where the errors
-    # themselves are ≤ 5e-9)
+    # error: checked against the references above, and by scripts/bench_accuracy.py, where the
+    # errors themselves are ≤ 5e-9)
     est = albedo_estimate(name, None, theta)
     assert np.all(np.asarray(est.error) <= DEFAULT_RTOL * np.abs(est.value) + 1e-13)
 

@@ -2,7 +2,7 @@
 replace straightforward loops must give the same numbers as those loops, written here from
 their definitions (bit for bit where the order of the floating-point operations is the same;
 the albedo itself is compared bit for bit against the previous code by
-``scripts/bench_accuracy.py``'s values, docs/accuracy.md)."""
+``scripts/bench_accuracy.py``'s values, docs/reference/accuracy.md)."""
 
 import math
 

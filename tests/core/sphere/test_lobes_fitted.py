@@ -183,7 +183,7 @@ def test_abc_azimuths(theta_i):
 
 @pytest.mark.parametrize("theta", [75.0, 85.0, 89.0, 89.9])
 def test_sgd_grazing_defaults_in_one_call_against_tensor_reference(theta):
-    # 2–3 kernel calls each before this hint (docs/accuracy.md); the tensor rule written in
+    # 2–3 kernel calls each before this hint (scripts/bench_accuracy.py); the tensor rule written in
     # test_polar converges to 1e-12 here (two orders)
     r, n, calls = _counted("sgd", "gold-metallic-paint", theta)
     assert calls == 1

@@ -33,7 +33,7 @@ in log space (t is capped just above the threshold, computed once per material; 
 within 1e-9 of it take the logarithmic test itself); D is 0 where ``exp(−a)`` underflows, and
 ``a`` is capped at 746 for ``a^p`` (which then cannot overflow; beyond, D = 0).
 
-Cost (docs/numerics.md, "Kernel cost"): sgd computes its three channels as the rows of
+Cost (``scripts/bench_kernels.py``): sgd computes its three channels as the rows of
 ``(3, M)`` arrays (one numpy call per operation, each over a contiguous row), and only at the
 points where the specular term can be ≠ 0 (ci·co above its floor, exp(−a) > 0 in some channel):
 elsewhere the value is ρd/π, as the formula gives there.
@@ -378,12 +378,14 @@ ABC = Model(
     "abc", "ABC fit of a MERL material", (MATERIAL,), abc, rgb=True,
     summary="Löw et al. 2012: kd/π + F·A/(1+B(1−cosθh))^C·G/(π cosθi cosθo), per-material fit",
     horizon="limit where one of θi, θo is 90°; specular 0 where both are",
-    notes=("numbers: dj_brdf.h (public domain), table djb::abc::s_data; docs/materials.md",),
+    notes=("numbers: dj_brdf.h (public domain), table djb::abc::s_data; "
+           "docs/reference/materials.md",),
 )
 SGD = Model(
     "sgd", "Shifted Gamma fit of a MERL material", (MATERIAL,), sgd, rgb=True,
     summary="Bagher et al. 2012: (ρd + ρs·F·D_SGD·G1·G1/(cosθi cosθo))/π, per-material fit",
     horizon="diffuse ρd/π; the specular term is 0 there (it diverges toward 90° where G1 > 0)",
-    notes=("numbers: dj_brdf.h (public domain), table djb::sgd::s_data; docs/materials.md",
+    notes=("numbers: dj_brdf.h (public domain), table djb::sgd::s_data; "
+           "docs/reference/materials.md",
            "F < 0 for a few materials: f = max(0, ...) where the specular term outweighs ρd"),
 )

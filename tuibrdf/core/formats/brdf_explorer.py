@@ -249,7 +249,7 @@ def model_from_text(path: str, parsed: Parsed, title: str, name: str) -> Model:
         name, title, params, partial(_kernel, shader, params), rgb=rgb, reciprocal=False,
         summary=f"BRDF Explorer file {os.path.basename(path)}",
         horizon="the shader's value (0 below the horizon; NaN, inf, negatives → 0)",
-        notes=("GLSL compiled to numpy; undefined operations as docs/formats.md says",),
+        notes=("GLSL compiled to numpy; undefined operations as docs/reference/formats.md says",),
     )
 
 

@@ -149,7 +149,7 @@ def load(path: str | os.PathLike,
     Memory: the file is read straight into one preallocated float64 array of 3·1 458 000 values
     (35 MB) with ``readinto``; it is checked, scaled and filled in place, one channel at a time,
     and becomes :attr:`MerlData.table` without a copy.  Temporaries are per channel (masks of
-    1.5 MB); see docs/merl.md for the measured peak.
+    1.5 MB); see docs/reference/formats.md for the measured peak.
     """
     name = os.fspath(path)
     report = progress or (lambda fraction: None)

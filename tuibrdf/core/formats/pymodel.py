@@ -89,7 +89,7 @@ def load_python_model(path: str, name: str) -> Model:
         what = "does not define MODEL" if model is None else \
             f"defines MODEL as a {type(model).__name__}"
         raise UserFileError(f"{path}: {what}; a model file must define MODEL = Model(...) "
-                            "(tuibrdf.core.params.Model; see docs/formats.md)")
+                            "(tuibrdf.core.params.Model; see docs/reference/formats.md)")
     for p in model.params:
         if not isinstance(p, Param):
             raise UserFileError(f"{path}: MODEL.params must hold tuibrdf.core.params.Param "

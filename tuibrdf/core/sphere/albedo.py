@@ -14,7 +14,7 @@ error above 1).  ``method="uniform"`` is the vertex rule of
 :func:`tuibrdf.core.sphere.mesh.hemisphere` at ``level`` and ``method="adaptive"`` the adaptive
 mesh of
 :func:`tuibrdf.core.sphere.mesh.refine_adaptive` at ``tol``, kept for comparison
-(``scripts/bench_accuracy.py``, ``docs/accuracy.md``).
+(``scripts/bench_accuracy.py``, ``docs/reference/accuracy.md``).
 
 Every public function takes a model (registry name or :class:`~tuibrdf.core.params.Model`) and
 user parameter values, validated with ``Model.resolve``; the ``*_resolved`` variants take a
@@ -48,7 +48,7 @@ DEFAULT_TOL = 1e-5
 #: Relative tolerance of the default albedo, per channel: its error estimate is at most this
 #: (or the evaluation budget ran out, and the estimate says so).  The estimate (|K − G|
 #: summed) is pessimistic: measured errors are ≤ 2.2e-8 at every model's defaults and
-#: ≤ 3.4e-7 on the hard cases (docs/accuracy.md).  1e-6 costs 25 % more evaluations for
+#: ≤ 3.4e-7 on the hard cases (docs/reference/accuracy.md).  1e-6 costs 25 % more evaluations for
 #: errors already below 1e-7; 1e-4 saves 4 % for errors up to 4.3e-7 (2.8e-6 before the
 #: horizon grading): too close to the 1e-6 target.
 DEFAULT_RTOL = 1e-5
@@ -159,7 +159,7 @@ def _smith_ggx_horizon(alpha: float):
     θi = 89.9°, the defaults otherwise) 0.97 at α = 1, 0.05 at α = 0.2 (gltf's α = 0.25:
     0.10), 5e-3 at α = 0.05, 6e-4 at α = 0.01: about α² (the tail D(π/2)/D(0) = α⁴ over the
     lobe's α²) for α ≥ 0.05.  Below that it is larger than α², but there the ordinary
-    refinement handles the pole within the first call (docs/accuracy.md), and grading it
+    refinement handles the pole within the first call (scripts/bench_accuracy.py), and grading it
     would only cost evaluations.  (A first estimate, 4α/π from D(π/2)·(2/α) over the lobe's
     F/2, ignores that F at the horizon end is F(0°), not the lobe's F(90°) = 1: 5–20× too
     high.)  At θi = 90° (cos θi = 0) the pole meets the zero of co and cancels: none."""
@@ -183,7 +183,7 @@ def _power_width(n: float) -> float:
 #: abc's hint leaves out the V-cavity azimuths inside polar's first outer grading panel only
 #: where that panel (2 cot θi wide) is narrower than this (θi > 84.3°; at 80.5–81°, 0.32 rad,
 #: the estimate fell below the error for 5 of the 100 materials: K15 − G7 over a panel that
-#: wide misses the inner integral's kinks; at 82–90° it held for all, docs/accuracy.md) ...
+#: wide misses the inner integral's kinks; at 82–90° it held for all, scripts/bench_accuracy.py) ...
 ABC_DROP_WIDTH = np.pi / 16
 #: ... and at tolerances from this up: the drop moves the albedo by up to 1e-11 (measured),
 #: which the estimate no longer covers below rtol 1e-10
@@ -263,7 +263,7 @@ def _cook_torrance_lobe(v: Mapping[str, Any], rtol: float) -> Lobe:
     """Beckmann lobe of width m; the V-cavity kinks as radial breaks, and where they cross
     (:func:`_vcavity_azimuths`) as outer ones once the lobe reaches them (m ≥ 0.3: below it
     exp(−tan²ρ/m²) is ≤ 2.5e-2 of the peak at ρ = π/6 and they cost evaluations for nothing;
-    measured in docs/accuracy.md); the far side graded where the horizon cuts the lobe
+    measured by scripts/bench_accuracy.py); the far side graded where the horizon cuts the lobe
     (:func:`_cook_torrance_far`)."""
     m = float(v["m"])
     # beyond tan²ρ = 45 m², D/D(0) = exp(−tan²ρ/m²)/cos⁴ρ < exp(−45)(1 + 45 m²)² ≤ 6e-17

@@ -23,7 +23,8 @@ Two ways to fill it (``method``):
            its triangles (``tuibrdf.core.sphere.mesh.locate``: triangle and barycentric weights per
            pixel, computed once per size and level and cached).
 
-``docs/render.md`` gives the measured speed and error of both; ``exact`` is the default.
+``scripts/bench_render.py`` measures the speed and error of both (docs/reference/accuracy.md);
+``exact`` is the default.
 """
 
 from __future__ import annotations
