@@ -38,22 +38,21 @@ Every value except ``albedo`` and ``curve`` includes the cosine factor when ``co
 The albedo and the curve are slow (up to tens of ms and 0.3 s for sharp lobes): ``compute_frame(r,
 slow=False)`` leaves them None unless already cached, so a viewer can show the rest at once
 and complete the frame in a worker.  Each part is cached by what it depends on (thread-safe
-LRUs), the whole result by its request: a repeated frame costs two dictionary look-ups.
+:class:`~tuibrdf.core.lru.LRU`), the whole result by its request: a repeated frame costs two
+dictionary look-ups.
 """
 
 from __future__ import annotations
 
-import threading
-from collections import OrderedDict
-from collections.abc import Callable, Hashable
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import Any
 
 import numpy as np
 
 from tuibrdf.core.conventions import luminance
 from tuibrdf.core.directions import from_degrees, incident, sincos_deg
+from tuibrdf.core.lru import LRU
 from tuibrdf.core.material import Material
 from tuibrdf.core.sphere.albedo import (
     AlbedoEstimate,
@@ -82,38 +81,6 @@ CURVE_THETAS.setflags(write=False)
 CURVE_CHUNKS = 4
 #: the 3D solid's sampling: hemisphere mesh level and barycentric steps per triangle edge
 SOLID_LEVEL, SOLID_SUBDIV = 4, 3
-
-
-class LRU:
-    """A small thread-safe least-recently-used cache: ``get(key, make)``."""
-
-    def __init__(self, size: int) -> None:
-        self.size = size
-        self.data: OrderedDict[Hashable, Any] = OrderedDict()
-        self.lock = threading.Lock()
-
-    def peek(self, key: Hashable) -> Any:
-        with self.lock:
-            return self.data.get(key)
-
-    def put(self, key: Hashable, value: Any) -> Any:
-        with self.lock:
-            self.data[key] = value
-            self.data.move_to_end(key)
-            while len(self.data) > self.size:
-                self.data.popitem(last=False)
-        return value
-
-    def get(self, key: Hashable, make: Callable[[], Any]) -> Any:
-        with self.lock:
-            if key in self.data:
-                self.data.move_to_end(key)
-                return self.data[key]
-        return self.put(key, make())  # computed outside the lock: other threads go on
-
-    def clear(self) -> None:
-        with self.lock:
-            self.data.clear()
 
 
 @dataclass(frozen=True)
