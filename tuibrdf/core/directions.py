@@ -57,9 +57,30 @@ def sincos_deg(t) -> tuple[np.ndarray, np.ndarray]:
     return s, c
 
 
+def check_theta_i(theta_i_deg: float) -> float:
+    """``θi`` as a float when it is in [0°, 90°], else ``ValueError``: the one range check of
+    the light's polar angle, which every entry point taking it makes (the frame request, the
+    albedo); :func:`check_phi_i` is its azimuth's."""
+    t = float(theta_i_deg)
+    if not 0.0 <= t <= 90.0:  # also refuses NaN
+        raise ValueError(f"theta_i = {theta_i_deg!r} is invalid: expected in [0, 90]°")
+    return t
+
+
+def check_phi_i(phi_i_deg: float) -> float:
+    """``φi`` as a float when it is finite, else ``ValueError`` (any finite angle is one)."""
+    p = float(phi_i_deg)
+    if not math.isfinite(p):
+        raise ValueError(f"phi_i = {phi_i_deg!r} is invalid: expected a finite angle in °")
+    return p
+
+
 def incident(theta_i_deg: float, phi_i_deg: float = 180.0) -> np.ndarray:
     """The light direction ``wi`` at ``θi``, ``φi`` in degrees (the viewer's default
-    ``φi = 180°``: the light on the −x side): the one place (θi, φi) becomes ``wi``.
+    ``φi = 180°``: the light on the −x side): the one place (θi, φi) becomes ``wi``.  A frame
+    makes it once (:attr:`tuibrdf.core.views.frame.FrameRequest.wi`) and every pane's numbers
+    take that ``wi``.  The angles are not checked here (:func:`check_theta_i` and
+    :func:`check_phi_i` are).
 
     Built from exact components so that ``θi = 90°`` lies exactly on the horizon (cos = 0),
     which ``np.cos(np.pi / 2) = 6e-17`` would not give, and φi = 180° gives ``(−sin θi, 0,

@@ -8,7 +8,7 @@ import pytest
 
 import tuibrdf
 from tuibrdf.core.brdf import microfacet
-from tuibrdf.core.directions import from_degrees
+from tuibrdf.core.directions import from_degrees, incident
 from tuibrdf.core.params import Model
 from tuibrdf.core.registry import MODELS, get_model
 from tuibrdf.core.sphere.albedo import (
@@ -152,11 +152,19 @@ def test_energy_bound_for_conservative_models():
 
 
 def test_theta_validation():
+    from tuibrdf.core.material import Material
+    from tuibrdf.core.views.frame import FrameRequest
+
     for bad in (-1.0, 90.5, float("nan")):
         with pytest.raises(ValueError, match="theta_i"):
             albedo("lambert", None, bad)
-        with pytest.raises(ValueError, match="theta_i"):
-            peak("lambert", None, bad)  # the one peak finder, core/peak.py
+        with pytest.raises(ValueError, match="theta_i"):  # the frame's peak takes its wi
+            FrameRequest((Material("lambert"),), bad)
+    for bad in (float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="phi_i"):
+            albedo("lambert", None, 30.0, bad)
+        with pytest.raises(ValueError, match="phi_i"):
+            FrameRequest((Material("lambert"),), 30.0, phi_i=bad)
     with pytest.raises(ValueError, match="kd"):
         albedo("lambert", {"kd": 2.0}, 0.0)
     with pytest.raises(ValueError, match="method"):
@@ -182,7 +190,7 @@ def test_reciprocity_error():
 def peak(name, params, theta_i, cosine=False):
     """The peak (the luminance's for RGB) of core/peak.py, the one peak finder."""
     m = get_model(name)
-    return find_peaks(m, m.resolve(params), theta_i, cosine=cosine)[0]
+    return find_peaks(m, m.resolve(params), incident(theta_i), cosine=cosine)[0]
 
 
 @pytest.mark.parametrize("theta_i", [0.0, 40.0, 75.0])
@@ -216,7 +224,7 @@ def test_cook_torrance_peak_grows_and_passes_the_mirror_at_grazing():
     # mirror direction, toward the horizon (Fresnel and 1/cos θo grow there)
     m = get_model("cook-torrance")
     v = m.resolve({"m": 0.2})
-    low, high = find_peaks(m, v, 30.0)[0], find_peaks(m, v, 80.0)[0]
+    low, high = find_peaks(m, v, incident(30.0))[0], find_peaks(m, v, incident(80.0))[0]
     assert high.value > 3 * low.value
     assert high.theta_deg > 80.0 + 1.0
     assert high.phi_deg == pytest.approx(0.0, abs=1e-6)
@@ -224,7 +232,7 @@ def test_cook_torrance_peak_grows_and_passes_the_mirror_at_grazing():
 
 def test_peak_of_rgb_and_flat_models():
     m = get_model("gltf")
-    pks = find_peaks(m, m.resolve({"roughness": 0.3}), 45.0)
+    pks = find_peaks(m, m.resolve({"roughness": 0.3}), incident(45.0))
     assert [p.label for p in pks] == ["Y", "R", "G", "B"]
     # Lambert is flat: any direction is a peak, the value is kd/π
     assert peak("lambert", {"kd": 0.6}, 10.0).value == pytest.approx(0.6 / math.pi, rel=1e-12)

@@ -70,8 +70,9 @@ def _ggx_in_plane(theta_i_deg: float, theta_o_deg: float, alpha: float, f0: floa
 @pytest.mark.parametrize("theta_i", [60.0, 80.0, 89.0])
 def test_ggx_grazing_peak_is_bounded_and_equals_the_closed_form_limit(theta_i):
     mat = Material("ggx", {"kd": 0.0, "f0": 0.04, "alpha": 0.2, "fresnel": "exact"})
-    peaks = find_peaks(mat.model, mat.values, theta_i)
-    peaks, hz = assess(mat.model, mat.values, theta_i, peaks)
+    wi = incident(theta_i)
+    peaks = find_peaks(mat.model, mat.values, wi)
+    peaks, hz = assess(mat.model, mat.values, wi, peaks)
     expected = _ggx_grazing_limit(theta_i, 0.2, 0.04)
     assert peaks[0].theta_deg == pytest.approx(90.0, abs=1e-6)
     assert peaks[0].value == pytest.approx(expected, rel=1e-9)
@@ -84,7 +85,8 @@ def test_ggx_grazing_peak_is_bounded_and_equals_the_closed_form_limit(theta_i):
 
 def test_ggx_at_90_is_unbounded_like_one_over_delta():
     mat = Material("ggx")
-    peaks, hz = assess(mat.model, mat.values, 90.0, find_peaks(mat.model, mat.values, 90.0))
+    peaks, hz = assess(mat.model, mat.values, incident(90.0),
+                       find_peaks(mat.model, mat.values, incident(90.0)))
     assert hz[0].kind == "unbounded" and round(hz[0].toward_deg) % 360 == 0
     # sin(θi + θo) → 0 at θi = 90°: f·δ tends to a constant (checked on the kernel directly)
     d = np.radians([1e-4, 1e-5, 1e-6])
@@ -164,8 +166,9 @@ def test_sgd_bounded_or_not_agrees_with_g1_at_the_horizon(theta_i):
     agree = unclear = unbounded = 0
     for name, q in table.items():
         mat = Material("sgd", {"material": name})
-        peaks = find_peaks(mat.model, mat.values, theta_i)
-        _, hz = assess(mat.model, mat.values, theta_i, peaks)
+        wi = incident(theta_i)
+        peaks = find_peaks(mat.model, mat.values, wi)
+        _, hz = assess(mat.model, mat.values, wi, peaks)
         k = _grazing_coefficient(q, theta_i)
         b = np.abs(_sgd_pi_f(q, theta_i, 89.9))
         for c in range(3):

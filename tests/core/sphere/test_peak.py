@@ -72,7 +72,7 @@ def both_sides_max(model, params, theta_i, cosine=False):
 
 def peak(model, params, theta_i, cosine=False):
     m = MODELS[model]
-    return find_peaks(m, m.resolve(params), theta_i, cosine=cosine)
+    return find_peaks(m, m.resolve(params), incident(theta_i), cosine=cosine)
 
 
 def check_at_direction(model, params, theta_i, pk, cosine=False, channel=None):
@@ -227,7 +227,8 @@ def test_rough_crease_with_the_light_turned(phi_i):
     m, theta_i, cosine = ROUGH[0]
     p = {"kd": 0.0, "m": m}
     mod = MODELS["cook-torrance"]
-    pk = find_peaks(mod, mod.resolve(p), theta_i, cosine=cosine, phi_i_deg=phi_i)[0]
+    pk = find_peaks(mod, mod.resolve(p), incident(theta_i, phi_i), cosine=cosine,
+                    phi_i_deg=phi_i)[0]
     assert pk.value >= both_sides_max("cook-torrance", p, theta_i, cosine) * (1.0 - 1e-10)
     # its direction: in the turned plane of incidence, on the mirror side (φ = φi + 180°;
     # at φi = 180° the maximum is at φ = 0, test_rough_cook_torrance_creases)

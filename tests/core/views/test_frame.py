@@ -78,7 +78,7 @@ def dense_max(model: str, params: dict, theta_i: float, channel=None) -> tuple[f
 ])
 def test_peak_is_at_least_the_dense_grid_maximum(model, params, theta_i):
     m = MODELS[model]
-    pk = find_peaks(m, m.resolve(params), theta_i)[0]
+    pk = find_peaks(m, m.resolve(params), incident(theta_i))[0]
     ref, ref_theta = dense_max(model, params, theta_i)
     # the finder optimises off the grid: never below the grid's best, and not above the
     # function's value at its own direction
@@ -92,20 +92,21 @@ def test_peak_is_at_least_the_dense_grid_maximum(model, params, theta_i):
 def test_peak_closed_forms():
     # Phong's lobe peaks on the mirror direction with (n+2)/(2π)·ks (+ kd/π)
     pk = find_peaks(MODELS["phong"], MODELS["phong"].resolve({"kd": 0, "ks": 1, "n": 2000}),
-                    40)[0]
+                    incident(40))[0]
     assert pk.value == pytest.approx(2002 / (2 * np.pi), rel=1e-9)
     assert (pk.theta_deg, pk.phi_deg) == pytest.approx((40.0, 0.0), abs=1e-4)
     # Lambert: kd/π; f·cos θr peaks at the normal with kd/π
     lam = MODELS["lambert"]
-    assert find_peaks(lam, lam.resolve({"kd": 0.5}), 30)[0].value == pytest.approx(0.5 / np.pi)
-    pk = find_peaks(lam, lam.resolve({"kd": 0.5}), 30, cosine=True)[0]
+    assert find_peaks(lam, lam.resolve({"kd": 0.5}), incident(30))[0].value == pytest.approx(
+        0.5 / np.pi)
+    pk = find_peaks(lam, lam.resolve({"kd": 0.5}), incident(30), cosine=True)[0]
     assert pk.value == pytest.approx(0.5 / np.pi) and pk.theta_deg < 1e-3
 
 
 def test_rgb_peaks_luminance_and_each_channel():
     params = {"base_color": (0.9, 0.2, 0.05), "metallic": 1.0, "roughness": 0.3}
     m = MODELS["ue4"]
-    peaks = find_peaks(m, m.resolve(params), 50)
+    peaks = find_peaks(m, m.resolve(params), incident(50))
     assert [p.label for p in peaks] == ["Y", "R", "G", "B"]
     for p, ch in zip(peaks, (None, 0, 1, 2), strict=True):
         ref, _ = dense_max("ue4", params, 50, ch)

@@ -20,13 +20,12 @@ give ``(3,)`` per albedo and ``(n, 3)`` per curve.  The incidence is ``(θi, φi
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any, NamedTuple
 
 import numpy as np
 
-from tuibrdf.core.directions import incident, mirror, sincos_deg
+from tuibrdf.core.directions import check_phi_i, check_theta_i, incident, mirror, sincos_deg
 from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.params import Model
 from tuibrdf.core.registry import get_model
@@ -82,24 +81,6 @@ def _resolve(model: str | Model, params: Mapping[str, Any] | None) -> tuple[Mode
     return m, m.resolve(params)
 
 
-def _check_theta(theta_i_deg: float) -> float:
-    t = float(theta_i_deg)
-    if not 0.0 <= t <= 90.0:  # also rejects NaN
-        raise ValueError(f"theta_i = {theta_i_deg!r} is invalid: expected in [0, 90]°")
-    return t
-
-
-def _check_phi(phi_i_deg: float) -> float:
-    p = float(phi_i_deg)
-    if not math.isfinite(p):
-        raise ValueError(f"phi_i = {phi_i_deg!r} is invalid: expected a finite angle in °")
-    return p
-
-
-def _incident(theta_i_deg: float, phi_i_deg: float) -> np.ndarray:
-    return incident(_check_theta(theta_i_deg), _check_phi(phi_i_deg))
-
-
 def _radiance(model: Model, values: Mapping[str, Any], wi: np.ndarray, wo: np.ndarray,
               cosine: bool = True) -> np.ndarray:
     """``f(wi, wo)·cos θo`` (or ``f`` alone) for many ``wo (n, 3)`` and one ``wi (3,)``."""
@@ -131,9 +112,9 @@ def albedo_rule(model: Model, values: Mapping[str, Any],
     count calls, or drop one part of the hint, through them)."""
     thetas = np.atleast_1d(np.asarray(thetas_deg, dtype=float))
     for t in thetas.tolist():
-        _check_theta(t)
+        check_theta_i(t)
     # one call for θi and φi (elementwise: the same values as two)
-    s, c = sincos_deg(np.append(thetas, _check_phi(phi_i_deg)))
+    s, c = sincos_deg(np.append(thetas, check_phi_i(phi_i_deg)))
     st, ct = s[:-1], c[:-1]
     sp, cp = np.full(len(thetas), s[-1]), np.full(len(thetas), c[-1])
     hint = lobe(model, values, rtol) if hint is None else hint
@@ -233,7 +214,7 @@ def albedo_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float,
     _check_method(method)
     if method == "auto":
         return albedo_estimate_resolved(model, values, theta_i_deg, phi_i_deg).value
-    wi = _incident(theta_i_deg, phi_i_deg)
+    wi = incident(check_theta_i(theta_i_deg), check_phi_i(phi_i_deg))
     if method == "uniform":
         return _scalar(_uniform(model, values, wi, level))
     ad = refine_adaptive(lambda wo: _radiance(model, values, wi, wo), tol,

@@ -1,6 +1,6 @@
 """The peak of a lobe: the one finder every number on screen comes from.
 
-``find_peaks(model, values, θi)`` returns the largest ``f`` (or ``f·cos θo`` with
+``find_peaks(model, values, wi)`` returns the largest ``f`` (or ``f·cos θo`` with
 ``cosine=True``) over the closed upper hemisphere and its direction, within ~1e-10 (relative)
 of the true maximum (tests/core/sphere/test_peak.py, tests/core/views/test_frame.py).  Every round
 below is one
@@ -412,14 +412,13 @@ def mirror_horizon(wi: np.ndarray, phi_i_deg: float) -> np.ndarray:
     return np.array([-wi[0] / r, -wi[1] / r, 0.0])
 
 
-def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
+def find_peaks(model: Model, values: Mapping[str, Any], wi: np.ndarray, *,
                cosine: bool = False, level: int = PEAK_LEVEL,
                phi_i_deg: float = 180.0) -> tuple[Peak, ...]:
     """``(Peak,)`` for a scalar model, ``(Y, R, G, B)`` peaks for an RGB one (see module);
-    the light at ``θi``, ``φi`` (:func:`~tuibrdf.core.directions.incident`)."""
-    if not 0.0 <= float(theta_i_deg) <= 90.0:  # also refuses NaN
-        raise ValueError(f"theta_i = {theta_i_deg!r} is invalid: expected in [0, 90]°")
-    wi = incident(theta_i_deg, phi_i_deg)
+    the light at ``wi`` (:func:`~tuibrdf.core.directions.incident`; the frame's
+    :attr:`~tuibrdf.core.views.frame.FrameRequest.wi`).  ``phi_i_deg``, the light's azimuth,
+    matters only where ``wi`` is the normal and has none (:func:`mirror_horizon`)."""
     s_dir = mirror(wi)
     h_mirror = mirror_horizon(wi, phi_i_deg)
     cand = np.concatenate([hemisphere(level).vertices, [s_dir, h_mirror, NORMAL]])
@@ -651,9 +650,3 @@ def _climb(model: Model, values: Mapping[str, Any], wi: np.ndarray, cosine: bool
         out_w.append(best[w])
         out_e.append(ended[w])
     return out_v, out_w, out_e
-
-
-def peak_of(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
-            cosine: bool = False) -> Peak:
-    """The one peak a scalar reading uses: the value, or the luminance of an RGB model."""
-    return find_peaks(model, values, theta_i_deg, cosine=cosine)[0]

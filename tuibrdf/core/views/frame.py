@@ -51,7 +51,13 @@ from functools import lru_cache
 import numpy as np
 
 from tuibrdf.core.conventions import luminance
-from tuibrdf.core.directions import from_degrees, incident, sincos_deg
+from tuibrdf.core.directions import (
+    check_phi_i,
+    check_theta_i,
+    from_degrees,
+    incident,
+    sincos_deg,
+)
 from tuibrdf.core.lru import LRU
 from tuibrdf.core.material import Material
 from tuibrdf.core.sphere.albedo import (
@@ -110,18 +116,19 @@ class FrameRequest:
     probe: tuple[float, float] | None = None
     #: the light's azimuth (degrees, in [0, 360)); 180° puts it on the −x side
     phi_i: float = 180.0
+    #: the light direction at (θi, φi) (:func:`~tuibrdf.core.directions.incident`), made once
+    #: here: every part of the frame takes it (read-only; not part of the key)
+    wi: np.ndarray = field(init=False, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if not 1 <= len(self.materials) <= 2:
             raise ValueError("a frame shows one or two materials")
-        t = float(self.theta_i)
-        if not 0.0 <= t <= 90.0:  # also refuses NaN
-            raise ValueError(f"theta_i = {self.theta_i!r} is invalid: expected in [0, 90]°")
+        t, p = check_theta_i(self.theta_i), check_phi_i(self.phi_i) % 360.0
         object.__setattr__(self, "theta_i", t)
-        p = float(self.phi_i)
-        if not np.isfinite(p):
-            raise ValueError(f"phi_i = {self.phi_i!r} is invalid: expected a finite angle in °")
-        object.__setattr__(self, "phi_i", p % 360.0)
+        object.__setattr__(self, "phi_i", p)
+        wi = incident(t, p)
+        wi.setflags(write=False)
+        object.__setattr__(self, "wi", wi)
         if self.extra is not None and self.extra not in EXTRA_VIEWS:
             raise ValueError(f"unknown view {self.extra!r}: expected one of "
                              f"{', '.join(EXTRA_VIEWS)}")
@@ -321,12 +328,12 @@ def turn(w: np.ndarray, deg: float) -> np.ndarray:
                      w[..., 2]], axis=-1)
 
 
-def _peaks(m: Material, theta_i: float, cosine: bool, phi_i: float
+def _peaks(m: Material, wi: np.ndarray, cosine: bool, phi_i: float
            ) -> tuple[tuple[Peak, ...], tuple[Horizon, ...]]:
     """The frame's peaks and where they are for the pictures
     (:mod:`tuibrdf.core.sphere.horizon`)."""
-    peaks = find_peaks(m.model, m.values, theta_i, cosine=cosine, phi_i_deg=phi_i)
-    return assess(m.model, m.values, theta_i, peaks, cosine=cosine, phi_i_deg=phi_i)
+    peaks = find_peaks(m.model, m.values, wi, cosine=cosine, phi_i_deg=phi_i)
+    return assess(m.model, m.values, wi, peaks, cosine=cosine, phi_i_deg=phi_i)
 
 
 def section_center(peak: Peak) -> tuple[float, float]:
@@ -336,7 +343,7 @@ def section_center(peak: Peak) -> tuple[float, float]:
     return min(peak.theta_deg, HORIZON_DEG), peak.phi_deg
 
 
-def _sections(m: Material, theta_i: float, cosine: bool, center: np.ndarray,
+def _sections(m: Material, wi: np.ndarray, cosine: bool, center: np.ndarray,
               azimuth: float, phi_i: float = 180.0) -> dict[str, np.ndarray]:
     """Both planes through the normal and the great circle through ``center`` at section
     azimuth ``azimuth`` (:func:`tuibrdf.core.views.sections.great_circle`), in one kernel call."""
@@ -345,7 +352,7 @@ def _sections(m: Material, theta_i: float, cosine: bool, center: np.ndarray,
     w, above = great_circle(center, SECTION_THETAS, azimuth)
     w = np.where(above[:, None], w, np.array([0.0, 0.0, 1.0]))  # below: any valid direction
     wo = np.concatenate([section_directions(p, SECTION_THETAS, phi_i) for p in PLANES] + [w])
-    g = radiance(m.model, m.values, incident(theta_i, phi_i), wo, cosine)  # 3 sections, 1 call
+    g = radiance(m.model, m.values, wi, wo, cosine)  # 3 sections, 1 call
     n = len(SECTION_THETAS)
     out = {p: g[k * n:(k + 1) * n] for k, p in enumerate((*PLANES, "peak"))}
     out["peak"] = np.where(above[:, None] if g.ndim == 2 else above, out["peak"], 0.0)
@@ -354,10 +361,9 @@ def _sections(m: Material, theta_i: float, cosine: bool, center: np.ndarray,
     return out
 
 
-def probe_values(m: Material, theta_i: float, w: np.ndarray, phi_i: float = 180.0) -> tuple:
+def probe_values(m: Material, wi: np.ndarray, w: np.ndarray) -> tuple:
     """``(f, f·cos θr)`` at the unit direction ``w`` (floats, or 3-tuples for RGB)."""
-    f = np.asarray(radiance(m.model, m.values, incident(theta_i, phi_i), w[None, :],
-                            False))[0]
+    f = np.asarray(radiance(m.model, m.values, wi, w[None, :], False))[0]
     c = max(float(w[2]), 0.0)
 
     def out(x):
@@ -374,8 +380,9 @@ def extra_values(m: Material, req: FrameRequest) -> tuple:
     if e in ("sphere", "plane"):
         px_w, px_h = req.extra_px
         if e == "sphere":
-            return lit.lit_sphere(model, values, req.theta_i, px_w, px_h, phi_i_deg=req.phi_i)
-        return lit.lit_plane(model, values, req.theta_i, px_w, px_h, phi_i_deg=req.phi_i)
+            return lit.lit_sphere(model, values, req.wi, px_w, px_h)
+        return lit.lit_plane(model, values, req.wi, px_w, px_h, view_deg=req.theta_i,
+                             phi_i_deg=req.phi_i)
     if e == "slice":
         return halfdiff.slice_image(model, values, req.phi_d, n_h=req.extra_px[0],
                                     n_d=req.extra_px[1], sqrt_h=req.sqrt_h)
@@ -405,12 +412,11 @@ def solid_samples(level: int = SOLID_LEVEL, subdiv: int = SOLID_SUBDIV):
     return pts, face, tri
 
 
-def solid_values(m: Material, theta_i: float, cosine: bool = False,
-                 phi_i: float = 180.0) -> np.ndarray:
+def solid_values(m: Material, wi: np.ndarray, cosine: bool = False) -> np.ndarray:
     """``f`` at the samples then at the face corners, in one kernel call: ``(S + 3F, ...)``."""
     pts, _, tri = solid_samples()
     wo = np.concatenate([pts, tri.reshape(-1, 3)])
-    g = radiance(m.model, m.values, incident(theta_i, phi_i), wo, cosine)
+    g = radiance(m.model, m.values, wi, wo, cosine)
     g.setflags(write=False)
     return g
 
@@ -450,19 +456,20 @@ def _curve(m: Material, check: Callable[[], bool] | None = None,
 
 def _side(req: FrameRequest, m: Material, slow: bool,
           check: Callable[[], bool] | None) -> SideFrame | None:
-    t, cos, pi = req.theta_i, req.cosine, req.phi_i
-    peaks, horizons = _PEAKS.get((m, t, pi, cos), lambda: _peaks(m, t, cos, pi))
+    t, cos, pi, wi = req.theta_i, req.cosine, req.phi_i, req.wi
+    # the parts are cached by (θi, φi), which wi is a function of
+    peaks, horizons = _PEAKS.get((m, t, pi, cos), lambda: _peaks(m, wi, cos, pi))
     az = req.section_azimuth
     ctr = section_center(peaks[0])
     sections = _SECTIONS.get((m, t, pi, cos, ctr, az),
-                             lambda: _sections(m, t, cos, from_degrees(*ctr), az, pi))
+                             lambda: _sections(m, wi, cos, from_degrees(*ctr), az, pi))
     mp = None
     if req.map_px is not None:
         px = req.map_px
         how = req.map_method
         mp = _MAPS.get((m, t, pi, cos, px, how), lambda: map_values(
-            m.model, m.values, t, px[0], px[1], cosine=cos, method=how, phi_i_deg=pi))
-    solid = (_SOLIDS.get((m, t, pi, cos), lambda: solid_values(m, t, cos, pi))
+            m.model, m.values, wi, px[0], px[1], cosine=cos, method=how))
+    solid = (_SOLIDS.get((m, t, pi, cos), lambda: solid_values(m, wi, cos))
              if req.solid else None)
     extra = None
     if req.extra is not None:
@@ -470,7 +477,7 @@ def _side(req: FrameRequest, m: Material, slow: bool,
     probe = None
     if req.probe is not None:
         probe = _PROBES.get((m, t, pi, req.probe),
-                            lambda: probe_values(m, t, req.probe_direction, pi))
+                            lambda: probe_values(m, wi, req.probe_direction))
     if slow:
         albedo = _ALBEDO.get((m, t, pi), lambda: _albedo(m, t, pi))
         curve = None

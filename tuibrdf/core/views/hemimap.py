@@ -35,7 +35,7 @@ from typing import Any
 import numpy as np
 
 from tuibrdf.core.conventions import luminance
-from tuibrdf.core.directions import incident, mirror
+from tuibrdf.core.directions import mirror
 from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.params import Model
 
@@ -177,16 +177,16 @@ class MapInfo:
 def map_values(
     model: Model,
     values: dict[str, Any],
-    theta_i_deg: float,
+    wi: np.ndarray,
     px_w: int,
     px_h: int,
     *,
     method: str = DEFAULT_METHOD,
     cosine: bool = False,
     level: int | None = None,
-    phi_i_deg: float = 180.0,
 ) -> tuple[np.ndarray, MapInfo]:
-    """The BRDF (or ``f·cos θr`` when ``cosine``) over the map's pixels.
+    """The BRDF (or ``f·cos θr`` when ``cosine``) over the map's pixels, the light at ``wi``
+    (:func:`~tuibrdf.core.directions.incident`).
 
     Returns an array ``(px_h, px_w)`` (``(px_h, px_w, 3)`` for RGB models) with NaN outside the
     disc, and its :class:`MapInfo`.  ``values`` are resolved (``Model.resolve``).
@@ -194,7 +194,6 @@ def map_values(
     if method not in METHODS:
         raise ValueError(f"map method {method!r}: expected one of {', '.join(METHODS)}")
     g = geometry(px_w, px_h)
-    wi = incident(theta_i_deg, phi_i_deg)
     n = g.dirs.shape[0]
     used_level = None
     if method == "exact":

@@ -118,8 +118,8 @@ def peak_in_plane(
     """
     from tuibrdf.core.sphere.peak import find_peaks, radiance
 
-    pk = find_peaks(model, values, theta_i_deg)[0]
     wi = incident(theta_i_deg)
+    pk = find_peaks(model, values, wi)[0]
     at_mirror = radiance(model, values, wi, np.array([[-wi[0], -wi[1], wi[2]]]), False)
     m = float(np.mean(at_mirror))  # scalar, or compare the luminance-like mean for RGB
     if np.ndim(at_mirror) == 1 and m >= pk.value * (1.0 - 1e-12):
