@@ -1,6 +1,6 @@
-"""One frame, one truth (issue 11): the material value, the one peak finder, the frame
-request/result, and the panes that all draw from it (tuibrdf/core/material.py, core/peak.py,
-core/scene.py, render/panes.py).
+"""One frame, one truth (issue 11): the one peak finder, the frame request/result, and the
+panes that all draw from it (tuibrdf/core/sphere/peak.py, core/views/frame.py,
+render/panes.py); the material value is tests/core/test_material.py's.
 
 Expected values come from outside the code under test: closed forms (Lambert kd/π, Phong's
 mirror value (n+2)/(2π)·ks), an independent brute-force search over a dense (θ, φ) grid written
@@ -26,29 +26,6 @@ from tuibrdf.core.views import frame as scene
 from tuibrdf.core.views.hemimap import geometry
 from tuibrdf.render import panes
 from tuibrdf.render.views import map_pixels
-
-# -------------------------------------------------------------------------------- material
-
-
-def test_material_is_a_validated_hashable_value():
-    a = Material("phong", {"kd": 0.2})
-    b = Material("phong", {"kd": 0.2, "ks": MODELS["phong"].param("ks").default})
-    assert a == b and hash(a) == hash(b) and len({a, b}) == 1  # defaults filled: one key
-    assert a != Material("phong", {"kd": 0.3}) and a != Material("blinn-phong", {"kd": 0.2})
-    assert list(a.values) == [p.name for p in MODELS["phong"].params]  # declaration order
-    with pytest.raises(ValueError, match="kd"):
-        Material("phong", {"kd": 2.0})  # out of the declared range [0, 1]
-    with pytest.raises(ValueError, match="constraint"):
-        Material("phong", {"kd": 0.8, "ks": 0.8})  # kd + ks ≤ 1
-    with pytest.raises(AttributeError):
-        a.name = "lambert"
-    a.values["kd"] = 0.9  # a copy: the material does not change
-    assert a.values["kd"] == 0.2
-    c = a.with_values(kd=0.4)
-    assert c.values["kd"] == 0.4 and a.values["kd"] == 0.2
-    with pytest.raises(ValueError):
-        a.with_values(kd=0.9)  # 0.9 + ks 0.5 > 1
-
 
 # ------------------------------------------------------------------------------------ peak
 
