@@ -26,7 +26,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from tuibrdf.core.directions import check_phi_i, check_theta_i, incident, mirror, sincos_deg
-from tuibrdf.core.evaluate import evaluate_resolved
+from tuibrdf.core.evaluate import evaluate_resolved, f_cos
 from tuibrdf.core.params import Model
 from tuibrdf.core.registry import get_model
 from tuibrdf.core.sphere import integrator as polar
@@ -81,15 +81,12 @@ def _resolve(model: str | Model, params: Mapping[str, Any] | None) -> tuple[Mode
     return m, m.resolve(params)
 
 
-def _radiance(model: Model, values: Mapping[str, Any], wi: np.ndarray, wo: np.ndarray,
-              cosine: bool = True) -> np.ndarray:
-    """``f(wi, wo)·cos θo`` (or ``f`` alone) for many ``wo (n, 3)`` and one ``wi (3,)``."""
+def _integrand(model: Model, values: Mapping[str, Any], wi: np.ndarray,
+               wo: np.ndarray) -> np.ndarray:
+    """The albedo's integrand ``f(wi, wo)·cos θo`` for many ``wo (n, 3)`` and one ``wi (3,)``
+    (the uniform and adaptive mesh rules)."""
     wo = np.asarray(wo, dtype=float)
-    f = np.asarray(evaluate_resolved(model, values, np.broadcast_to(wi, wo.shape), wo))
-    if not cosine:
-        return f
-    c = wo[:, 2]
-    return f * (c[:, None] if f.ndim == 2 else c)
+    return f_cos(evaluate_resolved(model, values, np.broadcast_to(wi, wo.shape), wo), wo)
 
 
 def _scalar(x: np.ndarray) -> float | np.ndarray:
@@ -180,7 +177,7 @@ def albedo_estimate(model: str | Model, params: Mapping[str, Any] | None = None,
 def _uniform(model: Model, values, wi: np.ndarray, level: int) -> np.ndarray:
     """Vertex rule of ``hemisphere(level)``."""
     mesh = hemisphere(level)
-    return mesh.integrate(_radiance(model, values, wi, mesh.vertices))
+    return mesh.integrate(_integrand(model, values, wi, mesh.vertices))
 
 
 def adaptive_max_level(cos_i: float) -> int:
@@ -217,7 +214,7 @@ def albedo_resolved(model: Model, values: Mapping[str, Any], theta_i_deg: float,
     wi = incident(check_theta_i(theta_i_deg), check_phi_i(phi_i_deg))
     if method == "uniform":
         return _scalar(_uniform(model, values, wi, level))
-    ad = refine_adaptive(lambda wo: _radiance(model, values, wi, wo), tol,
+    ad = refine_adaptive(lambda wo: _integrand(model, values, wi, wo), tol,
                          max_level=adaptive_max_level(wi[2]), base_level=2, focus=mirror(wi))
     return _scalar(ad.integrate())
 

@@ -81,7 +81,7 @@ import numpy as np
 
 from tuibrdf.core.conventions import luminance
 from tuibrdf.core.directions import incident, mirror, phi_of, theta_of
-from tuibrdf.core.evaluate import evaluate_resolved
+from tuibrdf.core.evaluate import evaluate_resolved, f_cos
 from tuibrdf.core.params import Model
 from tuibrdf.core.sphere.mesh import hemisphere
 
@@ -139,10 +139,7 @@ def radiance(model: Model, values: Mapping[str, Any], wi: np.ndarray, wo: np.nda
              cosine: bool) -> np.ndarray:
     """``f(wi, wo)`` (times ``cos θo`` when ``cosine``) at ``wo (n, 3)``: ``(n,)``/``(n, 3)``."""
     f = np.asarray(evaluate_resolved(model, values, wi, wo), dtype=float)
-    if not cosine:
-        return f
-    c = wo[:, 2]
-    return f * (c[:, None] if f.ndim == 2 else c)
+    return f_cos(f, wo) if cosine else f
 
 
 def scores(g: np.ndarray) -> np.ndarray:

@@ -58,6 +58,7 @@ from tuibrdf.core.directions import (
     incident,
     sincos_deg,
 )
+from tuibrdf.core.evaluate import f_cos
 from tuibrdf.core.lru import LRU
 from tuibrdf.core.material import Material
 from tuibrdf.core.sphere.albedo import (
@@ -364,12 +365,11 @@ def _sections(m: Material, wi: np.ndarray, cosine: bool, center: np.ndarray,
 def probe_values(m: Material, wi: np.ndarray, w: np.ndarray) -> tuple:
     """``(f, f·cos θr)`` at the unit direction ``w`` (floats, or 3-tuples for RGB)."""
     f = np.asarray(radiance(m.model, m.values, wi, w[None, :], False))[0]
-    c = max(float(w[2]), 0.0)
 
     def out(x):
         return float(x) if np.ndim(x) == 0 else tuple(float(y) for y in x)
 
-    return out(f), out(f * c)
+    return out(f), out(f_cos(f, w))
 
 
 def extra_values(m: Material, req: FrameRequest) -> tuple:

@@ -36,7 +36,7 @@ import numpy as np
 
 from tuibrdf.core.conventions import luminance
 from tuibrdf.core.directions import mirror
-from tuibrdf.core.evaluate import evaluate_resolved
+from tuibrdf.core.evaluate import evaluate_resolved, f_cos
 from tuibrdf.core.params import Model
 
 METHODS: tuple[str, ...] = ("exact", "mesh")
@@ -199,14 +199,13 @@ def map_values(
     if method == "exact":
         f = np.asarray(evaluate_resolved(model, values, wi, g.dirs), dtype=float)
         if cosine:
-            f = f * (g.dirs[:, 2][:, None] if f.ndim == 2 else g.dirs[:, 2])
+            f = f_cos(f, g.dirs)
     else:
         used_level = level if level is not None else mesh_level_for(n)
         idx, wts, mesh = _mesh_weights(g.px_w, g.px_h, used_level)
         fv = np.asarray(evaluate_resolved(model, values, wi, mesh.vertices), dtype=float)
         if cosine:
-            cz = mesh.vertices[:, 2]
-            fv = fv * (cz[:, None] if fv.ndim == 2 else cz)
+            fv = f_cos(fv, mesh.vertices)
         f = np.einsum("nk,nk...->n...", wts, fv[idx])
     shape = (g.px_h, g.px_w) + f.shape[1:]
     out = np.full(shape, np.nan)
