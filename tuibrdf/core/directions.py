@@ -14,16 +14,9 @@ import numpy as np
 from tuibrdf.core.numerics import safe_div, safe_sqrt
 
 
-def from_angles(theta: np.ndarray, phi: np.ndarray) -> np.ndarray:
-    """Unit direction(s) from polar angle ``theta`` and azimuth ``phi`` in radians."""
-    theta = np.asarray(theta, dtype=float)
-    phi = np.asarray(phi, dtype=float)
-    s = np.sin(theta)
-    return np.stack(np.broadcast_arrays(s * np.cos(phi), s * np.sin(phi), np.cos(theta)), axis=-1)
-
-
 def from_degrees(theta_deg, phi_deg) -> np.ndarray:
-    """:func:`from_angles` with angles in degrees (the user-facing unit).
+    """Unit direction(s) ``(sin θ cos φ, sin θ sin φ, cos θ)`` from polar angle ``theta_deg``
+    and azimuth ``phi_deg`` in degrees (the user-facing unit).
 
     Multiples of 90° give exact components, so ``θ = 90°`` lies exactly on the horizon
     (``np.cos(np.pi / 2)`` is 6e-17, not 0).
@@ -141,22 +134,6 @@ def _cos_dphi(xi, yi, xo, yo, sin2_i, sin2_o):
     den = np.sqrt(sin2_i * sin2_o)  # a product of sums of squares: ≥ 0
     out = safe_div(num, den, den > 0.0)  # den = 0 only at the normal: Δφ undefined
     return np.minimum(np.maximum(out, -1.0), 1.0)  # rounding can leave [-1, 1] by an ulp
-
-
-def half_vector(wi: np.ndarray, wo: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``(H, valid)``: the normalised half vector and where it is defined.
-
-    ``wi + wo = 0`` (light and viewer opposite on the horizon) has no half vector; there ``H``
-    is set to the normal and ``valid`` is False so models can return their documented value.
-    """
-    s = np.asarray(wi, dtype=float) + np.asarray(wo, dtype=float)
-    sx, sy, sz = xyz(s)
-    n2 = sx * sx + sy * sy + sz * sz
-    valid = n2 > 0.0
-    inv = safe_div(1.0, np.sqrt(n2), valid)  # |wi+wo| = 0: H undefined
-    h = s * np.asarray(inv)[..., None]
-    h = np.where(np.asarray(valid)[..., None], h, np.array([0.0, 0.0, 1.0]))
-    return h, valid
 
 
 def theta_of(w: np.ndarray) -> np.ndarray:

@@ -1,5 +1,5 @@
-"""Quadrature on the hemisphere: albedo (with an error estimate), albedo curve, reciprocity
-error.  (The peak of a lobe is :func:`tuibrdf.core.sphere.peak.find_peaks`, the one peak finder.)
+"""Quadrature on the hemisphere: the directional albedo (with an error estimate) and the albedo
+curve.  (The peak of a lobe is :func:`tuibrdf.core.sphere.peak.find_peaks`, the one peak finder.)
 
 Directional albedo ``a(wi) = ∫ f(wi, wo) cos θo dωo`` is, by default (``method="auto"``), the
 nested adaptive Gauss–Kronrod rule of :mod:`~tuibrdf.core.sphere.integrator` in polar
@@ -56,8 +56,6 @@ METHODS = ("auto", "uniform", "adaptive")
 #: Below this cos θi (85°) adaptive refinement may go deeper (see adaptive_max_level).
 GRAZING_COS = float(np.cos(np.radians(85.0)))
 GRAZING_EXTRA_LEVELS = 3
-#: Level of the all-pairs reciprocity check (341 directions, 116,281 pairs).
-RECIPROCITY_LEVEL = 3
 
 
 class AlbedoEstimate(NamedTuple):
@@ -241,36 +239,3 @@ def albedo_curve_resolved(model: Model, values: Mapping[str, Any],
     out = [albedo_resolved(model, values, t, phi_i_deg, level=level, tol=tol, method=method)
            for t in thetas]
     return np.array(out, dtype=float)
-
-
-def albedo_curve(model: str | Model, params: Mapping[str, Any] | None,
-                 thetas_deg: Sequence[float] | np.ndarray, phi_i_deg: float = 180.0, *,
-                 level: int = DEFAULT_LEVEL, tol: float = DEFAULT_TOL,
-                 method: str = "auto") -> np.ndarray:
-    m, v = _resolve(model, params)
-    return albedo_curve_resolved(m, v, thetas_deg, phi_i_deg, level=level, tol=tol,
-                                 method=method)
-
-
-# ---------------------------------------------------------------------------------------------
-# reciprocity
-
-
-def reciprocity_error_resolved(model: Model, values: Mapping[str, Any], *,
-                               level: int = RECIPROCITY_LEVEL) -> float:
-    """``max |f(wi, wo) − f(wo, wi)| / max f`` over all pairs of mesh vertices (0 for a model
-    that is 0 everywhere)."""
-    v = hemisphere(level).vertices
-    wi, wo = np.broadcast_arrays(v[:, None, :], v[None, :, :])
-    a = np.asarray(evaluate_resolved(model, values, wi, wo))
-    b = np.asarray(evaluate_resolved(model, values, wo, wi))
-    top = float(np.max(np.abs(a)))
-    if top == 0.0:
-        return 0.0
-    return float(np.max(np.abs(a - b)) / top)
-
-
-def reciprocity_error(model: str | Model, params: Mapping[str, Any] | None = None, *,
-                      level: int = RECIPROCITY_LEVEL) -> float:
-    m, v = _resolve(model, params)
-    return reciprocity_error_resolved(m, v, level=level)

@@ -524,15 +524,3 @@ def needs_curve(req: FrameRequest) -> bool:
     """``req`` shows an albedo curve not computed yet (91 albedos: the slow part of a frame
     whatever the model)."""
     return req.curve and any(_CURVES.peek((m, req.phi_i)) is None for m in req.materials)
-
-
-def albedo_curve(m: Material, phi_i: float = 180.0) -> np.ndarray:
-    """``a`` at :data:`CURVE_THETAS` (cached): ``(n,)`` or ``(n, 3)``."""
-    return _CURVES.get((m, phi_i), lambda: _curve(m, None, phi_i)).value
-
-
-def albedo_curve_estimate(m: Material, phi_i: float = 180.0) -> AlbedoEstimate:
-    """``(a, error)`` at :data:`CURVE_THETAS` (cached)."""
-    return _CURVES.get((m, phi_i), lambda: _curve(m, None, phi_i))
-
-
