@@ -17,7 +17,7 @@ from tuibrdf.core.directions import from_degrees, incident
 from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
 from tuibrdf.core.sphere.horizon import HORIZON_DEG, assess
-from tuibrdf.core.sphere.peak import find_peaks, radiance
+from tuibrdf.core.sphere.peak import f_or_f_cos, find_peaks
 from tuibrdf.core.views import frame as scene
 from tuibrdf.core.views.hemimap import geometry
 from tuibrdf.render import panes
@@ -91,7 +91,7 @@ def test_ggx_at_90_is_unbounded_like_one_over_delta():
     # sin(θi + θo) → 0 at θi = 90°: f·δ tends to a constant (checked on the kernel directly)
     d = np.radians([1e-4, 1e-5, 1e-6])
     w = np.stack([np.cos(d), np.zeros(3), np.sin(d)], axis=1)
-    f = radiance(mat.model, mat.values, incident(90.0), w, False)
+    f = f_or_f_cos(mat.model, mat.values, incident(90.0), w, False)
     assert f[1] / f[0] == pytest.approx(10.0, rel=1e-3)
     assert f[2] / f[1] == pytest.approx(10.0, rel=1e-3)
 
@@ -193,7 +193,7 @@ def test_sgd_gold_metallic_paint_blue_grows_like_one_over_delta():
     assert _g1(0.5 * math.pi, q)[2] > 0.0  # G1(90°) > 0 in blue: the formula has no limit
     d = np.radians([1e-7, 1e-8])
     w = np.stack([np.cos(d), np.zeros(2), np.sin(d)], axis=1)
-    f = radiance(mat.model, mat.values, incident(60.0), w, False)[:, 2]
+    f = f_or_f_cos(mat.model, mat.values, incident(60.0), w, False)[:, 2]
     k = _grazing_coefficient(q, 60.0)[2]
     # K/(π δ): the closed form's growth, to the O(1) terms (π f(89.9°) ≈ 1.6 ≪ K/δ ≈ 1.6e4)
     assert f == pytest.approx(k / d / math.pi, rel=1e-3)
@@ -245,8 +245,8 @@ def test_scale_is_the_largest_value_at_89_and_below_the_peak(model, params, thet
         assert sc.theta_deg <= HORIZON_DEG
         # and the value is f at the direction it names
         w = from_degrees(sc.theta_deg, sc.phi_deg)[None, :]
-        f = np.atleast_1d(radiance(side.material.model, side.material.values,
-                                   incident(theta_i), w, False)[0])
+        f = np.atleast_1d(f_or_f_cos(side.material.model, side.material.values,
+                                     incident(theta_i), w, False)[0])
         f = f if mode == "color" or f.size == 1 else [0.2126 * f[0] + 0.7152 * f[1]
                                                       + 0.0722 * f[2]]
         assert max(f) == pytest.approx(sc.value, rel=1e-6)
@@ -267,7 +267,7 @@ def test_a_channel_lobe_inside_sets_the_scale_beside_an_unbounded_one():
         v = np.asarray(side.sections[plane])[np.abs(t) <= HORIZON_DEG]
         assert float(v.max()) <= sc.value * (1.0 + 1e-9)
     w = from_degrees(sc.theta_deg, sc.phi_deg)[None, :]
-    f = radiance(side.material.model, side.material.values, incident(45.0), w, False)[0]
+    f = f_or_f_cos(side.material.model, side.material.values, incident(45.0), w, False)[0]
     assert f[0] == pytest.approx(sc.value, rel=1e-9)  # red at the direction it names
 
 
@@ -337,8 +337,8 @@ def test_section_through_a_horizon_peak_is_lowered_and_titled():
     # the section is not the horizon: it crosses the lobe at 89°, where f(89°) is the top
     mid = len(v) // 2
     w = from_degrees(89.0, side.peaks[0].phi_deg)[None, :]
-    f89 = float(radiance(side.material.model, side.material.values, incident(89.0), w,
-                         False)[0])
+    f89 = float(f_or_f_cos(side.material.model, side.material.values, incident(89.0), w,
+                           False)[0])
     assert v[mid] == pytest.approx(f89, rel=1e-9) and v.max() == v[mid] > 0
     title = _plain(panes.pane("perpendicular", res, 0, 80, 20, panes.Look(color="none")), 80)[0]
     assert "through θ=89° φ=0°, below the peak" in title

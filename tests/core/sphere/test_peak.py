@@ -257,13 +257,13 @@ def test_plane_check_keeps_off_the_horizon_at_90(monkeypatch, cosine):
     # at a fixed place far below it.  The plane check leaves the horizon to them: no call of
     # its own (the candidates and at most PEAK_ROUNDS rounds) and a value far below that one
     calls = []
-    inner = peak_module.radiance
+    inner = peak_module.f_or_f_cos
 
     def counting(*args, **kwargs):
         calls.append(1)
         return inner(*args, **kwargs)
 
-    monkeypatch.setattr(peak_module, "radiance", counting)
+    monkeypatch.setattr(peak_module, "f_or_f_cos", counting)
     pk = peak("cook-torrance", {}, 90.0, cosine)[0]
     assert len(calls) <= 1 + peak_module.PEAK_ROUNDS
     t = math.pi / 2

@@ -46,8 +46,8 @@ from tuibrdf.core.sphere.peak import (
     PEAK_TOL,
     Peak,
     _plane_refine,
+    f_or_f_cos,
     mirror_horizon,
-    radiance,
     scores,
 )
 
@@ -133,7 +133,7 @@ def _classify(model: Model, values: Mapping[str, Any], wi: np.ndarray,
     n = len(_DELTAS)
     # 90° − δ along each axis: cos δ · axis + sin δ · N (exact distances from the horizon)
     w = np.concatenate([_COS_D[:, None] * ax + _SIN_D[:, None] * NORMAL for ax in axes])
-    sc = scores(radiance(model, values, wi, w, cosine))  # one call for every axis
+    sc = scores(f_or_f_cos(model, values, wi, w, cosine))  # one call for every axis
     peaks = list(peaks)
     toward: list[float | None] = [None] * len(peaks)
     starts: list[list] = [[] for _ in axes]

@@ -135,9 +135,10 @@ class Peak(NamedTuple):
     label: str = ""
 
 
-def radiance(model: Model, values: Mapping[str, Any], wi: np.ndarray, wo: np.ndarray,
-             cosine: bool) -> np.ndarray:
-    """``f(wi, wo)`` (times ``cos θo`` when ``cosine``) at ``wo (n, 3)``: ``(n,)``/``(n, 3)``."""
+def f_or_f_cos(model: Model, values: Mapping[str, Any], wi: np.ndarray, wo: np.ndarray,
+               cosine: bool) -> np.ndarray:
+    """What the panes show at ``wo (n, 3)``: ``f(wi, wo)``, or ``f·cos θo`` when ``cosine``
+    (:func:`~tuibrdf.core.evaluate.f_cos`); ``(n,)``/``(n, 3)``."""
     f = np.asarray(evaluate_resolved(model, values, wi, wo), dtype=float)
     return f_cos(f, wo) if cosine else f
 
@@ -314,7 +315,7 @@ def _near_horizon_starts(model: Model, values: Mapping[str, Any], wi: np.ndarray
     if not ts:
         return []
     flat = np.array([x for xs in ts for x in xs])
-    sc = scores(radiance(model, values, wi, _along(flat, axis), cosine))
+    sc = scores(f_or_f_cos(model, values, wi, _along(flat, axis), cosine))
     out, k = [], 0
     for c, xs in zip(cols, ts, strict=True):
         out.append((c, xs, sc[k:k + len(xs), c].tolist()))
@@ -379,7 +380,7 @@ def _plane_refine(model: Model, values: Mapping[str, Any], wi: np.ndarray, cosin
         if not live:
             break
         tt = np.array([x for new in asks for x in new])
-        st = scores(radiance(model, values, wi, _along(tt, axis), cosine))
+        st = scores(f_or_f_cos(model, values, wi, _along(tt, axis), cosine))
         k = 0
         for (c, xs, ys), new in zip(live, asks, strict=True):
             for x, v in zip(new, st[k:k + len(new), c].tolist(), strict=True):
@@ -421,7 +422,7 @@ def find_peaks(model: Model, values: Mapping[str, Any], wi: np.ndarray, *,
     cand = np.concatenate([hemisphere(level).vertices, [s_dir, h_mirror, NORMAL]])
     # one kernel call for the candidates and the plane's grid
     line = _PLANE_SIN * h_mirror + _PLANE_UP
-    sc = scores(radiance(model, values, wi, np.concatenate([cand, line]), cosine))
+    sc = scores(f_or_f_cos(model, values, wi, np.concatenate([cand, line]), cosine))
     sc, gs = sc[:len(cand)], sc[len(cand):]
     val, at, ended = _climb(model, values, wi, cosine, cand, sc, level)
     starts = _plane_starts(gs, val, at, ended, h_mirror, _at_normal(wi))
@@ -500,7 +501,7 @@ def _climb(model: Model, values: Mapping[str, Any], wi: np.ndarray, cosine: bool
         else:  # every point above the horizon (hb < −1)
             q = c[:, None, :] + _GA50[:, None] * t1[:, None, :] + _GB50[:, None] * t2[:, None, :]
         q /= np.sqrt(np.einsum("nij,nij->ni", q, q))[:, :, None]  # ≠ 0: steps are ≪ 1 rad
-        st = scores(radiance(model, values, wi, q.reshape(-1, 3), cosine))
+        st = scores(f_or_f_cos(model, values, wi, q.reshape(-1, 3), cosine))
         v = st.reshape(n, 50, k)[np.arange(n), :, [col[i] for i in live]]
         j = v.argmax(axis=1)
         vmax = v[np.arange(n), j]

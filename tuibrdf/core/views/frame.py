@@ -68,7 +68,7 @@ from tuibrdf.core.sphere.albedo import (
     exceeds_one,
 )
 from tuibrdf.core.sphere.horizon import HORIZON_DEG, Horizon, PeakScale, assess, drawn_scale
-from tuibrdf.core.sphere.peak import Peak, find_peaks, radiance
+from tuibrdf.core.sphere.peak import Peak, f_or_f_cos, find_peaks
 from tuibrdf.core.views.hemimap import MapInfo, map_values
 
 PLANES = ("incidence", "perpendicular")
@@ -353,7 +353,7 @@ def _sections(m: Material, wi: np.ndarray, cosine: bool, center: np.ndarray,
     w, above = great_circle(center, SECTION_THETAS, azimuth)
     w = np.where(above[:, None], w, np.array([0.0, 0.0, 1.0]))  # below: any valid direction
     wo = np.concatenate([section_directions(p, SECTION_THETAS, phi_i) for p in PLANES] + [w])
-    g = radiance(m.model, m.values, wi, wo, cosine)  # 3 sections, 1 call
+    g = f_or_f_cos(m.model, m.values, wi, wo, cosine)  # 3 sections, 1 call
     n = len(SECTION_THETAS)
     out = {p: g[k * n:(k + 1) * n] for k, p in enumerate((*PLANES, "peak"))}
     out["peak"] = np.where(above[:, None] if g.ndim == 2 else above, out["peak"], 0.0)
@@ -364,7 +364,7 @@ def _sections(m: Material, wi: np.ndarray, cosine: bool, center: np.ndarray,
 
 def probe_values(m: Material, wi: np.ndarray, w: np.ndarray) -> tuple:
     """``(f, f·cos θr)`` at the unit direction ``w`` (floats, or 3-tuples for RGB)."""
-    f = np.asarray(radiance(m.model, m.values, wi, w[None, :], False))[0]
+    f = np.asarray(f_or_f_cos(m.model, m.values, wi, w[None, :], False))[0]
 
     def out(x):
         return float(x) if np.ndim(x) == 0 else tuple(float(y) for y in x)
@@ -416,7 +416,7 @@ def solid_values(m: Material, wi: np.ndarray, cosine: bool = False) -> np.ndarra
     """``f`` at the samples then at the face corners, in one kernel call: ``(S + 3F, ...)``."""
     pts, _, tri = solid_samples()
     wo = np.concatenate([pts, tri.reshape(-1, 3)])
-    g = radiance(m.model, m.values, wi, wo, cosine)
+    g = f_or_f_cos(m.model, m.values, wi, wo, cosine)
     g.setflags(write=False)
     return g
 
@@ -426,7 +426,7 @@ def _plain(a) -> float | tuple[float, ...]:
     return float(a) if a.ndim == 0 else tuple(float(x) for x in a)
 
 
-def _albedo(m: Material, theta_i: float, phi_i: float = 180.0) -> AlbedoEstimate:
+def _albedo_estimate(m: Material, theta_i: float, phi_i: float = 180.0) -> AlbedoEstimate:
     """``(albedo, error)`` as floats (or tuples of 3 for RGB)."""
     e = albedo_estimate_resolved(m.model, m.values, theta_i, phi_i)
     return AlbedoEstimate(_plain(e.value), _plain(e.error))
@@ -479,7 +479,7 @@ def _side(req: FrameRequest, m: Material, slow: bool,
         probe = _PROBES.get((m, t, pi, req.probe),
                             lambda: probe_values(m, wi, req.probe_direction))
     if slow:
-        albedo = _ALBEDO.get((m, t, pi), lambda: _albedo(m, t, pi))
+        albedo = _ALBEDO.get((m, t, pi), lambda: _albedo_estimate(m, t, pi))
         curve = None
         if req.curve:
             curve = _CURVES.peek((m, pi))

@@ -65,8 +65,10 @@ def uv_to_dir(uv: np.ndarray) -> np.ndarray:
 
 
 @dataclass(frozen=True)
-class Geometry:
-    """Where the disc sits in a ``px_w × px_h`` pixel grid."""
+class MapGrid:
+    """The map's pixel grid: where the disc sits in ``px_w × px_h`` pixels, and the direction
+    of each pixel centre inside it (not :class:`tuibrdf.core.directions.Geometry`, the angles
+    of a pair of directions)."""
 
     px_w: int
     px_h: int
@@ -106,7 +108,7 @@ class Geometry:
 
 
 @lru_cache(maxsize=16)
-def geometry(px_w: int, px_h: int) -> Geometry:
+def geometry(px_w: int, px_h: int) -> MapGrid:
     """The disc in a ``px_w × px_h`` grid (cached per size)."""
     px_w, px_h = int(px_w), int(px_h)
     if px_w < 4 or px_h < 4:
@@ -115,7 +117,7 @@ def geometry(px_w: int, px_h: int) -> Geometry:
     cx = px_w // 2 + 0.5
     cy = px_h // 2 - 0.5
     ys, xs = np.mgrid[0:px_h, 0:px_w] + 0.5
-    g = Geometry(px_w, px_h, diameter, cx, cy, np.zeros((px_h, px_w), bool), np.empty((0, 3)),
+    g = MapGrid(px_w, px_h, diameter, cx, cy, np.zeros((px_h, px_w), bool), np.empty((0, 3)),
                  np.empty((0, 2)))
     uv = g.to_uv(xs, ys)
     inside = (uv**2).sum(axis=-1) <= 2.0
@@ -123,7 +125,7 @@ def geometry(px_w: int, px_h: int) -> Geometry:
         a.setflags(write=False)
     dirs = uv_to_dir(uv[inside])
     dirs.setflags(write=False)
-    return Geometry(px_w, px_h, diameter, cx, cy, inside, dirs, uv[inside])
+    return MapGrid(px_w, px_h, diameter, cx, cy, inside, dirs, uv[inside])
 
 
 # ---------------------------------------------------------------------------------------------
