@@ -125,6 +125,31 @@ def test_each_pane_is_evaluated_once_and_a_repeated_frame_is_free(monkeypatch):
     assert calls == []  # cached by request
 
 
+def test_the_request_makes_wi_once_and_every_part_takes_it(monkeypatch):
+    # the light's direction is the request's: read-only, not part of the key (a function of
+    # θi and the normalised φi), and no part of the frame turns θi into wi again
+    import sys
+
+    req = scene.FrameRequest((Material("ggx"),), 41.0, phi_i=-30.0, map_px=(40, 30),
+                             solid=True, probe=(0.3, -0.2), extra="sphere", extra_px=(20, 16))
+    assert req.phi_i == 330.0 and np.array_equal(req.wi, incident(41.0, 330.0))
+    assert not req.wi.flags.writeable
+    assert req == dataclasses.replace(req) and hash(req) == hash(dataclasses.replace(req))
+
+    def no_conversion(*a, **kw):
+        raise AssertionError("θi turned into wi again")
+
+    for name, mod in list(sys.modules.items()):
+        if name.startswith("tuibrdf.") and getattr(mod, "incident", None) is incident:
+            monkeypatch.setattr(mod, "incident", no_conversion)
+    scene.clear_caches()
+    side = scene.compute_frame(req, slow=False).sides[0]
+    monkeypatch.undo()
+    assert side.map is not None and side.solid is not None and side.extra is not None
+    assert side.probe[0] == pytest.approx(float(evaluate("ggx", {}, incident(41.0, 330.0),
+                                                         req.probe_direction)), rel=1e-12)
+
+
 # ----------------------------------------------------------------- every pane agrees
 
 
