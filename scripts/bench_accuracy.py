@@ -39,7 +39,7 @@ from pathlib import Path
 import numpy as np
 from revtree import extract
 
-from tuibrdf.core.directions import from_degrees, mirror
+from tuibrdf.core.directions import from_degrees, incident, mirror
 from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.registry import MODELS, get_model
 from tuibrdf.core.sphere import albedo as q
@@ -637,8 +637,8 @@ def variants_table():
         for th in (0.0, 60.0, 85.0):
             aa = q.albedo_resolved(ma, va, th)
             ab = q.albedo_resolved(mb, vb, th)
-            qa = find_peaks(ma, va, th)[0].value
-            qb = find_peaks(mb, vb, th)[0].value
+            qa = find_peaks(ma, va, incident(th))[0].value
+            qb = find_peaks(mb, vb, incident(th))[0].value
             print(f"{label:<44} {th:4.0f} {aa:9.5f} {ab:9.5f} {ab - aa:9.2e} "
                   f"{(qb - qa) / qa:9.2e}")
 

@@ -21,6 +21,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
 
+from tuibrdf.core.directions import incident  # noqa: E402
 from tuibrdf.core.formats import userfiles  # noqa: E402
 from tuibrdf.core.registry import get_model  # noqa: E402
 from tuibrdf.core.views.hemimap import map_values  # noqa: E402
@@ -63,19 +64,20 @@ def ms_pair(fa, fb, repeat: int) -> tuple[float, float]:
 def bench_maps(repeat: int) -> None:
     print("| file | built-in | cells | file ms | built-in ms | ratio |")
     print("|---|---|---|---|---|---|")
+    wi = incident(30.0)
     for fname, fparams, bname, bparams in PAIRS:
         fm = get_model(str(DATA / fname))
         fv = fm.resolve(fparams)
         for w, h in SIZES:
             px_w, px_h = w, 2 * (h - 3)
             if bname is None:
-                tf = ms(lambda m=fm, v=fv, a=px_w, b=px_h: map_values(m, v, 30.0, a, b), repeat)
+                tf = ms(lambda m=fm, v=fv, a=px_w, b=px_h: map_values(m, v, wi, a, b), repeat)
                 print(f"| {fname} | — | {w}×{h} | {tf:.2f} | — | — |")
                 continue
             bm = get_model(bname)
             bv = bm.resolve(bparams)
-            tf, tb = ms_pair(lambda m=fm, v=fv, a=px_w, b=px_h: map_values(m, v, 30.0, a, b),
-                             lambda m=bm, v=bv, a=px_w, b=px_h: map_values(m, v, 30.0, a, b),
+            tf, tb = ms_pair(lambda m=fm, v=fv, a=px_w, b=px_h: map_values(m, v, wi, a, b),
+                             lambda m=bm, v=bv, a=px_w, b=px_h: map_values(m, v, wi, a, b),
                              repeat)
             print(f"| {fname} | {bname} | {w}×{h} | {tf:.2f} | {tb:.2f} | {tf / tb:.2f} |")
 
@@ -100,7 +102,7 @@ def bench_loading(repeat: int) -> None:
         t = ms(load_bsdf, repeat)
         print(f"| load synthetic .bsdf (1×8 incidences, 32×32, RGB) | {t:.1f} |")
         m = get_model(str(path))
-        t = ms(lambda: map_values(m, m.defaults(), 30.0, 160, 90), repeat)
+        t = ms(lambda: map_values(m, m.defaults(), incident(30.0), 160, 90), repeat)
         print(f"| map of that .bsdf at 160×48 | {t:.1f} |")
 
 

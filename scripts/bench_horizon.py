@@ -12,6 +12,7 @@ import argparse
 import statistics
 import time
 
+from tuibrdf.core.directions import incident
 from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
 from tuibrdf.core.sphere.horizon import assess
@@ -32,14 +33,15 @@ def main() -> int:
         mat = Material(name)
         cells = []
         for t in THETAS:
-            peaks = find_peaks(mat.model, mat.values, t)
+            wi = incident(t)
+            peaks = find_peaks(mat.model, mat.values, wi)
             a, p = [], []
             for k in range(args.reps):
                 t0 = time.process_time()
-                assess(mat.model, mat.values, t, peaks)
+                assess(mat.model, mat.values, wi, peaks)
                 a.append(time.process_time() - t0)
                 t0 = time.process_time()
-                find_peaks(mat.model, mat.values, t - 1e-3 * (k + 1))  # no cache
+                find_peaks(mat.model, mat.values, incident(t - 1e-3 * (k + 1)))  # no cache
                 p.append(time.process_time() - t0)
             cells.append(f"{statistics.median(a) * 1e3:.2f} / {statistics.median(p) * 1e3:.1f}")
         print(f"| {name} | " + " | ".join(cells) + " |")

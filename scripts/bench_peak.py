@@ -15,6 +15,7 @@ frame, and the median over the models of the new/old ratio of their median frame
 from __future__ import annotations
 
 import argparse
+import inspect
 import statistics
 import subprocess
 import sys
@@ -25,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 import tuibrdf.core.sphere.peak as new_peak
+from tuibrdf.core.directions import incident
 from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
 from tuibrdf.core.views import frame as scene
@@ -88,17 +90,24 @@ def counted(mod: types.ModuleType) -> list[int]:
     return calls
 
 
+def takes_wi(finder) -> bool:
+    """Whether ``finder`` takes the light ``wi`` (peak.py since the frame request carries it)
+    rather than θi (before)."""
+    return "wi" in inspect.signature(finder).parameters
+
+
 def run(mod, calls, case, cosine, reps):
     name, params, t = case
     m = MODELS[name]
     v = m.resolve(params)
+    light = incident(t) if takes_wi(mod.find_peaks) else t
     calls.clear()
-    peaks = mod.find_peaks(m, v, t, cosine=cosine)
+    peaks = mod.find_peaks(m, v, light, cosine=cosine)
     n = len(calls)
     times = []
     for _ in range(reps):
         t0 = time.perf_counter()
-        mod.find_peaks(m, v, t, cosine=cosine)
+        mod.find_peaks(m, v, light, cosine=cosine)
         times.append(time.perf_counter() - t0)
     return statistics.median(times) * 1e3, n, peaks, min(times) * 1e3
 
@@ -155,7 +164,14 @@ def main() -> None:
 def frame_s(name: str, finder) -> float:
     """Seconds of one frame (caches cleared) for ``name``'s defaults at 30° with ``finder``."""
     req = scene.FrameRequest((Material(name, {}),), 30.0, map_px=(78, 92))
-    scene.find_peaks = finder
+    if takes_wi(finder):
+        scene.find_peaks = finder
+    else:  # an older finder: given the request's θi
+
+        def by_theta(model, values, wi, **kw):
+            return finder(model, values, req.theta_i, **kw)
+
+        scene.find_peaks = by_theta
     for cache in scene.CACHES:
         cache.clear()
     t0 = time.perf_counter()

@@ -17,6 +17,7 @@ import time
 import numpy as np
 from rich.console import Console
 
+from tuibrdf.core.directions import incident
 from tuibrdf.core.registry import MODELS
 from tuibrdf.core.views.hemimap import map_values
 from tuibrdf.render.colormap import colorize
@@ -59,13 +60,14 @@ def bench_maps(repeat: int) -> None:
         v = m.resolve(params)
         for w, h in SIZES:
             px_w, px_h = w, 2 * (h - 3)
-            exact, info = map_values(m, v, ti, px_w, px_h)
-            mesh, minfo = map_values(m, v, ti, px_w, px_h, method="mesh")
+            wi = incident(ti)
+            exact, info = map_values(m, v, wi, px_w, px_h)
+            mesh, minfo = map_values(m, v, wi, px_w, px_h, method="mesh")
             inside = ~np.isnan(exact)
             err = np.abs(mesh - exact)[inside]
             peak = np.nanmax(exact)
-            te = ms(lambda m=m, v=v, ti=ti, a=px_w, b=px_h: map_values(m, v, ti, a, b), repeat)
-            tm = ms(lambda m=m, v=v, ti=ti, a=px_w, b=px_h: map_values(m, v, ti, a, b,
+            te = ms(lambda m=m, v=v, wi=wi, a=px_w, b=px_h: map_values(m, v, wi, a, b), repeat)
+            tm = ms(lambda m=m, v=v, wi=wi, a=px_w, b=px_h: map_values(m, v, wi, a, b,
                                                                        method="mesh"), repeat)
             n_in = int(inside.all(axis=-1).sum() if inside.ndim == 3 else inside.sum())
             print(f"| {name} | {w}×{h} | {n_in} | {te:.2f} | {minfo.level} | {tm:.2f} | "
@@ -80,7 +82,7 @@ def bench_segments(repeat: int) -> None:
     m = MODELS["cook-torrance"]
     v = m.resolve({"kd": 0.0, "f0": 0.04, "m": 0.2})
     for w, h in SIZES:
-        data, _ = map_values(m, v, 45, w, 2 * (h - 3))
+        data, _ = map_values(m, v, incident(45), w, 2 * (h - 3))
         for levels in (256, 32):
             tc = ms(lambda d=data, lv=levels: colorize(d, "inferno", levels=lv), repeat)
             col = colorize(data, "inferno", levels=levels)

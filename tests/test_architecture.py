@@ -121,7 +121,7 @@ def test_the_viewer_starts_without_plotext_or_tomllib():
 
 
 def test_the_core_is_grouped_by_trade():
-    # the core's floors, bottom up: base (params, numerics, conventions, directions) ←
+    # the core's floors, bottom up: base (params, numerics, conventions, directions, lru) ←
     # brdf ← formats ← registry, evaluate, material ← sphere ← views, fit.  A trade never
     # imports a trade above it.
     floor = {"params": 0, "numerics": 0, "conventions": 0, "directions": 0, "lru": 0,

@@ -23,7 +23,7 @@ import math
 import numpy as np
 import pytest
 
-from tuibrdf.core.evaluate import evaluate, evaluate_resolved
+from tuibrdf.core.evaluate import evaluate, evaluate_resolved, f_cos
 from tuibrdf.core.registry import MODELS
 
 ANALYTIC = [m for m in MODELS.values() if not any(p.kind == "path" for p in m.params)]
@@ -167,3 +167,16 @@ def test_adversarial_through_evaluate_and_scaled(model):
     np.testing.assert_allclose(big, ref, rtol=1e-9, atol=0, err_msg=model.name)
     small = np.asarray(evaluate(model, {}, wi * 1e-300, wo))
     assert np.all(np.isfinite(small)) and np.all(small >= 0.0)
+
+
+def test_f_cos_weights_by_cos_theta_o_and_is_zero_below_the_horizon():
+    # wo at θo = 0°, 60°, 90° and 120° (below): cos θo = 1, 1/2, 0, and 0 below the horizon
+    wo = np.array([[0.0, 0.0, 1.0], [math.sqrt(3) / 2, 0.0, 0.5], [0.0, 1.0, 0.0],
+                   [math.sqrt(3) / 2, 0.0, -0.5]])
+    f = np.array([2.0, 2.0, 2.0, 2.0])
+    assert f_cos(f, wo).tolist() == [2.0, 1.0, 0.0, 0.0]
+    rgb = np.array([[1.0, 2.0, 4.0]] * 4)  # an RGB model: each channel weighted alike
+    assert f_cos(rgb, wo).tolist() == [[1.0, 2.0, 4.0], [0.5, 1.0, 2.0], [0.0] * 3, [0.0] * 3]
+    # one direction (the probe): a scalar, or three channels
+    assert float(f_cos(np.float64(3.0), wo[1])) == 1.5
+    assert f_cos(np.array([1.0, 2.0, 4.0]), wo[1]).tolist() == [0.5, 1.0, 2.0]

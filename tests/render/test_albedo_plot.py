@@ -13,7 +13,9 @@ from tuibrdf.render.views import render_view
 
 
 def albedo_curve(model, values):
-    return scene.CURVE_THETAS, scene.albedo_curve(Material(model, values))
+    """The frame's albedo curve (the one the pane draws), at :data:`scene.CURVE_THETAS`."""
+    req = scene.FrameRequest((Material(model, values),), 0.0, curve=True)
+    return scene.CURVE_THETAS, scene.compute_frame(req).sides[0].curve
 
 
 def albedo_view(model, values, theta_i, w, h, color):

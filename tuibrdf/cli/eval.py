@@ -46,16 +46,13 @@ def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False,
     import numpy as np  # here, not at the top: --help stays light
 
     from tuibrdf.core.directions import from_degrees, incident
-    from tuibrdf.core.evaluate import evaluate_resolved
+    from tuibrdf.core.evaluate import evaluate_resolved, f_cos
 
     wi = incident(theta_i, phi_i)
     wo = from_degrees(np.asarray(theta_r, dtype=float)[:, None],
                       np.asarray(phi_r, dtype=float)[None, :])
     f = np.asarray(evaluate_resolved(model, params, np.broadcast_to(wi, wo.shape), wo))
-    if cosine:
-        cos = wo[..., 2]
-        f = f * (cos[..., None] if model.rgb else cos)
-    return f
+    return f_cos(f, wo) if cosine else f
 
 
 def run(args: argparse.Namespace) -> int:

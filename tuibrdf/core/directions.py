@@ -14,16 +14,9 @@ import numpy as np
 from tuibrdf.core.numerics import safe_div, safe_sqrt
 
 
-def from_angles(theta: np.ndarray, phi: np.ndarray) -> np.ndarray:
-    """Unit direction(s) from polar angle ``theta`` and azimuth ``phi`` in radians."""
-    theta = np.asarray(theta, dtype=float)
-    phi = np.asarray(phi, dtype=float)
-    s = np.sin(theta)
-    return np.stack(np.broadcast_arrays(s * np.cos(phi), s * np.sin(phi), np.cos(theta)), axis=-1)
-
-
 def from_degrees(theta_deg, phi_deg) -> np.ndarray:
-    """:func:`from_angles` with angles in degrees (the user-facing unit).
+    """Unit direction(s) ``(sin θ cos φ, sin θ sin φ, cos θ)`` from polar angle ``theta_deg``
+    and azimuth ``phi_deg`` in degrees (the user-facing unit).
 
     Multiples of 90° give exact components, so ``θ = 90°`` lies exactly on the horizon
     (``np.cos(np.pi / 2)`` is 6e-17, not 0).
@@ -57,9 +50,30 @@ def sincos_deg(t) -> tuple[np.ndarray, np.ndarray]:
     return s, c
 
 
+def check_theta_i(theta_i_deg: float) -> float:
+    """``θi`` as a float when it is in [0°, 90°], else ``ValueError``: the one range check of
+    the light's polar angle, which every entry point taking it makes (the frame request, the
+    albedo); :func:`check_phi_i` is its azimuth's."""
+    t = float(theta_i_deg)
+    if not 0.0 <= t <= 90.0:  # also refuses NaN
+        raise ValueError(f"theta_i = {theta_i_deg!r} is invalid: expected in [0, 90]°")
+    return t
+
+
+def check_phi_i(phi_i_deg: float) -> float:
+    """``φi`` as a float when it is finite, else ``ValueError`` (any finite angle is one)."""
+    p = float(phi_i_deg)
+    if not math.isfinite(p):
+        raise ValueError(f"phi_i = {phi_i_deg!r} is invalid: expected a finite angle in °")
+    return p
+
+
 def incident(theta_i_deg: float, phi_i_deg: float = 180.0) -> np.ndarray:
     """The light direction ``wi`` at ``θi``, ``φi`` in degrees (the viewer's default
-    ``φi = 180°``: the light on the −x side): the one place (θi, φi) becomes ``wi``.
+    ``φi = 180°``: the light on the −x side): the one place (θi, φi) becomes ``wi``.  A frame
+    makes it once (:attr:`tuibrdf.core.views.frame.FrameRequest.wi`) and every pane's numbers
+    take that ``wi``.  The angles are not checked here (:func:`check_theta_i` and
+    :func:`check_phi_i` are).
 
     Built from exact components so that ``θi = 90°`` lies exactly on the horizon (cos = 0),
     which ``np.cos(np.pi / 2) = 6e-17`` would not give, and φi = 180° gives ``(−sin θi, 0,
@@ -120,22 +134,6 @@ def _cos_dphi(xi, yi, xo, yo, sin2_i, sin2_o):
     den = np.sqrt(sin2_i * sin2_o)  # a product of sums of squares: ≥ 0
     out = safe_div(num, den, den > 0.0)  # den = 0 only at the normal: Δφ undefined
     return np.minimum(np.maximum(out, -1.0), 1.0)  # rounding can leave [-1, 1] by an ulp
-
-
-def half_vector(wi: np.ndarray, wo: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``(H, valid)``: the normalised half vector and where it is defined.
-
-    ``wi + wo = 0`` (light and viewer opposite on the horizon) has no half vector; there ``H``
-    is set to the normal and ``valid`` is False so models can return their documented value.
-    """
-    s = np.asarray(wi, dtype=float) + np.asarray(wo, dtype=float)
-    sx, sy, sz = xyz(s)
-    n2 = sx * sx + sy * sy + sz * sz
-    valid = n2 > 0.0
-    inv = safe_div(1.0, np.sqrt(n2), valid)  # |wi+wo| = 0: H undefined
-    h = s * np.asarray(inv)[..., None]
-    h = np.where(np.asarray(valid)[..., None], h, np.array([0.0, 0.0, 1.0]))
-    return h, valid
 
 
 def theta_of(w: np.ndarray) -> np.ndarray:

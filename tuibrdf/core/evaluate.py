@@ -86,6 +86,15 @@ def evaluate(
     return evaluate_resolved(m, values, wi, wo)
 
 
+def f_cos(f: np.ndarray, wo: np.ndarray) -> np.ndarray:
+    """``f·cos θo``: BRDF values ``f`` (shape ``(...)``, or ``(..., 3)`` for an RGB model) at
+    the outgoing directions ``wo (..., 3)`` times ``cos θo``, 0 below the horizon: the one
+    place the viewer's f·cos θr and the albedo's integrand weight ``f`` by the cosine."""
+    c = np.maximum(np.asarray(wo)[..., 2], 0.0)
+    f = np.asarray(f)
+    return f * (c[..., None] if f.ndim > c.ndim else c)
+
+
 def _one_direction(w: np.ndarray) -> np.ndarray | None:
     """The single direction ``w`` repeats, if it is one vector broadcast along every leading
     axis (all strides 0, as ``np.broadcast_to(wi, wo.shape)`` makes), else None."""

@@ -1,8 +1,8 @@
 """Directional albedo curve a(θi) over 0–90° (SPEC §4 view 4), drawn with plotext.
 
 The curve, ``a(θi) = ∫ f(wi, wo) cos θr dω`` at every 3°, comes with the frame
-(:func:`tuibrdf.core.views.frame.albedo_curve`, cached per material: moving θi only moves the
-marker); the pane with its title is :func:`tuibrdf.render.panes.albedo_pane`.  The axis is
+(``SideFrame.curve`` of :mod:`tuibrdf.core.views.frame`, cached per material: moving θi only
+moves the marker); the pane with its title is :func:`tuibrdf.render.panes.albedo_pane`.  The axis is
 scaled to the curves (a specular albedo of 0.05 fills the plot; the line ``a = 1`` is drawn
 when it is in range) and labelled; θi is marked by a vertical line and a point on each curve,
 the x range starting just left of 0° so that θi = 0 stays visible.  RGB models get the curves

@@ -31,7 +31,6 @@ Every segment has a non-None ``Style`` (Textual 8.2's ``NO_COLOR`` filter crashe
 
 from __future__ import annotations
 
-from collections import OrderedDict
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
@@ -45,6 +44,7 @@ from rich.segment import Segment
 from rich.style import Style
 
 from tuibrdf.core.conventions import REC709  # here applied to 8-bit values: a luma
+from tuibrdf.core.lru import LRU
 from tuibrdf.render.rowdiff import kept_rows, mark_changed
 
 ColorSystem = Literal["truecolor", "256", "none"]
@@ -170,7 +170,7 @@ def split_halves(index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 #: the code tables kept across frames (:func:`_code_table`): a few palettes at a time (the
 #: colour maps in use; a lit picture's palette is its own distinct colours, new each frame)
 TABLES_KEPT = 8
-_TABLES: OrderedDict[tuple, tuple[dict, dict]] = OrderedDict()
+_TABLES = LRU(TABLES_KEPT)
 #: a run's key in a code table's segments: ``code * RUN_KEY + length`` (a row is far shorter)
 RUN_KEY = 1 << 20
 
@@ -181,15 +181,7 @@ def _code_table(system: str, ring: int | None, palette: np.ndarray) -> tuple[dic
     two pixels) and ``code * RUN_KEY + length → Segment`` of a run; filled as they are met and
     kept for the next frame with the same palette: a map's frame meets the same few hundred
     colour pairs and runs again, and working each out anew was ≈ 40 % of drawing it."""
-    key = (system, ring, palette.tobytes())
-    table = _TABLES.get(key)
-    if table is None:
-        table = _TABLES[key] = ({}, {})
-        if len(_TABLES) > TABLES_KEPT:
-            _TABLES.popitem(last=False)
-    else:
-        _TABLES.move_to_end(key)
-    return table
+    return _TABLES.get((system, ring, palette.tobytes()), lambda: ({}, {}))
 
 
 # ---------------------------------------------------------------------------------------------

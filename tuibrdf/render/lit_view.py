@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 from rich.console import Group
 
+from tuibrdf.core.directions import incident
 from tuibrdf.core.params import Model
 from tuibrdf.core.views.lit import (
     DEFAULT_EXPOSURE,
@@ -55,10 +56,12 @@ def lit_arrays(
     ``uint8`` image and the pixels that show the surface."""
     if kind not in KINDS:
         raise ValueError(f"unknown lit view {kind!r}: expected one of {', '.join(KINDS)}")
+    wi = incident(theta_i_deg)
     if kind == "sphere":
-        rad, mask = lit_sphere(model, values, theta_i_deg, px_w, px_h)
+        rad, mask = lit_sphere(model, values, wi, px_w, px_h)
     else:
-        rad, mask = lit_plane(model, values, theta_i_deg, px_w, px_h, fov_deg=fov_deg)
+        rad, mask = lit_plane(model, values, wi, px_w, px_h, view_deg=theta_i_deg,
+                              fov_deg=fov_deg)
     return rad, tone_map_core(rad, exposure, gamma), mask
 
 

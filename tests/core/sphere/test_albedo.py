@@ -15,6 +15,7 @@ from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.params import Model
 from tuibrdf.core.registry import MODELS, get_model
 from tuibrdf.core.sphere import integrator as polar
+from tuibrdf.core.sphere import lobes
 from tuibrdf.core.sphere.albedo import (
     DEFAULT_RTOL,
     AlbedoEstimate,
@@ -351,7 +352,7 @@ def test_vcavity_breaks_are_where_the_terms_cross(theta_i, psi):
     # Cook-Torrance's V-cavity G = min(1, 2 (N·h)(N·wo)/(wo·h), 2 (N·h)(N·wi)/(wi·h)): at the
     # masking break the second term is 1, at the shadowing break the third, and at the third
     # break (the crossed terms meet) θo = θi
-    from tuibrdf.core.sphere.albedo import _vcavity_breaks
+    from tuibrdf.core.sphere.lobes import _vcavity_breaks
 
     ti = math.radians(theta_i)
     st, ct = np.array([math.sin(ti)]), np.array([math.cos(ti)])
@@ -370,7 +371,7 @@ def test_vcavity_breaks_are_where_the_terms_cross(theta_i, psi):
 def test_vcavity_azimuths_are_where_the_kinks_meet(theta_i):
     # the three V-cavity kink curves meet at ρ = π/4, and the shadowing one reaches the horizon
     # (ρmax = (π/2 + β)/2): at the returned azimuths, the breaks coincide there
-    from tuibrdf.core.sphere.albedo import _vcavity_azimuths, _vcavity_breaks
+    from tuibrdf.core.sphere.lobes import _vcavity_azimuths, _vcavity_breaks
 
     ti = math.radians(theta_i)
     meet, leave = _vcavity_azimuths(math.sin(ti), math.cos(ti))
@@ -391,7 +392,7 @@ def test_sgd_breaks_are_where_g1_reaches_zero():
     # where the clamp starts (G1 = 0 beyond, > 0 before).  At rtol 1e-13 the hint keeps every
     # clamp (at the default rtol those next to the horizon are left out: test_polar_fitted)
     from tuibrdf.core.brdf.materials import table
-    from tuibrdf.core.sphere.albedo import lobe
+    from tuibrdf.core.sphere.lobes import lobe
 
     m = get_model("sgd")
     for material in ("gold-metallic-paint", "steel", "black-obsidian", "blue-fabric"):
@@ -494,7 +495,7 @@ def test_smith_ggx_pole_is_where_the_hint_says(theta_i, psi, alpha):
     # the hint says the pole is eps = cos θi/(2R) beyond the horizon (ρ of the half frame);
     # here: the zero of the Smith denominator below the horizon (bisection on cos θo), mapped
     # to ρ through the half-vector geometry written above (bisection on wo_z)
-    from tuibrdf.core.sphere.albedo import lobe
+    from tuibrdf.core.sphere.lobes import lobe
 
     ci = math.cos(math.radians(theta_i))
     co_pole = _bisect(lambda co: _smith_den(co, ci, alpha), -0.999999, -1e-15)
@@ -506,7 +507,7 @@ def test_smith_ggx_pole_is_where_the_hint_says(theta_i, psi, alpha):
     rho_max = _bisect(wz, 0.0, math.pi / 2 - 1e-12)
     rho_pole = _bisect(lambda r: wz(r) - co_pole, rho_max, math.pi / 2 - 1e-12)
     m = get_model("ggx")
-    hint = lobe(m, m.resolve({"alpha": alpha}))
+    hint = lobe(m, m.resolve({"alpha": alpha}), DEFAULT_RTOL)
     st, ct = math.sin(math.radians(theta_i)), ci
     eps, amp = hint.horizon(np.array([st]), np.array([ct]), np.array([math.cos(psi)]),
                             np.array([rho_max]))
@@ -610,7 +611,7 @@ def _counted(name, params, theta, horizon=True):
 
     m = get_model(name)
     v = m.resolve(params)
-    hint = q.lobe(m, v)
+    hint = lobes.lobe(m, v, q.DEFAULT_RTOL)
     return q.albedo_rule_counted(m, v, theta,
                                  hint=hint if horizon else hint._replace(horizon=None))
 

@@ -8,16 +8,14 @@ import pytest
 
 import tuibrdf
 from tuibrdf.core.brdf import microfacet
-from tuibrdf.core.directions import from_degrees
+from tuibrdf.core.directions import from_degrees, incident
 from tuibrdf.core.params import Model
 from tuibrdf.core.registry import MODELS, get_model
 from tuibrdf.core.sphere.albedo import (
     DEFAULT_LEVEL,
     albedo,
-    albedo_curve,
     albedo_curve_resolved,
     albedo_resolved,
-    reciprocity_error,
 )
 from tuibrdf.core.sphere.mesh import hemisphere, refine_adaptive
 from tuibrdf.core.sphere.peak import find_peaks
@@ -127,7 +125,8 @@ def test_rgb_models_return_channels():
         if any(p.kind == "path" for p in m.params):
             continue  # merl needs a file: tests/core/formats/test_merl.py covers it
         a = albedo(name, None, 30.0, level=3, method="uniform")
-        curve = albedo_curve(name, None, [0.0, 45.0, 90.0], level=3, method="uniform")
+        curve = albedo_curve_resolved(m, m.resolve({}), [0.0, 45.0, 90.0], level=3,
+                                      method="uniform")
         if m.rgb:
             assert np.shape(a) == (3,) and curve.shape == (3, 3)
         else:
@@ -145,18 +144,27 @@ def test_curve_matches_pointwise_and_resolved_variants():
 def test_energy_bound_for_conservative_models():
     # kd + ks ≤ 1 with a normalised lobe: albedo ≤ 1 at every incidence (lobe cut by the horizon
     # only loses energy); at θi = 0 phong gives exactly kd + ks
-    curve = albedo_curve("phong", {"kd": 0.3, "ks": 0.7, "n": 30}, np.arange(0, 91, 10),
-                         level=DEFAULT_LEVEL)
+    m = get_model("phong")
+    curve = albedo_curve_resolved(m, m.resolve({"kd": 0.3, "ks": 0.7, "n": 30}),
+                                  np.arange(0, 91, 10), level=DEFAULT_LEVEL)
     assert np.all(curve <= 1.0 + 1e-3)
     assert curve[0] == pytest.approx(1.0, abs=1e-3)
 
 
 def test_theta_validation():
+    from tuibrdf.core.material import Material
+    from tuibrdf.core.views.frame import FrameRequest
+
     for bad in (-1.0, 90.5, float("nan")):
         with pytest.raises(ValueError, match="theta_i"):
             albedo("lambert", None, bad)
-        with pytest.raises(ValueError, match="theta_i"):
-            peak("lambert", None, bad)  # the one peak finder, core/peak.py
+        with pytest.raises(ValueError, match="theta_i"):  # the frame's peak takes its wi
+            FrameRequest((Material("lambert"),), bad)
+    for bad in (float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="phi_i"):
+            albedo("lambert", None, 30.0, bad)
+        with pytest.raises(ValueError, match="phi_i"):
+            FrameRequest((Material("lambert"),), 30.0, phi_i=bad)
     with pytest.raises(ValueError, match="kd"):
         albedo("lambert", {"kd": 2.0}, 0.0)
     with pytest.raises(ValueError, match="method"):
@@ -171,9 +179,21 @@ def test_reciprocal_models_have_no_reciprocity_error(name):
     assert reciprocity_error(name) <= 1e-12
 
 
-def test_reciprocity_error():
-    # modified Phong is reciprocal (S·wo symmetric); a kernel f = cos θi is not, and its error
-    # is max|cos θi − cos θo| / max cos θi = 1 (pole against horizon)
+def reciprocity_error(model, params=None) -> float:
+    """``max |f(wi, wo) − f(wo, wi)| / max f`` over all pairs of ``hemisphere(3)``'s 341
+    vertices, through ``tuibrdf.evaluate`` (0 for a model that is 0 everywhere)."""
+    v = hemisphere(3).vertices
+    wi, wo = np.broadcast_arrays(v[:, None, :], v[None, :, :])
+    a = np.asarray(tuibrdf.evaluate(model, params, wi, wo))
+    b = np.asarray(tuibrdf.evaluate(model, params, wo, wi))
+    top = float(np.max(np.abs(a)))
+    return 0.0 if top == 0.0 else float(np.max(np.abs(a - b)) / top)
+
+
+def test_reciprocity_error_finds_a_kernel_that_is_not_reciprocal():
+    # the measure above has the power to fail: modified Phong is reciprocal (S·wo symmetric);
+    # a kernel f = cos θi is not, and its error is max|cos θi − cos θo| / max cos θi = 1 (pole
+    # against horizon)
     assert reciprocity_error("phong", {"n": 50}) < 1e-12
     lopsided = Model("lopsided", "test", (), lambda wi, wo: wi[..., 2] + 0.0 * wo[..., 2])
     assert reciprocity_error(lopsided) == pytest.approx(1.0, abs=1e-12)
@@ -182,7 +202,7 @@ def test_reciprocity_error():
 def peak(name, params, theta_i, cosine=False):
     """The peak (the luminance's for RGB) of core/peak.py, the one peak finder."""
     m = get_model(name)
-    return find_peaks(m, m.resolve(params), theta_i, cosine=cosine)[0]
+    return find_peaks(m, m.resolve(params), incident(theta_i), cosine=cosine)[0]
 
 
 @pytest.mark.parametrize("theta_i", [0.0, 40.0, 75.0])
@@ -216,7 +236,7 @@ def test_cook_torrance_peak_grows_and_passes_the_mirror_at_grazing():
     # mirror direction, toward the horizon (Fresnel and 1/cos θo grow there)
     m = get_model("cook-torrance")
     v = m.resolve({"m": 0.2})
-    low, high = find_peaks(m, v, 30.0)[0], find_peaks(m, v, 80.0)[0]
+    low, high = find_peaks(m, v, incident(30.0))[0], find_peaks(m, v, incident(80.0))[0]
     assert high.value > 3 * low.value
     assert high.theta_deg > 80.0 + 1.0
     assert high.phi_deg == pytest.approx(0.0, abs=1e-6)
@@ -224,7 +244,7 @@ def test_cook_torrance_peak_grows_and_passes_the_mirror_at_grazing():
 
 def test_peak_of_rgb_and_flat_models():
     m = get_model("gltf")
-    pks = find_peaks(m, m.resolve({"roughness": 0.3}), 45.0)
+    pks = find_peaks(m, m.resolve({"roughness": 0.3}), incident(45.0))
     assert [p.label for p in pks] == ["Y", "R", "G", "B"]
     # Lambert is flat: any direction is a peak, the value is kd/π
     assert peak("lambert", {"kd": 0.6}, 10.0).value == pytest.approx(0.6 / math.pi, rel=1e-12)

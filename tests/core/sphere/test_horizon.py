@@ -17,7 +17,7 @@ from tuibrdf.core.directions import from_degrees, incident
 from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
 from tuibrdf.core.sphere.horizon import HORIZON_DEG, assess
-from tuibrdf.core.sphere.peak import find_peaks, radiance
+from tuibrdf.core.sphere.peak import f_or_f_cos, find_peaks
 from tuibrdf.core.views import frame as scene
 from tuibrdf.core.views.hemimap import geometry
 from tuibrdf.render import panes
@@ -70,8 +70,9 @@ def _ggx_in_plane(theta_i_deg: float, theta_o_deg: float, alpha: float, f0: floa
 @pytest.mark.parametrize("theta_i", [60.0, 80.0, 89.0])
 def test_ggx_grazing_peak_is_bounded_and_equals_the_closed_form_limit(theta_i):
     mat = Material("ggx", {"kd": 0.0, "f0": 0.04, "alpha": 0.2, "fresnel": "exact"})
-    peaks = find_peaks(mat.model, mat.values, theta_i)
-    peaks, hz = assess(mat.model, mat.values, theta_i, peaks)
+    wi = incident(theta_i)
+    peaks = find_peaks(mat.model, mat.values, wi)
+    peaks, hz = assess(mat.model, mat.values, wi, peaks)
     expected = _ggx_grazing_limit(theta_i, 0.2, 0.04)
     assert peaks[0].theta_deg == pytest.approx(90.0, abs=1e-6)
     assert peaks[0].value == pytest.approx(expected, rel=1e-9)
@@ -84,12 +85,13 @@ def test_ggx_grazing_peak_is_bounded_and_equals_the_closed_form_limit(theta_i):
 
 def test_ggx_at_90_is_unbounded_like_one_over_delta():
     mat = Material("ggx")
-    peaks, hz = assess(mat.model, mat.values, 90.0, find_peaks(mat.model, mat.values, 90.0))
+    peaks, hz = assess(mat.model, mat.values, incident(90.0),
+                       find_peaks(mat.model, mat.values, incident(90.0)))
     assert hz[0].kind == "unbounded" and round(hz[0].toward_deg) % 360 == 0
     # sin(θi + θo) → 0 at θi = 90°: f·δ tends to a constant (checked on the kernel directly)
     d = np.radians([1e-4, 1e-5, 1e-6])
     w = np.stack([np.cos(d), np.zeros(3), np.sin(d)], axis=1)
-    f = radiance(mat.model, mat.values, incident(90.0), w, False)
+    f = f_or_f_cos(mat.model, mat.values, incident(90.0), w, False)
     assert f[1] / f[0] == pytest.approx(10.0, rel=1e-3)
     assert f[2] / f[1] == pytest.approx(10.0, rel=1e-3)
 
@@ -164,8 +166,9 @@ def test_sgd_bounded_or_not_agrees_with_g1_at_the_horizon(theta_i):
     agree = unclear = unbounded = 0
     for name, q in table.items():
         mat = Material("sgd", {"material": name})
-        peaks = find_peaks(mat.model, mat.values, theta_i)
-        _, hz = assess(mat.model, mat.values, theta_i, peaks)
+        wi = incident(theta_i)
+        peaks = find_peaks(mat.model, mat.values, wi)
+        _, hz = assess(mat.model, mat.values, wi, peaks)
         k = _grazing_coefficient(q, theta_i)
         b = np.abs(_sgd_pi_f(q, theta_i, 89.9))
         for c in range(3):
@@ -190,7 +193,7 @@ def test_sgd_gold_metallic_paint_blue_grows_like_one_over_delta():
     assert _g1(0.5 * math.pi, q)[2] > 0.0  # G1(90°) > 0 in blue: the formula has no limit
     d = np.radians([1e-7, 1e-8])
     w = np.stack([np.cos(d), np.zeros(2), np.sin(d)], axis=1)
-    f = radiance(mat.model, mat.values, incident(60.0), w, False)[:, 2]
+    f = f_or_f_cos(mat.model, mat.values, incident(60.0), w, False)[:, 2]
     k = _grazing_coefficient(q, 60.0)[2]
     # K/(π δ): the closed form's growth, to the O(1) terms (π f(89.9°) ≈ 1.6 ≪ K/δ ≈ 1.6e4)
     assert f == pytest.approx(k / d / math.pi, rel=1e-3)
@@ -242,8 +245,8 @@ def test_scale_is_the_largest_value_at_89_and_below_the_peak(model, params, thet
         assert sc.theta_deg <= HORIZON_DEG
         # and the value is f at the direction it names
         w = from_degrees(sc.theta_deg, sc.phi_deg)[None, :]
-        f = np.atleast_1d(radiance(side.material.model, side.material.values,
-                                   incident(theta_i), w, False)[0])
+        f = np.atleast_1d(f_or_f_cos(side.material.model, side.material.values,
+                                     incident(theta_i), w, False)[0])
         f = f if mode == "color" or f.size == 1 else [0.2126 * f[0] + 0.7152 * f[1]
                                                       + 0.0722 * f[2]]
         assert max(f) == pytest.approx(sc.value, rel=1e-6)
@@ -264,7 +267,7 @@ def test_a_channel_lobe_inside_sets_the_scale_beside_an_unbounded_one():
         v = np.asarray(side.sections[plane])[np.abs(t) <= HORIZON_DEG]
         assert float(v.max()) <= sc.value * (1.0 + 1e-9)
     w = from_degrees(sc.theta_deg, sc.phi_deg)[None, :]
-    f = radiance(side.material.model, side.material.values, incident(45.0), w, False)[0]
+    f = f_or_f_cos(side.material.model, side.material.values, incident(45.0), w, False)[0]
     assert f[0] == pytest.approx(sc.value, rel=1e-9)  # red at the direction it names
 
 
@@ -334,8 +337,8 @@ def test_section_through_a_horizon_peak_is_lowered_and_titled():
     # the section is not the horizon: it crosses the lobe at 89°, where f(89°) is the top
     mid = len(v) // 2
     w = from_degrees(89.0, side.peaks[0].phi_deg)[None, :]
-    f89 = float(radiance(side.material.model, side.material.values, incident(89.0), w,
-                         False)[0])
+    f89 = float(f_or_f_cos(side.material.model, side.material.values, incident(89.0), w,
+                           False)[0])
     assert v[mid] == pytest.approx(f89, rel=1e-9) and v.max() == v[mid] > 0
     title = _plain(panes.pane("perpendicular", res, 0, 80, 20, panes.Look(color="none")), 80)[0]
     assert "through θ=89° φ=0°, below the peak" in title

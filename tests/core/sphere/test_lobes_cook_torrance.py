@@ -1,4 +1,4 @@
-"""cook-torrance's far-side outer grading (``quadrature._cook_torrance_far``): where its breaks
+"""cook-torrance's far-side outer grading (``lobes._cook_torrance_far``): where its breaks
 sit, against the formula written here, and the grazing albedos it makes take one kernel call,
 against a tensor Gauss-Legendre reference in the half-vector frame written here, whose radial
 panels end at the V-cavity kinks and the horizon located numerically (bisection on the
@@ -15,6 +15,7 @@ from tuibrdf.core.directions import from_degrees
 from tuibrdf.core.registry import get_model
 from tuibrdf.core.sphere import albedo as q
 from tuibrdf.core.sphere import integrator as polar
+from tuibrdf.core.sphere import lobes
 
 # ---------------------------------------------------------------------------------------------
 # an independent reference: tensor Gauss-Legendre over the half vector (θh, φh)
@@ -149,7 +150,7 @@ def _expected_far(theta_i, m):
 ])
 def test_far_breaks_where_the_formula_says(theta, m, count):
     st, ct = math.sin(math.radians(theta)), math.cos(math.radians(theta))
-    got = q._cook_torrance_far(st, ct, m)
+    got = lobes._cook_torrance_far(st, ct, m)
     want = _expected_far(theta, m)
     assert len(got) == len(want) == count
     np.testing.assert_allclose(got, want, rtol=1e-12)
@@ -160,8 +161,9 @@ def test_far_breaks_where_the_formula_says(theta, m, count):
         ends = [e for e in ends if e < np.pi / 2] + [np.pi / 2]
         assert all(b / a <= 8.0 + 1e-9 for a, b in zip(ends[:-1], ends[1:], strict=False))
     # in the hint: the far side only, with the V-cavity azimuths from m = 0.3 on
-    hint = q.lobe(get_model("cook-torrance"), get_model("cook-torrance").resolve({"m": m}))
-    near = q._vcavity_azimuths(st, ct) if m >= 0.3 else []
+    model = get_model("cook-torrance")
+    hint = lobes.lobe(model, model.resolve({"m": m}), q.DEFAULT_RTOL)
+    near = lobes._vcavity_azimuths(st, ct) if m >= 0.3 else []
     assert hint.azimuths(st, ct) == pytest.approx(near + [np.pi / 2 + w for w in want])
 
 
@@ -174,9 +176,9 @@ def _counted(params, theta, far=True):
     breaks (the hint's azimuths as before them: the V-cavity ones from m = 0.3, else none)."""
     model = get_model("cook-torrance")
     v = model.resolve(params)
-    hint = q.lobe(model, v)
+    hint = lobes.lobe(model, v, q.DEFAULT_RTOL)
     if not far:
-        hint = hint._replace(azimuths=q._vcavity_azimuths if v["m"] >= 0.3 else None)
+        hint = hint._replace(azimuths=lobes._vcavity_azimuths if v["m"] >= 0.3 else None)
     return q.albedo_rule_counted(model, v, theta, hint=hint)
 
 

@@ -1,5 +1,5 @@
-"""The albedo hints of the two fits of measured materials (``quadrature._sgd_lobe``,
-``quadrature._abc_lobe``): where their features sit, against formulas written here, and the
+"""The albedo hints of the two fits of measured materials (``lobes._sgd_lobe``,
+``lobes._abc_lobe``): where their features sit, against formulas written here, and the
 grazing albedos they make take one kernel call, against the tensor Gauss-Legendre reference of
 tests/core/sphere/test_albedo.py (no code shared with tuibrdf.core.sphere.integrator).
 """
@@ -15,6 +15,7 @@ from tuibrdf.core.directions import sincos_deg
 from tuibrdf.core.registry import get_model
 from tuibrdf.core.sphere import albedo as q
 from tuibrdf.core.sphere import integrator as polar
+from tuibrdf.core.sphere import lobes
 from tuibrdf.core.sphere.integrator import adaptive
 
 
@@ -54,7 +55,7 @@ def test_sgd_clamps_sit_where_g1_reaches_zero(material):
     # hint's clamps (to 1e-9 rad), with s·δ² from a finite-difference slope of that formula
     # (s = |G1'| just before θ*, δ = 90° − θ*); the fits put all of them next to the horizon
     t = table("sgd").row(material)
-    _, _, _, clamps = q._sgd_shape(material)
+    _, _, _, clamps = lobes._sgd_shape(material)
     found = []
     for ch in range(3):
         ts = _clamp_by_bisection(t, ch)
@@ -83,7 +84,7 @@ def test_sgd_clamps_are_panel_ends_only_below_their_share_of_rtol():
         assert stars
         theta0 = [x for x in t["theta0"] if 0.0 < x < np.pi / 2]
         for rtol, want in ((q.DEFAULT_RTOL, theta0), (1e-13, theta0 + stars)):
-            hint = q.lobe(m, v, rtol)
+            hint = lobes.lobe(m, v, rtol)
             if not want:
                 assert hint.breaks is None
                 continue
@@ -104,8 +105,8 @@ def test_sgd_scale_is_one_and_a_half_half_widths(material):
     # the core × envelope factor of D, exp(−t²/α)·(1 + t²/α²)^−p (t = tan θh), written here,
     # is half its peak at tan(scale/1.5) for the narrowest channel, and above half before
     t = table("sgd").row(material)
-    scale = q._sgd_shape(material)[0]
-    x = math.tan(scale / q.SGD_WIDTH)
+    scale = lobes._sgd_shape(material)[0]
+    x = math.tan(scale / lobes.SGD_WIDTH)
 
     def factor(tt):
         return np.exp(-tt * tt / t["alpha"]) * (1.0 + (tt / t["alpha"]) ** 2) ** -np.maximum(
@@ -121,7 +122,7 @@ def test_sgd_envelope_end_where_the_grading_has_none(material):
     # when none of the radial grading's panel ends (scale·4^j, written here) falls where the
     # envelope is between e^−6.25 and e^−49 (tan θh/√α in [2.5, 7])
     t = table("sgd").row(material)
-    scale, rings, _, _ = q._sgd_shape(material)
+    scale, rings, _, _ = lobes._sgd_shape(material)
     a = float(np.min(t["alpha"]))
     ends, g = [], scale
     while g < np.pi / 2:
@@ -143,7 +144,7 @@ def test_sgd_far_side_azimuth(theta_i, expected):
     # π/2 + 2 cot θi on the far side where polar's grading toward π/2 (from 2 cot θi while
     # that is below π/8) is empty and 2 cot θi < π/4: θi in (68.5°, 78.9°)
     ti = math.radians(theta_i)
-    got = q._sgd_azimuths(math.sin(ti), math.cos(ti))
+    got = lobes._sgd_azimuths(math.sin(ti), math.cos(ti))
     if expected is None:
         assert got == []
     else:
@@ -164,8 +165,8 @@ def test_abc_azimuths(theta_i):
     st, ct = (float(x) for x in sincos_deg(theta_i))  # exact at 90° (cos θi = 0), as the rule's
     meet = [math.acos(t * ct / st) for t in (1.0, 1.0 / math.sqrt(3.0)) if t * ct / st < 1.0]
     v = get_model("abc").resolve({})
-    default = sorted(q.lobe(get_model("abc"), v).azimuths(st, ct))
-    exact = sorted(q.lobe(get_model("abc"), v, 1e-13).azimuths(st, ct))
+    default = sorted(lobes.lobe(get_model("abc"), v, q.DEFAULT_RTOL).azimuths(st, ct))
+    exact = sorted(lobes.lobe(get_model("abc"), v, 1e-13).azimuths(st, ct))
     if theta_i == 90.0:
         assert default == exact == [pytest.approx(np.pi / 2 - np.pi / 16, rel=1e-15)]
         return
@@ -218,8 +219,8 @@ def test_abc_unchanged_below_the_outer_grading(theta):
     m = get_model("abc")
     v = m.resolve({})
     b = float(table("abc").row(v["material"])["b"])
-    before = q.Lobe("half", math.sqrt(2.0 / b), q._vcavity_breaks,
-                    azimuths=q._vcavity_azimuths)
+    before = lobes.Lobe("half", math.sqrt(2.0 / b), lobes._vcavity_breaks,
+                    azimuths=lobes._vcavity_azimuths)
     r, r0 = q.albedo_rule(m, v, theta), q.albedo_rule(m, v, theta, hint=before)
     np.testing.assert_array_equal(r.value, r0.value)
     np.testing.assert_array_equal(r.evaluations, r0.evaluations)
@@ -233,7 +234,7 @@ def test_analytic_hints_do_not_depend_on_rtol(name):
     v = m.resolve({})
     for theta in (60.0, 89.9):
         r = q.albedo_rule(m, v, theta)
-        r0 = q.albedo_rule(m, v, theta, hint=q.lobe(m, v, 1e-13))
+        r0 = q.albedo_rule(m, v, theta, hint=lobes.lobe(m, v, 1e-13))
         np.testing.assert_array_equal(r.value, r0.value)
         np.testing.assert_array_equal(r.evaluations, r0.evaluations)
 
@@ -259,8 +260,9 @@ def test_outer_k7_panels():
 def test_outer_k7_only_for_sgd():
     # sgd's inner integral has no kink curves meeting next to ψ = π/2 (abc's V-cavity ones do:
     # K7 there cost cook-torrance and abc extra kernel calls): only sgd's hint asks for it
-    for name in q.LOBE_HINTS:
+    for name in lobes.LOBE_HINTS:
         if name == "merl":
             continue
         m = get_model(name)
-        assert q.lobe(m, m.resolve({})).outer_k7 == (q.SGD_OUTER_K7 if name == "sgd" else 0.0)
+        hint = lobes.lobe(m, m.resolve({}), q.DEFAULT_RTOL)
+        assert hint.outer_k7 == (lobes.SGD_OUTER_K7 if name == "sgd" else 0.0)

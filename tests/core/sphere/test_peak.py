@@ -72,7 +72,7 @@ def both_sides_max(model, params, theta_i, cosine=False):
 
 def peak(model, params, theta_i, cosine=False):
     m = MODELS[model]
-    return find_peaks(m, m.resolve(params), theta_i, cosine=cosine)
+    return find_peaks(m, m.resolve(params), incident(theta_i), cosine=cosine)
 
 
 def check_at_direction(model, params, theta_i, pk, cosine=False, channel=None):
@@ -227,7 +227,8 @@ def test_rough_crease_with_the_light_turned(phi_i):
     m, theta_i, cosine = ROUGH[0]
     p = {"kd": 0.0, "m": m}
     mod = MODELS["cook-torrance"]
-    pk = find_peaks(mod, mod.resolve(p), theta_i, cosine=cosine, phi_i_deg=phi_i)[0]
+    pk = find_peaks(mod, mod.resolve(p), incident(theta_i, phi_i), cosine=cosine,
+                    phi_i_deg=phi_i)[0]
     assert pk.value >= both_sides_max("cook-torrance", p, theta_i, cosine) * (1.0 - 1e-10)
     # its direction: in the turned plane of incidence, on the mirror side (φ = φi + 180°;
     # at φi = 180° the maximum is at φ = 0, test_rough_cook_torrance_creases)
@@ -256,13 +257,13 @@ def test_plane_check_keeps_off_the_horizon_at_90(monkeypatch, cosine):
     # at a fixed place far below it.  The plane check leaves the horizon to them: no call of
     # its own (the candidates and at most PEAK_ROUNDS rounds) and a value far below that one
     calls = []
-    inner = peak_module.radiance
+    inner = peak_module.f_or_f_cos
 
     def counting(*args, **kwargs):
         calls.append(1)
         return inner(*args, **kwargs)
 
-    monkeypatch.setattr(peak_module, "radiance", counting)
+    monkeypatch.setattr(peak_module, "f_or_f_cos", counting)
     pk = peak("cook-torrance", {}, 90.0, cosine)[0]
     assert len(calls) <= 1 + peak_module.PEAK_ROUNDS
     t = math.pi / 2

@@ -1,6 +1,6 @@
-"""One frame, one truth (issue 11): the material value, the one peak finder, the frame
-request/result, and the panes that all draw from it (tuibrdf/core/material.py, core/peak.py,
-core/scene.py, render/panes.py).
+"""One frame, one truth (issue 11): the one peak finder, the frame request/result, and the
+panes that all draw from it (tuibrdf/core/sphere/peak.py, core/views/frame.py,
+render/panes.py); the material value is tests/core/test_material.py's.
 
 Expected values come from outside the code under test: closed forms (Lambert kd/π, Phong's
 mirror value (n+2)/(2π)·ks), an independent brute-force search over a dense (θ, φ) grid written
@@ -26,29 +26,6 @@ from tuibrdf.core.views import frame as scene
 from tuibrdf.core.views.hemimap import geometry
 from tuibrdf.render import panes
 from tuibrdf.render.views import map_pixels
-
-# -------------------------------------------------------------------------------- material
-
-
-def test_material_is_a_validated_hashable_value():
-    a = Material("phong", {"kd": 0.2})
-    b = Material("phong", {"kd": 0.2, "ks": MODELS["phong"].param("ks").default})
-    assert a == b and hash(a) == hash(b) and len({a, b}) == 1  # defaults filled: one key
-    assert a != Material("phong", {"kd": 0.3}) and a != Material("blinn-phong", {"kd": 0.2})
-    assert list(a.values) == [p.name for p in MODELS["phong"].params]  # declaration order
-    with pytest.raises(ValueError, match="kd"):
-        Material("phong", {"kd": 2.0})  # out of the declared range [0, 1]
-    with pytest.raises(ValueError, match="constraint"):
-        Material("phong", {"kd": 0.8, "ks": 0.8})  # kd + ks ≤ 1
-    with pytest.raises(AttributeError):
-        a.name = "lambert"
-    a.values["kd"] = 0.9  # a copy: the material does not change
-    assert a.values["kd"] == 0.2
-    c = a.with_values(kd=0.4)
-    assert c.values["kd"] == 0.4 and a.values["kd"] == 0.2
-    with pytest.raises(ValueError):
-        a.with_values(kd=0.9)  # 0.9 + ks 0.5 > 1
-
 
 # ------------------------------------------------------------------------------------ peak
 
@@ -78,7 +55,7 @@ def dense_max(model: str, params: dict, theta_i: float, channel=None) -> tuple[f
 ])
 def test_peak_is_at_least_the_dense_grid_maximum(model, params, theta_i):
     m = MODELS[model]
-    pk = find_peaks(m, m.resolve(params), theta_i)[0]
+    pk = find_peaks(m, m.resolve(params), incident(theta_i))[0]
     ref, ref_theta = dense_max(model, params, theta_i)
     # the finder optimises off the grid: never below the grid's best, and not above the
     # function's value at its own direction
@@ -92,20 +69,21 @@ def test_peak_is_at_least_the_dense_grid_maximum(model, params, theta_i):
 def test_peak_closed_forms():
     # Phong's lobe peaks on the mirror direction with (n+2)/(2π)·ks (+ kd/π)
     pk = find_peaks(MODELS["phong"], MODELS["phong"].resolve({"kd": 0, "ks": 1, "n": 2000}),
-                    40)[0]
+                    incident(40))[0]
     assert pk.value == pytest.approx(2002 / (2 * np.pi), rel=1e-9)
     assert (pk.theta_deg, pk.phi_deg) == pytest.approx((40.0, 0.0), abs=1e-4)
     # Lambert: kd/π; f·cos θr peaks at the normal with kd/π
     lam = MODELS["lambert"]
-    assert find_peaks(lam, lam.resolve({"kd": 0.5}), 30)[0].value == pytest.approx(0.5 / np.pi)
-    pk = find_peaks(lam, lam.resolve({"kd": 0.5}), 30, cosine=True)[0]
+    assert find_peaks(lam, lam.resolve({"kd": 0.5}), incident(30))[0].value == pytest.approx(
+        0.5 / np.pi)
+    pk = find_peaks(lam, lam.resolve({"kd": 0.5}), incident(30), cosine=True)[0]
     assert pk.value == pytest.approx(0.5 / np.pi) and pk.theta_deg < 1e-3
 
 
 def test_rgb_peaks_luminance_and_each_channel():
     params = {"base_color": (0.9, 0.2, 0.05), "metallic": 1.0, "roughness": 0.3}
     m = MODELS["ue4"]
-    peaks = find_peaks(m, m.resolve(params), 50)
+    peaks = find_peaks(m, m.resolve(params), incident(50))
     assert [p.label for p in peaks] == ["Y", "R", "G", "B"]
     for p, ch in zip(peaks, (None, 0, 1, 2), strict=True):
         ref, _ = dense_max("ue4", params, 50, ch)
@@ -145,6 +123,31 @@ def test_each_pane_is_evaluated_once_and_a_repeated_frame_is_free(monkeypatch):
     calls.clear()
     assert scene.compute_frame(req, slow=False) is scene.compute_frame(req, slow=False)
     assert calls == []  # cached by request
+
+
+def test_the_request_makes_wi_once_and_every_part_takes_it(monkeypatch):
+    # the light's direction is the request's: read-only, not part of the key (a function of
+    # θi and the normalised φi), and no part of the frame turns θi into wi again
+    import sys
+
+    req = scene.FrameRequest((Material("ggx"),), 41.0, phi_i=-30.0, map_px=(40, 30),
+                             solid=True, probe=(0.3, -0.2), extra="sphere", extra_px=(20, 16))
+    assert req.phi_i == 330.0 and np.array_equal(req.wi, incident(41.0, 330.0))
+    assert not req.wi.flags.writeable
+    assert req == dataclasses.replace(req) and hash(req) == hash(dataclasses.replace(req))
+
+    def no_conversion(*a, **kw):
+        raise AssertionError("θi turned into wi again")
+
+    for name, mod in list(sys.modules.items()):
+        if name.startswith("tuibrdf.") and getattr(mod, "incident", None) is incident:
+            monkeypatch.setattr(mod, "incident", no_conversion)
+    scene.clear_caches()
+    side = scene.compute_frame(req, slow=False).sides[0]
+    monkeypatch.undo()
+    assert side.map is not None and side.solid is not None and side.extra is not None
+    assert side.probe[0] == pytest.approx(float(evaluate("ggx", {}, incident(41.0, 330.0),
+                                                         req.probe_direction)), rel=1e-12)
 
 
 # ----------------------------------------------------------------- every pane agrees

@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+from tuibrdf.core.directions import incident
 from tuibrdf.core.registry import MODELS
 from tuibrdf.core.views.hemimap import dir_to_uv, geometry, map_values, uv_to_dir
 
@@ -57,7 +58,7 @@ def test_incidence_side_left_mirror_side_right():
     # the phong lobe at θi = 45° is on the right half (u > 0), the left half is dimmer
     m = MODELS["phong"]
     v = m.resolve({"kd": 0.0, "ks": 0.5, "n": 50})
-    a, info = map_values(m, v, 45, 80, 48)
+    a, info = map_values(m, v, incident(45), 80, 48)
     g = geometry(80, 48)
     right = np.nansum(a[:, int(g.cx) + 1 :])
     left = np.nansum(a[:, : int(g.cx)])
@@ -69,7 +70,7 @@ def test_incidence_side_left_mirror_side_right():
 def test_mirror_pixel_holds_peak_for_sharp_phong(theta_i):
     m = MODELS["phong"]
     v = m.resolve({"kd": 0.0, "ks": 1.0, "n": 2000})
-    a, info = map_values(m, v, theta_i, 160, 96)
+    a, info = map_values(m, v, incident(theta_i), 160, 96)
     assert a[info.mirror_px] == np.nanmax(a)
     # the brightest pixel is close to the mirror value (n+2)/(2π)·ks (closed form at wo = S)
     assert info.vmax == np.nanmax(a) and info.vmax <= 2002 / (2 * np.pi) * (1 + 1e-12)
@@ -77,12 +78,12 @@ def test_mirror_pixel_holds_peak_for_sharp_phong(theta_i):
 
 def test_lambert_map_constant_and_nan_outside():
     m = MODELS["lambert"]
-    a, info = map_values(m, m.resolve({"kd": 0.5}), 20, 40, 30)
+    a, info = map_values(m, m.resolve({"kd": 0.5}), incident(20), 40, 30)
     g = geometry(40, 30)
     assert np.isnan(a[~g.inside]).all()
     assert a[g.inside] == pytest.approx(0.5 / np.pi)
     # cosine: f·cos θr peaks at the pole with kd/π
-    a, info = map_values(m, m.resolve({"kd": 0.5}), 20, 40, 30, cosine=True)
+    a, info = map_values(m, m.resolve({"kd": 0.5}), incident(20), 40, 30, cosine=True)
     assert np.nanmax(a) == pytest.approx(0.5 / np.pi, rel=1e-2)
     assert np.nanmin(a) >= 0 and np.nanmin(a) < 0.1 * 0.5 / np.pi
 
@@ -94,7 +95,7 @@ SCALAR_OR_RGB = [name for name, m in MODELS.items() if all(p.kind != "path" for 
 @pytest.mark.parametrize("theta_i", [0, 45, 89, 90])
 def test_nan_free_inside_every_model(name, theta_i):
     m = MODELS[name]
-    a, info = map_values(m, m.resolve({}), theta_i, 40, 24)
+    a, info = map_values(m, m.resolve({}), incident(theta_i), 40, 24)
     g = geometry(40, 24)
     inside = a[g.inside]
     assert np.isfinite(inside).all() and (inside >= 0).all()
@@ -106,14 +107,15 @@ def test_nan_free_inside_every_model(name, theta_i):
 def test_mesh_method_reproduces_constant_and_converges():
     # barycentric interpolation reproduces a constant exactly (weights sum to 1)
     m = MODELS["lambert"]
-    a, info = map_values(m, m.resolve({"kd": 0.5}), 30, 40, 30, method="mesh")
+    a, info = map_values(m, m.resolve({"kd": 0.5}), incident(30), 40, 30, method="mesh")
     assert a[geometry(40, 30).inside] == pytest.approx(0.5 / np.pi)
     assert info.level is not None
     # a smooth lobe: the mesh map approaches the exact one as the level grows
     m = MODELS["phong"]
     v = m.resolve({"kd": 0.0, "ks": 0.5, "n": 10})
-    exact, _ = map_values(m, v, 30, 60, 40)
-    errs = [np.nanmax(np.abs(map_values(m, v, 30, 60, 40, method="mesh", level=lv)[0] - exact))
+    wi = incident(30)
+    exact, _ = map_values(m, v, wi, 60, 40)
+    errs = [np.nanmax(np.abs(map_values(m, v, wi, 60, 40, method="mesh", level=lv)[0] - exact))
             for lv in (2, 4)]
     assert errs[1] < errs[0] / 4  # linear interpolation: error ∝ h², h halves per level
 

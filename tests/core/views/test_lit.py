@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from rich.console import Console
 
+from tuibrdf.core.directions import incident
 from tuibrdf.core.registry import get_model
 from tuibrdf.core.views.lit import lit_plane, lit_sphere, plane_rays, tone_map
 from tuibrdf.render.lit_view import lit_arrays, lit_view
@@ -32,7 +33,7 @@ def test_lambert_sphere_is_kd_times_cosine(theta_i):
     # (−sin θi, 0, cos θi); L = kd/π · max(N·light, 0) · π
     w = h = 41
     m, v = model(("lambert", {"kd": 0.6}))
-    rad, inside = lit_sphere(m, v, theta_i, w, h)
+    rad, inside = lit_sphere(m, v, incident(theta_i), w, h)
     x = (np.arange(w) + 0.5 - w / 2) / (w / 2)
     xx, yy = np.meshgrid(x, -x)
     disc = xx**2 + yy**2 < 1
@@ -49,7 +50,7 @@ def test_lambert_plane_is_uniform_below_the_horizon():
     # centre: v = focal · tan(90° − θv) pixels, focal = (H/2) / tan(fov/2)
     m, v = model(("lambert", {"kd": 0.5}))
     w, h, fov, ti = 60, 400, 40.0, 80.0
-    rad, hits = lit_plane(m, v, ti, w, h, fov_deg=fov)
+    rad, hits = lit_plane(m, v, incident(ti), w, h, view_deg=ti, fov_deg=fov)
     assert np.allclose(rad[hits][:, 0], 0.5 * np.cos(np.radians(ti)), rtol=1e-12)
     assert np.all(rad[~hits] == 0.0)
     focal = (h / 2) / np.tan(np.radians(fov / 2))
@@ -100,7 +101,8 @@ def test_seed_point_phong_round_cook_torrance_stretched(theta_i, ct_min):
     extents = {}
     for spec in (PHONG, CT):
         m, v = model(spec)
-        rad, hits = lit_plane(m, v, theta_i, size["px_w"], size["px_h"], fov_deg=40.0)
+        rad, hits = lit_plane(m, v, incident(theta_i), size["px_w"], size["px_h"],
+                              view_deg=theta_i, fov_deg=40.0)
         along, across = highlight_extent(rad)
         extents[spec[0]] = along / across
     assert extents["phong"] == pytest.approx(1.0, abs=0.03)
@@ -164,7 +166,7 @@ def test_every_model_lit_is_finite_and_non_negative(name, theta_i):
         assert np.all(rad[~mask] == 0.0)
     # the light on the horizon gives cos θi = 0 on the plane: black
     if theta_i == 90.0:
-        assert np.all(lit_plane(m, v, theta_i, 16, 16)[0] == 0.0)
+        assert np.all(lit_plane(m, v, incident(theta_i), 16, 16, view_deg=theta_i)[0] == 0.0)
 
 
 def test_truecolor_picture_is_drawn_on_64_levels_per_channel():
@@ -183,7 +185,6 @@ def test_truecolor_picture_is_drawn_on_64_levels_per_channel():
 def test_lit_sphere_local_frames_match_the_definition():
     # the cached per-pixel frames give, for every pixel inside the disc, the light and the
     # view in (T, B, N) written out here: T = normalise(e_x − (e_x·N) N), B = N × T
-    from tuibrdf.core.directions import incident
     from tuibrdf.core.views.lit import _sphere, sphere_geometry
 
     n, inside = sphere_geometry(23, 17)

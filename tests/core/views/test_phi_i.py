@@ -50,7 +50,7 @@ def test_isotropic_map_is_the_phi_180_map_turned(name, params, phi_i):
     m = get_model(name)
     v = m.resolve(params)
     px = (40, 40)
-    got, info = map_values(m, v, 50.0, *px, phi_i_deg=phi_i)
+    got, info = map_values(m, v, incident(50.0, phi_i), *px)
     dirs = geometry(*px).dirs
     # the same configuration turned by 180° − φi about the normal: light back at φi = 180°
     back = turn(dirs, 180.0 - phi_i)
@@ -86,7 +86,7 @@ def test_anisotropic_user_model_changes_with_phi_i():
     m = get_model(WARD)
     v = m.resolve({})
     px = (40, 40)
-    got, _ = map_values(m, v, 50.0, *px, phi_i_deg=90.0)
+    got, _ = map_values(m, v, incident(50.0, 90.0), *px)
     dirs = geometry(*px).dirs
     want = np.asarray(tuibrdf.evaluate(WARD, {}, incident(50.0), turn(dirs, 90.0)))
     diff = np.abs(got[geometry(*px).inside] - want).max()

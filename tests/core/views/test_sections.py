@@ -1,5 +1,6 @@
 """Sections through the lobe's peak (``tuibrdf.core.views.sections``): the geometry of the great
-circles, and the seed's claim about the specular lobe's width across the plane of incidence.
+circles, the frame's section through its peak (``compute_frame``'s ``sections["peak"]``), and
+the seed's claim about the specular lobe's width across the plane of incidence.
 
 Seed (the French BRDF viewer document, « Partie spéculaire »): for Cook-Torrance, as θi grows
 the peak keeps a constant width in the plane of incidence but narrows as cos θi in a plane
@@ -14,15 +15,9 @@ import pytest
 
 from tuibrdf.core.directions import from_degrees, incident
 from tuibrdf.core.evaluate import evaluate
-from tuibrdf.core.registry import get_model
-from tuibrdf.core.views.sections import (
-    above_horizon_range,
-    center_direction,
-    great_circle,
-    peak_in_plane,
-    perpendicular_section,
-    section_values,
-)
+from tuibrdf.core.material import Material
+from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views.sections import PERPENDICULAR, great_circle
 
 SEED_CT = {"kd": 0.0, "f0": 0.04, "m": 0.07}
 T = np.linspace(-90.0, 90.0, 18001)  # 0.01° steps: FWHM to ±0.02°
@@ -54,14 +49,31 @@ def in_plane_fwhm(theta_i: float) -> float:
     return fwhm(th, f)
 
 
+def frame_side(theta_i: float, name: str = "cook-torrance", params=None, **kw):
+    """The frame's numbers of one material (what the viewer draws from)."""
+    req = scene.FrameRequest((Material(name, SEED_CT if params is None else params),),
+                             theta_i, **kw)
+    return scene.compute_frame(req, slow=False).sides[0]
+
+
 def across_fwhm(theta_i: float) -> tuple[float, float]:
-    """(FWHM across the lobe through its in-plane peak, the peak's θ)."""
-    m = get_model("cook-torrance")
-    values = m.resolve(SEED_CT)
-    peak, _ = peak_in_plane(m, values, theta_i)
-    f, above = section_values(m, values, theta_i, center_direction(peak), T)
+    """(FWHM across the lobe, the peak's θ): on the great circle of the frame's section through
+    its peak (ψ = 90°), sampled every 0.01° (the frame samples it every 1°)."""
+    theta_c, phi_c = frame_side(theta_i).section_center
+    w, above = great_circle(from_degrees(theta_c, phi_c), T, PERPENDICULAR)
     assert above.all()  # ψ = 90°: the whole half circle is above the horizon
-    return fwhm(T, f), peak
+    return fwhm(T, evaluate("cook-torrance", SEED_CT, incident(theta_i), w)), theta_c
+
+
+def arc_above(t: np.ndarray, above: np.ndarray) -> tuple[float, float]:
+    """The ends of the arc of samples ``t`` above the horizon that holds the centre (t = 0)."""
+    mid = int(np.argmin(np.abs(t)))
+    lo = hi = mid
+    while hi + 1 < len(t) and above[hi + 1]:
+        hi += 1
+    while lo > 0 and above[lo - 1]:
+        lo -= 1
+    return float(t[lo]), float(t[hi])
 
 
 # -- geometry ------------------------------------------------------------------------------
@@ -85,14 +97,15 @@ def test_perpendicular_section_leaves_the_centre_along_y():
     # of the section lies in the plane spanned by c and e_y (det[c, e_y, w] = 0)
     c = from_degrees(62.0, 0.0)
     t = np.linspace(-90.0, 90.0, 181)
-    w, above = perpendicular_section(c, t)
+    w, above = great_circle(c, t, PERPENDICULAR)
     det = np.linalg.det(np.stack([np.broadcast_to(c, w.shape),
                                   np.broadcast_to([0.0, 1.0, 0.0], w.shape), w], axis=1))
     assert np.allclose(det, 0.0, atol=1e-14)
     assert np.all(w[t > 0, 1] > 0) and np.all(w[t < 0, 1] < 0)
     # w_z = cos t · c_z ≥ 0: the whole |t| ≤ 90° half circle is above the horizon
     assert above.all() and np.allclose(w[:, 2], np.cos(np.radians(t)) * c[2])
-    assert above_horizon_range(c) == (-90.0, 90.0)
+    t = np.linspace(-180.0, 180.0, 3601)
+    assert arc_above(t, great_circle(c, t, PERPENDICULAR)[1]) == (-90.0, 90.0)
 
 
 def test_azimuth_zero_is_the_plane_of_incidence_and_the_pole_gives_normal_sections():
@@ -105,7 +118,8 @@ def test_azimuth_zero_is_the_plane_of_incidence_and_the_pole_gives_normal_sectio
     assert np.allclose(w, expect, atol=1e-15)
     # ψ = 0 through a centre at 40°: θr = 40° + t runs from the horizon on the light's side
     # (θr = −90°, t = −130°) over the normal to the horizon on the mirror side (t = 50°)
-    lo, hi = above_horizon_range(from_degrees(40.0, 0.0), 0.0)
+    t = np.linspace(-180.0, 180.0, 3601)
+    lo, hi = arc_above(t, great_circle(from_degrees(40.0, 0.0), t, 0.0)[1])
     assert lo == pytest.approx(-130.0, abs=0.15) and hi == pytest.approx(50.0, abs=0.15)
 
 
@@ -116,12 +130,15 @@ def test_bad_centre_is_refused():
         great_circle(np.array([np.nan, 0.0, 1.0]), np.zeros(1))
 
 
-def test_peak_in_plane_finds_the_mirror_for_phong_and_the_mirror_for_lambert():
-    # modified Phong's lobe is centred on S (θr = θi); Lambert is flat: the mirror by convention
-    for name, params in (("phong", {"kd": 0.0, "ks": 1.0, "n": 200}), ("lambert", {})):
-        m = get_model(name)
-        peak, _ = peak_in_plane(m, m.resolve(params), 35.0)
-        assert peak == pytest.approx(35.0, abs=1e-3)
+def test_the_frames_section_goes_through_its_peak():
+    # modified Phong's lobe is centred on S: the frame's section through its peak is centred
+    # on (θi, 0) and is, every 1°, the great circle through that centre
+    side = frame_side(35.0, "phong", {"kd": 0.0, "ks": 1.0, "n": 200})
+    assert side.section_center == pytest.approx((35.0, 0.0), abs=1e-3)
+    w, _ = great_circle(from_degrees(*side.section_center), scene.SECTION_THETAS, PERPENDICULAR)
+    want = evaluate("phong", {"kd": 0.0, "ks": 1.0, "n": 200}, incident(35.0), w)
+    np.testing.assert_allclose(side.sections["peak"], want, rtol=1e-12, atol=0)
+    assert float(np.max(side.sections["peak"])) == pytest.approx(side.peak.value, rel=1e-12)
 
 
 # -- the seed's claim ------------------------------------------------------------------------
@@ -169,24 +186,21 @@ def test_perpendicular_section_at_60_reaches_the_lobe_peak():
                            np.arange(ph[k] - 0.5, ph[k] + 0.5, 0.01))
     peak = float(np.max(evaluate("cook-torrance", SEED_CT, wi, from_degrees(th2, ph2))))
     assert peak == pytest.approx(6.14, abs=0.005)
-    m = get_model("cook-torrance")
-    values = m.resolve(SEED_CT)
-    c = center_direction(peak_in_plane(m, values, 60.0)[0])
-    sec, _ = section_values(m, values, 60.0, c, T)
-    assert float(np.max(sec)) == pytest.approx(peak, rel=0.01)
-    # the section through the normal (today's "perpendicular" plane) misses it entirely
-    normal = evaluate("cook-torrance", SEED_CT, wi, from_degrees(np.abs(T), 90.0))
-    assert float(np.max(normal)) < 1e-20
+    side = frame_side(60.0)
+    assert float(np.max(side.sections["peak"])) == pytest.approx(peak, rel=0.01)
+    # the frame's section through the normal across the plane of incidence misses it entirely
+    assert float(np.max(side.sections["perpendicular"])) < 1e-20
 
 
-def test_section_values_cosine_and_rgb():
-    m = get_model("gltf")
-    values = m.resolve({})
-    c = from_degrees(30.0, 0.0)
-    t = np.linspace(-90.0, 90.0, 19)
-    f, above = section_values(m, values, 30.0, c, t, 0.0)
-    fc, _ = section_values(m, values, 30.0, c, t, 0.0, cosine=True)
-    assert f.shape == (19, 3)
-    assert np.all(f[~above] == 0.0) and (~above).any()  # ψ = 0 dips below the horizon
-    w, _ = great_circle(c, t, 0.0)
-    assert np.allclose(fc, f * np.maximum(w[:, 2], 0.0)[:, None])
+def test_the_frames_peak_section_with_cosine_and_rgb():
+    # ψ = 0 through the peak of a glTF material (RGB) dips below the horizon: 0 there; with
+    # the cosine toggle, f·cos θr along the section through the peak of f·cos θr
+    for cosine in (False, True):
+        side = frame_side(30.0, "gltf", {}, section_azimuth=0.0, cosine=cosine)
+        got = side.sections["peak"]
+        assert got.shape == (len(scene.SECTION_THETAS), 3)
+        w, above = great_circle(from_degrees(*side.section_center), scene.SECTION_THETAS, 0.0)
+        f = np.asarray(evaluate("gltf", {}, incident(30.0), w))
+        want = f * np.maximum(w[:, 2], 0.0)[:, None] if cosine else f
+        assert np.all(got[~above] == 0.0) and (~above).any() and np.all(got[above] > 0.0)
+        np.testing.assert_allclose(got, want, rtol=1e-12, atol=0)

@@ -49,8 +49,6 @@ horizon, H undefined).  On the horizon itself the clamped bins give the data's v
 from __future__ import annotations
 
 import os
-import threading
-from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
@@ -58,6 +56,7 @@ from functools import partial
 import numpy as np
 
 from tuibrdf.core.formats.files import open_regular
+from tuibrdf.core.lru import LRU
 from tuibrdf.core.numerics import safe_div
 from tuibrdf.core.params import Model, Param
 
@@ -380,10 +379,9 @@ MERL = Model(
 
 # -- cache -------------------------------------------------------------------------------------
 
-_CACHE: OrderedDict[tuple, MerlData] = OrderedDict()
 #: how many loaded files stay in memory (35 MB each): the measured one and one being compared
 CACHE_SIZE = 2
-_CACHE_LOCK = threading.Lock()  # the app loads in a worker thread
+_CACHE = LRU(CACHE_SIZE)  # thread-safe: the app loads in a worker thread
 
 
 def _cache_key(name: str) -> tuple:
@@ -400,9 +398,7 @@ def _cache_key(name: str) -> tuple:
 def is_loaded(path: str | os.PathLike) -> bool:
     """Whether :func:`load_cached` would answer from memory (no reading).  Raises
     :class:`MerlError` when the file cannot be found."""
-    key = _cache_key(os.fspath(path))
-    with _CACHE_LOCK:
-        return key in _CACHE
+    return _cache_key(os.fspath(path)) in _CACHE
 
 
 def load_cached(path: str | os.PathLike,
@@ -413,20 +409,12 @@ def load_cached(path: str | os.PathLike,
     so the kernel's later calls are cache hits."""
     name = os.fspath(path)
     key = _cache_key(name)
-    with _CACHE_LOCK:
-        hit = _CACHE.get(key)
-        if hit is not None:
-            _CACHE.move_to_end(key)
+    hit = _CACHE.lookup(key)
     if hit is not None:
         if progress is not None:
             progress(1.0)
         return hit
-    data = load(name, progress)
-    with _CACHE_LOCK:
-        _CACHE[key] = data
-        while len(_CACHE) > CACHE_SIZE:
-            _CACHE.popitem(last=False)
-    return data
+    return _CACHE.put(key, load(name, progress))
 
 
 def clear_cache() -> None:

@@ -28,12 +28,11 @@ fails to load is reported in one line.
 from __future__ import annotations
 
 import os
-import threading
-from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import replace
 
 from tuibrdf.core.formats.files import UserFileError  # the readers' error, re-exported here
+from tuibrdf.core.lru import LRU
 from tuibrdf.core.params import Model
 
 #: extension → what it is (for messages and docs)
@@ -64,9 +63,8 @@ def looks_like_path(name: object) -> bool:
 
 # --------------------------------------------------------------------------- cache
 
-_CACHE: OrderedDict[tuple, Model] = OrderedDict()
 CACHE_SIZE = 16
-_LOCK = threading.Lock()
+_CACHE = LRU(CACHE_SIZE)
 
 
 def _key(path: str) -> tuple:
@@ -90,24 +88,11 @@ def load_model_file(path: str | os.PathLike) -> Model:
         what = f"unknown file type {ext!r}" if ext else "no file extension"
         raise UserFileError(f"{given}: {what}: tuibrdf reads {understood()} files, or a "
                             "model name (see 'tuibrdf models')")
-    key = _key(given)
-    with _LOCK:
-        hit = _CACHE.get(key)
-        if hit is not None:
-            _CACHE.move_to_end(key)
-            return hit
-    name = os.path.abspath(given)
-    model = _LOADERS[ext](given, name)
-    with _LOCK:
-        _CACHE[key] = model
-        while len(_CACHE) > CACHE_SIZE:
-            _CACHE.popitem(last=False)
-    return model
+    return _CACHE.get(_key(given), lambda: _LOADERS[ext](given, os.path.abspath(given)))
 
 
 def clear_cache() -> None:
-    with _LOCK:
-        _CACHE.clear()
+    _CACHE.clear()
 
 
 def _load_brdf(path: str, name: str) -> Model:

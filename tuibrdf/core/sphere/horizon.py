@@ -40,15 +40,14 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from tuibrdf.core.directions import incident
 from tuibrdf.core.params import Model
 from tuibrdf.core.sphere.peak import (
     NORMAL,
     PEAK_TOL,
     Peak,
     _plane_refine,
+    f_or_f_cos,
     mirror_horizon,
-    radiance,
     scores,
 )
 
@@ -123,19 +122,18 @@ def grows(y: np.ndarray) -> np.ndarray:
     return (a > 0.0) & (b >= GROWTH_MIN * a) & (c >= GROWTH_MIN * b)
 
 
-def _classify(model: Model, values: Mapping[str, Any], theta_i_deg: float,
+def _classify(model: Model, values: Mapping[str, Any], wi: np.ndarray,
               peaks: tuple[Peak, ...], *, cosine: bool = False, phi_i_deg: float = 180.0
               ) -> tuple[tuple[Peak, ...], list[float | None], list[float]]:
     """The growth test (see the module): ``(peaks, toward, below)`` with a peak the finder
     missed next to the horizon put right, per column the azimuth (degrees) along which f grows
     without bound toward the horizon (None when it is bounded there), and f at 89° on the
     azimuth tested nearest the peak's."""
-    wi = incident(theta_i_deg, phi_i_deg)
     axes = _axes(wi, phi_i_deg, peaks)
     n = len(_DELTAS)
     # 90° − δ along each axis: cos δ · axis + sin δ · N (exact distances from the horizon)
     w = np.concatenate([_COS_D[:, None] * ax + _SIN_D[:, None] * NORMAL for ax in axes])
-    sc = scores(radiance(model, values, wi, w, cosine))  # one call for every axis
+    sc = scores(f_or_f_cos(model, values, wi, w, cosine))  # one call for every axis
     peaks = list(peaks)
     toward: list[float | None] = [None] * len(peaks)
     starts: list[list] = [[] for _ in axes]
@@ -174,14 +172,15 @@ def _classify(model: Model, values: Mapping[str, Any], theta_i_deg: float,
     return tuple(peaks), toward, below
 
 
-def assess(model: Model, values: Mapping[str, Any], theta_i_deg: float,
+def assess(model: Model, values: Mapping[str, Any], wi: np.ndarray,
            peaks: tuple[Peak, ...], *, cosine: bool = False, phi_i_deg: float = 180.0
            ) -> tuple[tuple[Peak, ...], tuple[Horizon, ...]]:
-    """``(peaks, horizons)``: the frame's peaks (a peak missed next to the horizon put right,
-    see the module) and per column where it is for the pictures (:class:`Horizon`).  One
-    kernel call of 9 directions per azimuth tested (one or two), and a 1-D search where the
-    finder missed a peak next to the horizon."""
-    peaks, toward, below = _classify(model, values, theta_i_deg, peaks, cosine=cosine,
+    """``(peaks, horizons)``: the frame's peaks (``find_peaks`` of the light ``wi``; a peak
+    missed next to the horizon put right, see the module) and per column where it is for the
+    pictures (:class:`Horizon`).  ``phi_i_deg`` as ``find_peaks`` takes it.  One kernel call
+    of 9 directions per azimuth tested (one or two), and a 1-D search where the finder missed
+    a peak next to the horizon."""
+    peaks, toward, below = _classify(model, values, wi, peaks, cosine=cosine,
                                      phi_i_deg=phi_i_deg)
     out = tuple(Horizon("unbounded", t) if t is not None
                 else Horizon("capped") if (p.theta_deg > HORIZON_DEG

@@ -24,10 +24,11 @@ THETAS = (0.0, 60.0)
 RTOL = 1e-7
 
 
-def albedo(model: str, material: str, theta_i_deg: float | None = None) -> np.ndarray:
-    """Directional albedo ``∫ f cos θo dωo`` (RGB) of fit ``model`` (``abc`` or ``sgd``) of
-    ``material``: ``(3,)`` at ``theta_i_deg``, or ``(len(THETAS), 3)`` at :data:`THETAS`."""
-    m = get_model(model)
+def fit_albedo(fit: str, material: str, theta_i_deg: float | None = None) -> np.ndarray:
+    """Directional albedo ``∫ f cos θo dωo`` (RGB) of ``fit`` (``abc`` or ``sgd``) of MERL
+    ``material``, computed: ``(3,)`` at ``theta_i_deg``, or ``(len(THETAS), 3)`` at
+    :data:`THETAS` (what :data:`STORED` holds)."""
+    m = get_model(fit)
     values = m.resolve({"material": material})
     thetas = THETAS if theta_i_deg is None else (theta_i_deg,)
     value = np.asarray(albedo_curve_estimate_resolved(m, values, thetas, rtol=RTOL).value)
@@ -51,7 +52,7 @@ def stored_text() -> str:
         "\t".join(("name", *COLUMNS)),
     ]
     for name in material_names():
-        vals = [v for m in ("abc", "sgd") for v in albedo(m, name).ravel()]
+        vals = [v for m in ("abc", "sgd") for v in fit_albedo(m, name).ravel()]
         lines.append("\t".join((name, *(f"{v:.6g}" for v in vals))))
     return "\n".join(lines) + "\n"
 

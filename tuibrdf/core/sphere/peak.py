@@ -1,6 +1,6 @@
 """The peak of a lobe: the one finder every number on screen comes from.
 
-``find_peaks(model, values, θi)`` returns the largest ``f`` (or ``f·cos θo`` with
+``find_peaks(model, values, wi)`` returns the largest ``f`` (or ``f·cos θo`` with
 ``cosine=True``) over the closed upper hemisphere and its direction, within ~1e-10 (relative)
 of the true maximum (tests/core/sphere/test_peak.py, tests/core/views/test_frame.py).  Every round
 below is one
@@ -81,7 +81,7 @@ import numpy as np
 
 from tuibrdf.core.conventions import luminance
 from tuibrdf.core.directions import incident, mirror, phi_of, theta_of
-from tuibrdf.core.evaluate import evaluate_resolved
+from tuibrdf.core.evaluate import evaluate_resolved, f_cos
 from tuibrdf.core.params import Model
 from tuibrdf.core.sphere.mesh import hemisphere
 
@@ -135,14 +135,12 @@ class Peak(NamedTuple):
     label: str = ""
 
 
-def radiance(model: Model, values: Mapping[str, Any], wi: np.ndarray, wo: np.ndarray,
-             cosine: bool) -> np.ndarray:
-    """``f(wi, wo)`` (times ``cos θo`` when ``cosine``) at ``wo (n, 3)``: ``(n,)``/``(n, 3)``."""
+def f_or_f_cos(model: Model, values: Mapping[str, Any], wi: np.ndarray, wo: np.ndarray,
+               cosine: bool) -> np.ndarray:
+    """What the panes show at ``wo (n, 3)``: ``f(wi, wo)``, or ``f·cos θo`` when ``cosine``
+    (:func:`~tuibrdf.core.evaluate.f_cos`); ``(n,)``/``(n, 3)``."""
     f = np.asarray(evaluate_resolved(model, values, wi, wo), dtype=float)
-    if not cosine:
-        return f
-    c = wo[:, 2]
-    return f * (c[:, None] if f.ndim == 2 else c)
+    return f_cos(f, wo) if cosine else f
 
 
 def scores(g: np.ndarray) -> np.ndarray:
@@ -317,7 +315,7 @@ def _near_horizon_starts(model: Model, values: Mapping[str, Any], wi: np.ndarray
     if not ts:
         return []
     flat = np.array([x for xs in ts for x in xs])
-    sc = scores(radiance(model, values, wi, _along(flat, axis), cosine))
+    sc = scores(f_or_f_cos(model, values, wi, _along(flat, axis), cosine))
     out, k = [], 0
     for c, xs in zip(cols, ts, strict=True):
         out.append((c, xs, sc[k:k + len(xs), c].tolist()))
@@ -382,7 +380,7 @@ def _plane_refine(model: Model, values: Mapping[str, Any], wi: np.ndarray, cosin
         if not live:
             break
         tt = np.array([x for new in asks for x in new])
-        st = scores(radiance(model, values, wi, _along(tt, axis), cosine))
+        st = scores(f_or_f_cos(model, values, wi, _along(tt, axis), cosine))
         k = 0
         for (c, xs, ys), new in zip(live, asks, strict=True):
             for x, v in zip(new, st[k:k + len(new), c].tolist(), strict=True):
@@ -412,20 +410,19 @@ def mirror_horizon(wi: np.ndarray, phi_i_deg: float) -> np.ndarray:
     return np.array([-wi[0] / r, -wi[1] / r, 0.0])
 
 
-def find_peaks(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
+def find_peaks(model: Model, values: Mapping[str, Any], wi: np.ndarray, *,
                cosine: bool = False, level: int = PEAK_LEVEL,
                phi_i_deg: float = 180.0) -> tuple[Peak, ...]:
     """``(Peak,)`` for a scalar model, ``(Y, R, G, B)`` peaks for an RGB one (see module);
-    the light at ``θi``, ``φi`` (:func:`~tuibrdf.core.directions.incident`)."""
-    if not 0.0 <= float(theta_i_deg) <= 90.0:  # also refuses NaN
-        raise ValueError(f"theta_i = {theta_i_deg!r} is invalid: expected in [0, 90]°")
-    wi = incident(theta_i_deg, phi_i_deg)
+    the light at ``wi`` (:func:`~tuibrdf.core.directions.incident`; the frame's
+    :attr:`~tuibrdf.core.views.frame.FrameRequest.wi`).  ``phi_i_deg``, the light's azimuth,
+    matters only where ``wi`` is the normal and has none (:func:`mirror_horizon`)."""
     s_dir = mirror(wi)
     h_mirror = mirror_horizon(wi, phi_i_deg)
     cand = np.concatenate([hemisphere(level).vertices, [s_dir, h_mirror, NORMAL]])
     # one kernel call for the candidates and the plane's grid
     line = _PLANE_SIN * h_mirror + _PLANE_UP
-    sc = scores(radiance(model, values, wi, np.concatenate([cand, line]), cosine))
+    sc = scores(f_or_f_cos(model, values, wi, np.concatenate([cand, line]), cosine))
     sc, gs = sc[:len(cand)], sc[len(cand):]
     val, at, ended = _climb(model, values, wi, cosine, cand, sc, level)
     starts = _plane_starts(gs, val, at, ended, h_mirror, _at_normal(wi))
@@ -504,7 +501,7 @@ def _climb(model: Model, values: Mapping[str, Any], wi: np.ndarray, cosine: bool
         else:  # every point above the horizon (hb < −1)
             q = c[:, None, :] + _GA50[:, None] * t1[:, None, :] + _GB50[:, None] * t2[:, None, :]
         q /= np.sqrt(np.einsum("nij,nij->ni", q, q))[:, :, None]  # ≠ 0: steps are ≪ 1 rad
-        st = scores(radiance(model, values, wi, q.reshape(-1, 3), cosine))
+        st = scores(f_or_f_cos(model, values, wi, q.reshape(-1, 3), cosine))
         v = st.reshape(n, 50, k)[np.arange(n), :, [col[i] for i in live]]
         j = v.argmax(axis=1)
         vmax = v[np.arange(n), j]
@@ -651,9 +648,3 @@ def _climb(model: Model, values: Mapping[str, Any], wi: np.ndarray, cosine: bool
         out_w.append(best[w])
         out_e.append(ended[w])
     return out_v, out_w, out_e
-
-
-def peak_of(model: Model, values: Mapping[str, Any], theta_i_deg: float, *,
-            cosine: bool = False) -> Peak:
-    """The one peak a scalar reading uses: the value, or the luminance of an RGB model."""
-    return find_peaks(model, values, theta_i_deg, cosine=cosine)[0]

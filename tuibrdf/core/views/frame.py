@@ -38,22 +38,28 @@ Every value except ``albedo`` and ``curve`` includes the cosine factor when ``co
 The albedo and the curve are slow (up to tens of ms and 0.3 s for sharp lobes): ``compute_frame(r,
 slow=False)`` leaves them None unless already cached, so a viewer can show the rest at once
 and complete the frame in a worker.  Each part is cached by what it depends on (thread-safe
-LRUs), the whole result by its request: a repeated frame costs two dictionary look-ups.
+:class:`~tuibrdf.core.lru.LRU`), the whole result by its request: a repeated frame costs two
+dictionary look-ups.
 """
 
 from __future__ import annotations
 
-import threading
-from collections import OrderedDict
-from collections.abc import Callable, Hashable
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import Any
 
 import numpy as np
 
 from tuibrdf.core.conventions import luminance
-from tuibrdf.core.directions import from_degrees, incident, sincos_deg
+from tuibrdf.core.directions import (
+    check_phi_i,
+    check_theta_i,
+    from_degrees,
+    incident,
+    sincos_deg,
+)
+from tuibrdf.core.evaluate import f_cos
+from tuibrdf.core.lru import LRU
 from tuibrdf.core.material import Material
 from tuibrdf.core.sphere.albedo import (
     AlbedoEstimate,
@@ -62,7 +68,7 @@ from tuibrdf.core.sphere.albedo import (
     exceeds_one,
 )
 from tuibrdf.core.sphere.horizon import HORIZON_DEG, Horizon, PeakScale, assess, drawn_scale
-from tuibrdf.core.sphere.peak import Peak, find_peaks, radiance
+from tuibrdf.core.sphere.peak import Peak, f_or_f_cos, find_peaks
 from tuibrdf.core.views.hemimap import MapInfo, map_values
 
 PLANES = ("incidence", "perpendicular")
@@ -82,38 +88,6 @@ CURVE_THETAS.setflags(write=False)
 CURVE_CHUNKS = 4
 #: the 3D solid's sampling: hemisphere mesh level and barycentric steps per triangle edge
 SOLID_LEVEL, SOLID_SUBDIV = 4, 3
-
-
-class LRU:
-    """A small thread-safe least-recently-used cache: ``get(key, make)``."""
-
-    def __init__(self, size: int) -> None:
-        self.size = size
-        self.data: OrderedDict[Hashable, Any] = OrderedDict()
-        self.lock = threading.Lock()
-
-    def peek(self, key: Hashable) -> Any:
-        with self.lock:
-            return self.data.get(key)
-
-    def put(self, key: Hashable, value: Any) -> Any:
-        with self.lock:
-            self.data[key] = value
-            self.data.move_to_end(key)
-            while len(self.data) > self.size:
-                self.data.popitem(last=False)
-        return value
-
-    def get(self, key: Hashable, make: Callable[[], Any]) -> Any:
-        with self.lock:
-            if key in self.data:
-                self.data.move_to_end(key)
-                return self.data[key]
-        return self.put(key, make())  # computed outside the lock: other threads go on
-
-    def clear(self) -> None:
-        with self.lock:
-            self.data.clear()
 
 
 @dataclass(frozen=True)
@@ -143,18 +117,19 @@ class FrameRequest:
     probe: tuple[float, float] | None = None
     #: the light's azimuth (degrees, in [0, 360)); 180° puts it on the −x side
     phi_i: float = 180.0
+    #: the light direction at (θi, φi) (:func:`~tuibrdf.core.directions.incident`), made once
+    #: here: every part of the frame takes it (read-only; not part of the key)
+    wi: np.ndarray = field(init=False, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if not 1 <= len(self.materials) <= 2:
             raise ValueError("a frame shows one or two materials")
-        t = float(self.theta_i)
-        if not 0.0 <= t <= 90.0:  # also refuses NaN
-            raise ValueError(f"theta_i = {self.theta_i!r} is invalid: expected in [0, 90]°")
+        t, p = check_theta_i(self.theta_i), check_phi_i(self.phi_i) % 360.0
         object.__setattr__(self, "theta_i", t)
-        p = float(self.phi_i)
-        if not np.isfinite(p):
-            raise ValueError(f"phi_i = {self.phi_i!r} is invalid: expected a finite angle in °")
-        object.__setattr__(self, "phi_i", p % 360.0)
+        object.__setattr__(self, "phi_i", p)
+        wi = incident(t, p)
+        wi.setflags(write=False)
+        object.__setattr__(self, "wi", wi)
         if self.extra is not None and self.extra not in EXTRA_VIEWS:
             raise ValueError(f"unknown view {self.extra!r}: expected one of "
                              f"{', '.join(EXTRA_VIEWS)}")
@@ -354,12 +329,12 @@ def turn(w: np.ndarray, deg: float) -> np.ndarray:
                      w[..., 2]], axis=-1)
 
 
-def _peaks(m: Material, theta_i: float, cosine: bool, phi_i: float
+def _peaks(m: Material, wi: np.ndarray, cosine: bool, phi_i: float
            ) -> tuple[tuple[Peak, ...], tuple[Horizon, ...]]:
     """The frame's peaks and where they are for the pictures
     (:mod:`tuibrdf.core.sphere.horizon`)."""
-    peaks = find_peaks(m.model, m.values, theta_i, cosine=cosine, phi_i_deg=phi_i)
-    return assess(m.model, m.values, theta_i, peaks, cosine=cosine, phi_i_deg=phi_i)
+    peaks = find_peaks(m.model, m.values, wi, cosine=cosine, phi_i_deg=phi_i)
+    return assess(m.model, m.values, wi, peaks, cosine=cosine, phi_i_deg=phi_i)
 
 
 def section_center(peak: Peak) -> tuple[float, float]:
@@ -369,7 +344,7 @@ def section_center(peak: Peak) -> tuple[float, float]:
     return min(peak.theta_deg, HORIZON_DEG), peak.phi_deg
 
 
-def _sections(m: Material, theta_i: float, cosine: bool, center: np.ndarray,
+def _sections(m: Material, wi: np.ndarray, cosine: bool, center: np.ndarray,
               azimuth: float, phi_i: float = 180.0) -> dict[str, np.ndarray]:
     """Both planes through the normal and the great circle through ``center`` at section
     azimuth ``azimuth`` (:func:`tuibrdf.core.views.sections.great_circle`), in one kernel call."""
@@ -378,7 +353,7 @@ def _sections(m: Material, theta_i: float, cosine: bool, center: np.ndarray,
     w, above = great_circle(center, SECTION_THETAS, azimuth)
     w = np.where(above[:, None], w, np.array([0.0, 0.0, 1.0]))  # below: any valid direction
     wo = np.concatenate([section_directions(p, SECTION_THETAS, phi_i) for p in PLANES] + [w])
-    g = radiance(m.model, m.values, incident(theta_i, phi_i), wo, cosine)  # 3 sections, 1 call
+    g = f_or_f_cos(m.model, m.values, wi, wo, cosine)  # 3 sections, 1 call
     n = len(SECTION_THETAS)
     out = {p: g[k * n:(k + 1) * n] for k, p in enumerate((*PLANES, "peak"))}
     out["peak"] = np.where(above[:, None] if g.ndim == 2 else above, out["peak"], 0.0)
@@ -387,16 +362,14 @@ def _sections(m: Material, theta_i: float, cosine: bool, center: np.ndarray,
     return out
 
 
-def probe_values(m: Material, theta_i: float, w: np.ndarray, phi_i: float = 180.0) -> tuple:
+def probe_values(m: Material, wi: np.ndarray, w: np.ndarray) -> tuple:
     """``(f, f·cos θr)`` at the unit direction ``w`` (floats, or 3-tuples for RGB)."""
-    f = np.asarray(radiance(m.model, m.values, incident(theta_i, phi_i), w[None, :],
-                            False))[0]
-    c = max(float(w[2]), 0.0)
+    f = np.asarray(f_or_f_cos(m.model, m.values, wi, w[None, :], False))[0]
 
     def out(x):
         return float(x) if np.ndim(x) == 0 else tuple(float(y) for y in x)
 
-    return out(f), out(f * c)
+    return out(f), out(f_cos(f, w))
 
 
 def extra_values(m: Material, req: FrameRequest) -> tuple:
@@ -407,8 +380,9 @@ def extra_values(m: Material, req: FrameRequest) -> tuple:
     if e in ("sphere", "plane"):
         px_w, px_h = req.extra_px
         if e == "sphere":
-            return lit.lit_sphere(model, values, req.theta_i, px_w, px_h, phi_i_deg=req.phi_i)
-        return lit.lit_plane(model, values, req.theta_i, px_w, px_h, phi_i_deg=req.phi_i)
+            return lit.lit_sphere(model, values, req.wi, px_w, px_h)
+        return lit.lit_plane(model, values, req.wi, px_w, px_h, view_deg=req.theta_i,
+                             phi_i_deg=req.phi_i)
     if e == "slice":
         return halfdiff.slice_image(model, values, req.phi_d, n_h=req.extra_px[0],
                                     n_d=req.extra_px[1], sqrt_h=req.sqrt_h)
@@ -438,12 +412,11 @@ def solid_samples(level: int = SOLID_LEVEL, subdiv: int = SOLID_SUBDIV):
     return pts, face, tri
 
 
-def solid_values(m: Material, theta_i: float, cosine: bool = False,
-                 phi_i: float = 180.0) -> np.ndarray:
+def solid_values(m: Material, wi: np.ndarray, cosine: bool = False) -> np.ndarray:
     """``f`` at the samples then at the face corners, in one kernel call: ``(S + 3F, ...)``."""
     pts, _, tri = solid_samples()
     wo = np.concatenate([pts, tri.reshape(-1, 3)])
-    g = radiance(m.model, m.values, incident(theta_i, phi_i), wo, cosine)
+    g = f_or_f_cos(m.model, m.values, wi, wo, cosine)
     g.setflags(write=False)
     return g
 
@@ -453,7 +426,7 @@ def _plain(a) -> float | tuple[float, ...]:
     return float(a) if a.ndim == 0 else tuple(float(x) for x in a)
 
 
-def _albedo(m: Material, theta_i: float, phi_i: float = 180.0) -> AlbedoEstimate:
+def _albedo_estimate(m: Material, theta_i: float, phi_i: float = 180.0) -> AlbedoEstimate:
     """``(albedo, error)`` as floats (or tuples of 3 for RGB)."""
     e = albedo_estimate_resolved(m.model, m.values, theta_i, phi_i)
     return AlbedoEstimate(_plain(e.value), _plain(e.error))
@@ -483,19 +456,20 @@ def _curve(m: Material, check: Callable[[], bool] | None = None,
 
 def _side(req: FrameRequest, m: Material, slow: bool,
           check: Callable[[], bool] | None) -> SideFrame | None:
-    t, cos, pi = req.theta_i, req.cosine, req.phi_i
-    peaks, horizons = _PEAKS.get((m, t, pi, cos), lambda: _peaks(m, t, cos, pi))
+    t, cos, pi, wi = req.theta_i, req.cosine, req.phi_i, req.wi
+    # the parts are cached by (θi, φi), which wi is a function of
+    peaks, horizons = _PEAKS.get((m, t, pi, cos), lambda: _peaks(m, wi, cos, pi))
     az = req.section_azimuth
     ctr = section_center(peaks[0])
     sections = _SECTIONS.get((m, t, pi, cos, ctr, az),
-                             lambda: _sections(m, t, cos, from_degrees(*ctr), az, pi))
+                             lambda: _sections(m, wi, cos, from_degrees(*ctr), az, pi))
     mp = None
     if req.map_px is not None:
         px = req.map_px
         how = req.map_method
         mp = _MAPS.get((m, t, pi, cos, px, how), lambda: map_values(
-            m.model, m.values, t, px[0], px[1], cosine=cos, method=how, phi_i_deg=pi))
-    solid = (_SOLIDS.get((m, t, pi, cos), lambda: solid_values(m, t, cos, pi))
+            m.model, m.values, wi, px[0], px[1], cosine=cos, method=how))
+    solid = (_SOLIDS.get((m, t, pi, cos), lambda: solid_values(m, wi, cos))
              if req.solid else None)
     extra = None
     if req.extra is not None:
@@ -503,9 +477,9 @@ def _side(req: FrameRequest, m: Material, slow: bool,
     probe = None
     if req.probe is not None:
         probe = _PROBES.get((m, t, pi, req.probe),
-                            lambda: probe_values(m, t, req.probe_direction, pi))
+                            lambda: probe_values(m, wi, req.probe_direction))
     if slow:
-        albedo = _ALBEDO.get((m, t, pi), lambda: _albedo(m, t, pi))
+        albedo = _ALBEDO.get((m, t, pi), lambda: _albedo_estimate(m, t, pi))
         curve = None
         if req.curve:
             curve = _CURVES.peek((m, pi))
@@ -550,15 +524,3 @@ def needs_curve(req: FrameRequest) -> bool:
     """``req`` shows an albedo curve not computed yet (91 albedos: the slow part of a frame
     whatever the model)."""
     return req.curve and any(_CURVES.peek((m, req.phi_i)) is None for m in req.materials)
-
-
-def albedo_curve(m: Material, phi_i: float = 180.0) -> np.ndarray:
-    """``a`` at :data:`CURVE_THETAS` (cached): ``(n,)`` or ``(n, 3)``."""
-    return _CURVES.get((m, phi_i), lambda: _curve(m, None, phi_i)).value
-
-
-def albedo_curve_estimate(m: Material, phi_i: float = 180.0) -> AlbedoEstimate:
-    """``(a, error)`` at :data:`CURVE_THETAS` (cached)."""
-    return _CURVES.get((m, phi_i), lambda: _curve(m, None, phi_i))
-
-

@@ -36,8 +36,8 @@ from typing import Any
 import numpy as np
 
 from tuibrdf.core.conventions import luminance
-from tuibrdf.core.directions import incident, mirror
-from tuibrdf.core.evaluate import evaluate_resolved
+from tuibrdf.core.directions import mirror
+from tuibrdf.core.evaluate import evaluate_resolved, f_cos
 from tuibrdf.core.params import Model
 
 METHODS: tuple[str, ...] = ("exact", "mesh")
@@ -66,8 +66,10 @@ def uv_to_dir(uv: np.ndarray) -> np.ndarray:
 
 
 @dataclass(frozen=True)
-class Geometry:
-    """Where the disc sits in a ``px_w × px_h`` pixel grid."""
+class MapGrid:
+    """The map's pixel grid: where the disc sits in ``px_w × px_h`` pixels, and the direction
+    of each pixel centre inside it (not :class:`tuibrdf.core.directions.Geometry`, the angles
+    of a pair of directions)."""
 
     px_w: int
     px_h: int
@@ -107,7 +109,7 @@ class Geometry:
 
 
 @lru_cache(maxsize=16)
-def geometry(px_w: int, px_h: int) -> Geometry:
+def geometry(px_w: int, px_h: int) -> MapGrid:
     """The disc in a ``px_w × px_h`` grid (cached per size)."""
     px_w, px_h = int(px_w), int(px_h)
     if px_w < 4 or px_h < 4:
@@ -116,7 +118,7 @@ def geometry(px_w: int, px_h: int) -> Geometry:
     cx = px_w // 2 + 0.5
     cy = px_h // 2 - 0.5
     ys, xs = np.mgrid[0:px_h, 0:px_w] + 0.5
-    g = Geometry(px_w, px_h, diameter, cx, cy, np.zeros((px_h, px_w), bool), np.empty((0, 3)),
+    g = MapGrid(px_w, px_h, diameter, cx, cy, np.zeros((px_h, px_w), bool), np.empty((0, 3)),
                  np.empty((0, 2)))
     uv = g.to_uv(xs, ys)
     inside = (uv**2).sum(axis=-1) <= 2.0
@@ -124,7 +126,7 @@ def geometry(px_w: int, px_h: int) -> Geometry:
         a.setflags(write=False)
     dirs = uv_to_dir(uv[inside])
     dirs.setflags(write=False)
-    return Geometry(px_w, px_h, diameter, cx, cy, inside, dirs, uv[inside])
+    return MapGrid(px_w, px_h, diameter, cx, cy, inside, dirs, uv[inside])
 
 
 # ---------------------------------------------------------------------------------------------
@@ -178,16 +180,16 @@ class MapInfo:
 def map_values(
     model: Model,
     values: dict[str, Any],
-    theta_i_deg: float,
+    wi: np.ndarray,
     px_w: int,
     px_h: int,
     *,
     method: str = DEFAULT_METHOD,
     cosine: bool = False,
     level: int | None = None,
-    phi_i_deg: float = 180.0,
 ) -> tuple[np.ndarray, MapInfo]:
-    """The BRDF (or ``f·cos θr`` when ``cosine``) over the map's pixels.
+    """The BRDF (or ``f·cos θr`` when ``cosine``) over the map's pixels, the light at ``wi``
+    (:func:`~tuibrdf.core.directions.incident`).
 
     Returns an array ``(px_h, px_w)`` (``(px_h, px_w, 3)`` for RGB models) with NaN outside the
     disc, and its :class:`MapInfo`.  ``values`` are resolved (``Model.resolve``).
@@ -195,20 +197,18 @@ def map_values(
     if method not in METHODS:
         raise ValueError(f"map method {method!r}: expected one of {', '.join(METHODS)}")
     g = geometry(px_w, px_h)
-    wi = incident(theta_i_deg, phi_i_deg)
     n = g.dirs.shape[0]
     used_level = None
     if method == "exact":
         f = np.asarray(evaluate_resolved(model, values, wi, g.dirs), dtype=float)
         if cosine:
-            f = f * (g.dirs[:, 2][:, None] if f.ndim == 2 else g.dirs[:, 2])
+            f = f_cos(f, g.dirs)
     else:
         used_level = level if level is not None else mesh_level_for(n)
         idx, wts, mesh = _mesh_weights(g.px_w, g.px_h, used_level)
         fv = np.asarray(evaluate_resolved(model, values, wi, mesh.vertices), dtype=float)
         if cosine:
-            cz = mesh.vertices[:, 2]
-            fv = fv * (cz[:, None] if fv.ndim == 2 else cz)
+            fv = f_cos(fv, mesh.vertices)
         f = np.einsum("nk,nk...->n...", wts, fv[idx])
     shape = (g.px_h, g.px_w) + f.shape[1:]
     out = np.full(shape, np.nan)

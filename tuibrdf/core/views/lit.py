@@ -23,13 +23,13 @@ choice of tangent matters only for anisotropic models.
 above it, looking toward the light's side (−x) and down at ``θv`` from the normal, lit by the
 directional light at ``incident(θi)``.  Every pixel's ray ``d`` that meets the plane gives
 ``wo = −d`` (toward the camera) and the constant ``wi``; the plane's local frame is the world
-frame.  By default ``θv = θi``: the camera looks at the mirror point of the light (the centre
-of the image is the mirror direction S), which is a grazing view when the light is grazing — the
-case of the gKit2 lesson (a road, the sea at sunset).  Pixels are square: one pixel is the same
-angle horizontally and vertically at the image centre.  A lobe that is a cone around S
-(modified Phong: f depends on S·wo only) images as a circle (the cone is around the optical
-axis); a half-vector lobe (Cook-Torrance) is narrower across by about cos θi (see
-``core/sections.py``), so its highlight stretches toward the horizon.
+frame.  The viewer takes ``θv = θi``: the camera looks at the mirror point of the light (the
+centre of the image is the mirror direction S), which is a grazing view when the light is
+grazing — the case of the gKit2 lesson (a road, the sea at sunset).  Pixels are square: one
+pixel is the same angle horizontally and vertically at the image centre.  A lobe that is a
+cone around S (modified Phong: f depends on S·wo only) images as a circle (the cone is around
+the optical axis); a half-vector lobe (Cook-Torrance) is narrower across by about cos θi (see
+``core/views/sections.py``), so its highlight stretches toward the horizon.
 
 **Tone mapping** (:func:`tone_map`): ``v = clamp(exposure · L, 0, 1) ^ (1/γ)``, 8 bits per
 channel: a linear exposure scale, a hard clip (no roll-off: what clips is brighter than the
@@ -43,7 +43,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from tuibrdf.core.directions import incident, sincos_deg
+from tuibrdf.core.directions import sincos_deg
 from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.params import Model
 
@@ -111,12 +111,12 @@ def _sphere(px_w: int, px_h: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return frames, inside, view
 
 
-def lit_sphere(model: Model, values: dict, theta_i_deg: float, px_w: int,
-               px_h: int, *, phi_i_deg: float = 180.0) -> tuple[np.ndarray, np.ndarray]:
-    """``(radiance, inside)``: the sphere under the light at ``θi`` (and ``φi``; see the module
-    docstring); radiance ``(px_h, px_w, 3)``, 0 outside the disc."""
+def lit_sphere(model: Model, values: dict, wi: np.ndarray, px_w: int,
+               px_h: int) -> tuple[np.ndarray, np.ndarray]:
+    """``(radiance, inside)``: the sphere under the light at ``wi`` (see the module docstring);
+    radiance ``(px_h, px_w, 3)``, 0 outside the disc."""
     frames, inside, wo = _sphere(int(px_w), int(px_h))
-    wi = frames @ incident(theta_i_deg, phi_i_deg)
+    wi = frames @ wi  # in each pixel's local frame
     # the model returns 0 where either direction is below the local horizon
     rad = _radiance(model, values, wi, wo)
     return np.where(inside[..., None], rad, 0.0), inside
@@ -146,20 +146,21 @@ def plane_rays(px_w: int, px_h: int, view_deg: float,
     return d, d[..., 2] < 0.0
 
 
-def lit_plane(model: Model, values: dict, theta_i_deg: float, px_w: int, px_h: int, *,
-              view_deg: float | None = None, fov_deg: float = DEFAULT_FOV_DEG,
-              phi_i_deg: float = 180.0) -> tuple[np.ndarray, np.ndarray]:
-    """``(radiance, hits)``: the plane under the light at ``θi`` seen by the camera of
-    :func:`plane_rays` (``view_deg`` defaults to ``θi``: the image centre is the mirror
-    direction); radiance ``(px_h, px_w, 3)``, 0 above the horizon."""
-    d, hits = plane_rays(px_w, px_h, theta_i_deg if view_deg is None else view_deg, fov_deg)
+def lit_plane(model: Model, values: dict, wi: np.ndarray, px_w: int, px_h: int, *,
+              view_deg: float, phi_i_deg: float = 180.0,
+              fov_deg: float = DEFAULT_FOV_DEG) -> tuple[np.ndarray, np.ndarray]:
+    """``(radiance, hits)``: the plane under the light at ``wi`` seen by the camera of
+    :func:`plane_rays` at ``view_deg`` from the normal (the viewer's: ``θi``, so the image
+    centre is the mirror direction), turned with the light's azimuth ``phi_i_deg``; radiance
+    ``(px_h, px_w, 3)``, 0 above the horizon."""
+    d, hits = plane_rays(px_w, px_h, view_deg, fov_deg)
     # φi ≠ 180°: the light and the camera turn together about the normal (the picture of an
     # isotropic surface does not change; an anisotropic one shows its other azimuth)
     sp, cp = sincos_deg(float(phi_i_deg) - 180.0)
     d = np.stack([cp * d[..., 0] - sp * d[..., 1], sp * d[..., 0] + cp * d[..., 1], d[..., 2]],
                  axis=-1)
     wo = np.where(hits[..., None], -d, np.array([0.0, 0.0, 1.0]))  # sky: any valid direction
-    rad = _radiance(model, values, incident(theta_i_deg, phi_i_deg), wo)
+    rad = _radiance(model, values, wi, wo)
     return np.where(hits[..., None], rad, 0.0), hits
 
 

@@ -25,16 +25,15 @@ are ``w(t) = cos t · c + sin t · u(ψ)`` for the signed angle ``t`` from the c
 
 Only the part above the horizon (``w_z ≥ 0``) is a BRDF section; :func:`great_circle` returns
 that mask with the directions.  Angles are in degrees (the user-facing unit), exact at
-multiples of 90° (:func:`~tuibrdf.core.directions.sincos_deg`).
+multiples of 90° (:func:`~tuibrdf.core.directions.sincos_deg`).  The frame's section through
+its peak (:func:`tuibrdf.core.views.frame.compute_frame`, ``sections["peak"]``) is one.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from tuibrdf.core.directions import from_degrees, incident, sincos_deg
-from tuibrdf.core.evaluate import evaluate_resolved
-from tuibrdf.core.params import Model
+from tuibrdf.core.directions import sincos_deg
 
 #: azimuth of the section that crosses the plane of incidence at right angles
 PERPENDICULAR = 90.0
@@ -75,84 +74,3 @@ def great_circle(
     w = ct[..., None] * c + st[..., None] * u
     w = w / np.sqrt(np.sum(w * w, axis=-1))[..., None]  # |w| = 1 up to rounding: renormalise
     return w, w[..., 2] >= 0.0
-
-
-def perpendicular_section(center: np.ndarray, t_deg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The great circle through ``center`` perpendicular to its vertical plane (ψ = 90°): for a
-    centre in the plane of incidence, the section across the lobe.  ``(w, above)``; for a centre
-    above the horizon every ``|t| ≤ 90°`` is above it (``w_z = cos t · c_z``)."""
-    return great_circle(center, t_deg, PERPENDICULAR)
-
-
-def above_horizon_range(center: np.ndarray, azimuth_deg: float = PERPENDICULAR,
-                        n: int = 3601) -> tuple[float, float]:
-    """``(t_min, t_max)`` in degrees: the arc of the section through ``center`` that starts at
-    the centre and stays above the horizon (sampled on ``n`` points over ±180°; exact for
-    ψ = 90°, where it is ±90° for any centre above the horizon)."""
-    t = np.linspace(-180.0, 180.0, n)
-    _, above = great_circle(center, t, azimuth_deg)
-    mid = n // 2
-    if not above[mid]:
-        return 0.0, 0.0
-    hi = mid
-    while hi + 1 < n and above[hi + 1]:
-        hi += 1
-    lo = mid
-    while lo - 1 >= 0 and above[lo - 1]:
-        lo -= 1
-    return float(t[lo]), float(t[hi])
-
-
-def peak_in_plane(
-    model: Model,
-    values: dict,
-    theta_i_deg: float,
-) -> tuple[float, float]:
-    """``(θr, f)``: the lobe's peak from :func:`tuibrdf.core.sphere.peak.find_peaks` (the one peak
-    finder; the overall peak, the luminance's for RGB models) as a signed θr in degrees
-    (positive on the mirror side |φr| ≤ 90°, negative on the light's side), and its value.
-
-    For an isotropic model lit at φi = 180° the overall peak lies in the plane of incidence
-    (the lobe is symmetric about it).  A flat lobe (Lambert: the value at the mirror direction
-    equals the peak) gives the mirror direction θr = θi.
-    """
-    from tuibrdf.core.sphere.peak import find_peaks, radiance
-
-    pk = find_peaks(model, values, theta_i_deg)[0]
-    wi = incident(theta_i_deg)
-    at_mirror = radiance(model, values, wi, np.array([[-wi[0], -wi[1], wi[2]]]), False)
-    m = float(np.mean(at_mirror))  # scalar, or compare the luminance-like mean for RGB
-    if np.ndim(at_mirror) == 1 and m >= pk.value * (1.0 - 1e-12):
-        return float(theta_i_deg), pk.value  # flat (or centred on S): the mirror
-    sign = 1.0 if abs(pk.phi_deg) <= 90.0 else -1.0
-    return sign * pk.theta_deg, pk.value
-
-
-def center_direction(theta_deg: float) -> np.ndarray:
-    """The in-plane direction at signed ``θ`` (degrees) of :func:`peak_in_plane`: φ = 0 for
-    θ ≥ 0, φ = 180° for θ < 0."""
-    th = float(theta_deg)
-    return from_degrees(abs(th), 0.0 if th >= 0 else 180.0)
-
-
-def section_values(
-    model: Model,
-    values: dict,
-    theta_i_deg: float,
-    center: np.ndarray,
-    t_deg: np.ndarray,
-    azimuth_deg: float = PERPENDICULAR,
-    *,
-    cosine: bool = False,
-) -> tuple[np.ndarray, np.ndarray]:
-    """``(f, above)``: the model's values along the section through ``center`` (0 below the
-    horizon; shape ``(n,)`` or ``(n, 3)``), times ``cos θr`` when ``cosine``."""
-    w, above = great_circle(center, t_deg, azimuth_deg)
-    wo = np.where(above[:, None], w, np.array([0.0, 0.0, 1.0]))  # below: any valid direction
-    f = np.asarray(evaluate_resolved(model, values, incident(theta_i_deg), wo), dtype=float)
-    mask = above[:, None] if f.ndim == 2 else above
-    f = np.where(mask, f, 0.0)
-    if cosine:
-        cz = np.maximum(w[:, 2], 0.0)
-        f = f * (cz[:, None] if f.ndim == 2 else cz)
-    return f, above

@@ -19,7 +19,7 @@ way.  Both sides of a branch are evaluated, so their arithmetic may divide by ze
 that do not use the result: the shader runs under IEEE semantics (no FP exception), see
 :func:`tuibrdf.core.numerics.shader_errstate`.
 
-Semantics where GLSL leaves the result undefined (documented in docs/formats.md):
+Semantics where GLSL leaves the result undefined (documented in docs/reference/formats.md):
 
 * ``x / 0`` → 0 (a GPU gives ±inf or NaN);
 * ``pow(x, y)`` → 0 for ``x < 0``, and for ``x = 0`` with ``y ≤ 0``;

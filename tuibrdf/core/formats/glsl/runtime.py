@@ -1,7 +1,8 @@
 """What the generated code calls: the runtime helpers ``rt_*`` (vectorised: each takes scalars
-or arrays), with the results docs/formats.md gives where GLSL leaves them undefined (``x / 0``,
-``pow`` of a negative, ``sqrt`` and ``log`` outside their domain, ...), and :data:`RUNTIME`,
-the namespace the generated source runs in (``np`` and the short names it calls them by)."""
+or arrays), with the results docs/reference/formats.md gives where GLSL leaves them undefined
+(``x / 0``, ``pow`` of a negative, ``sqrt`` and ``log`` outside their domain, ...), and
+:data:`RUNTIME`, the namespace the generated source runs in (``np`` and the short names it
+calls them by)."""
 
 from __future__ import annotations
 

@@ -31,7 +31,7 @@ out to ρmax, so a lobe at the axis cannot fall between nodes, with the model's 
 All panels of a round, inner or outer, of every incidence go to the model in one call.  The
 reported error is the sum of the outer ``|K15 − G7|`` and the inner errors integrated over
 ψ: for analytic panels the Kronrod value is far more accurate than that estimate, so the
-estimate is pessimistic (an upper bound in practice, measured in docs/accuracy.md).
+estimate is pessimistic (an upper bound in practice, measured in docs/reference/accuracy.md).
 
 Several incidences are integrated in one batch (one kernel call per refinement round for the
 whole albedo curve); evaluations are capped (``max_evals`` per incidence) so that a

@@ -18,7 +18,7 @@ from tuibrdf.core.sphere.integrator.rules import WG15, WK15, X15
 #: :mod:`.adaptive`).
 #: Measured on ggx α = 0.001…1 and gltf roughness 0.1…1 at θi = 60…89.99° (104 albedos):
 #: 414,117 evaluations and 122 kernel calls, against 441,954 and 160 without, and 419,579
-#: and 122 at (0.1, 0) (docs/accuracy.md).
+#: and 122 at (0.1, 0) (docs/reference/accuracy.md).
 HORIZON_SHARE = 0.3
 HORIZON_GATE = 0.15
 HORIZON_LAST = 8.0
