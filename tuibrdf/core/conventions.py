@@ -5,7 +5,8 @@
 - :func:`luminance`: Rec.709 luminance ``0.2126 R + 0.7152 G + 0.0722 B`` of linear RGB values
   (ITU-R BT.709-6, item 3.3): how an RGB model becomes one number (peak ranking, maps).
 - :func:`fmt_value`: the one format of a measured value on screen (3 significant digits).
-- :func:`decimals_for`, :func:`fmt_estimate`: a value with its error, digits following the error.
+- :func:`decimals_for`: the decimals of a value with an error estimate (digits following
+  the error).
 """
 
 from __future__ import annotations
@@ -37,8 +38,3 @@ def decimals_for(error) -> int:
     if e <= 0.0:  # log10 of 0: an exact value
         return MAX_DECIMALS
     return int(np.clip(-np.floor(np.log10(e)), 0, MAX_DECIMALS))
-
-
-def fmt_estimate(value: float, error: float) -> str:
-    """``0.800000000 ± 3e-10``: the value to the error's first digit, the error to one digit."""
-    return f"{float(value):.{decimals_for(error)}f} ± {float(error):.0e}"

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from rich.console import Console
 
-from tuibrdf.core.formats.merl import N_THETA_H, bin_index, half_diff
+from tuibrdf.core.formats.merl import N_THETA_H, half_diff
 from tuibrdf.core.registry import MODELS, get_model
 from tuibrdf.core.views.halfdiff import (
     directions,
@@ -71,8 +71,9 @@ def test_blinn_phong_depends_on_theta_h_only():
 
 
 def test_sqrt_axis_puts_one_sample_in_each_merl_bin():
+    # MERL's θh bin, as BRDFRead.cpp's theta_half_index writes it: int(√(θh/90°)·90)
     th = theta_h_axis(N_THETA_H, sqrt_h=True)
-    i_h, _, _ = bin_index(np.radians(th), np.zeros_like(th), np.zeros_like(th))
+    i_h = np.floor(np.sqrt(th / 90.0) * 90).astype(int)
     assert i_h.tolist() == list(range(N_THETA_H))
     lin = theta_h_axis(4, sqrt_h=False)
     assert lin.tolist() == [11.25, 33.75, 56.25, 78.75]

@@ -21,8 +21,8 @@ next lookup; an unchanged one is not re-read.
 
 Installed packages add models through the entry-point group ``tuibrdf.models``: each entry
 point's name is a model name and its object a :class:`~tuibrdf.core.params.Model`.  They are
-loaded lazily (on the first lookup of that name, or by :func:`plugin_models`); a plugin that
-fails to load is reported in one line.
+loaded lazily, on the first lookup of that name; a plugin that fails to load is an error
+of one line.
 """
 
 from __future__ import annotations
@@ -184,21 +184,3 @@ def plugin_model(name: str) -> Model | None:
             _PLUGINS[name] = model
             return model
     return None
-
-
-def plugin_models(warn: Callable[[str], None] | None = None) -> dict[str, Model]:
-    """Every installed plugin model; a plugin that fails to load is skipped with one line
-    passed to ``warn`` (default: printed on stderr)."""
-    if warn is None:
-        import sys
-
-        def warn(msg: str) -> None:
-            print(f"tuibrdf: warning: {msg}", file=sys.stderr)
-
-    out = {}
-    for ep in _entry_points():
-        try:
-            out[ep.name] = plugin_model(ep.name)
-        except UserFileError as e:
-            warn(str(e))
-    return {k: v for k, v in out.items() if v is not None}
