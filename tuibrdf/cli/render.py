@@ -37,14 +37,11 @@ from tuibrdf.cli.common import (
     isatty,
     resolve,
 )
-from tuibrdf.render import CMAPS, EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, VIEWS
+from tuibrdf.render import CMAPS, MIN_HEIGHT, MIN_WIDTH, VIEWS
 
 if TYPE_CHECKING:
     from typing import Any
 
-#: the lit and half/difference views (in :data:`tuibrdf.render.VIEWS`, declared there with no
-#: import so ``--help`` stays light)
-EXTRA = EXTRA_VIEWS
 #: what ``--view all`` draws
 ALL = ("map", "incidence", "perpendicular", "albedo")
 COLORS = ("auto", "truecolor", "256", "none")

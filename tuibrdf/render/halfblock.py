@@ -32,7 +32,7 @@ Every segment has a non-None ``Style`` (Textual 8.2's ``NO_COLOR`` filter crashe
 from __future__ import annotations
 
 from collections import OrderedDict
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Literal
@@ -416,8 +416,3 @@ def console_system(console: Console) -> ColorSystem:
     if cs is None:
         return "none"
     return "truecolor" if cs == "truecolor" else "256"
-
-
-def segments_text(rows: Iterable[Iterable[Segment]]) -> list[str]:
-    """The characters of each row (for tests and plain output)."""
-    return ["".join(s.text for s in row) for row in rows]

@@ -301,9 +301,6 @@ class ViewerState:
             return self._commit(row.param.name, self._with_channel(row, default[row.channel]))
         return self._commit(row.param.name, default)
 
-    def set_param(self, name: str, value: Any) -> str | None:
-        return self._commit(name, value)
-
     def type_value(self, text: str) -> str | None:
         """A value typed for the selected row (Enter or = opens the input): a number checked
         against the declared range, a choice (name or alias), or a file path."""
