@@ -413,3 +413,20 @@ def test_every_key_on_a_fork_leaves_the_state_as_it_was_and_does_what_it_does_th
         again = fresh()
         assert getattr(again, method)(*args) == said, method
         assert _seen_all(ahead) == _seen_all(again), method
+
+
+def test_the_module_docstring_lists_every_transition():
+    # the table in tuibrdf/state/viewer.py's docstring names every public method of
+    # ViewerState that answers a key (returns str | None), and nothing else
+    import inspect
+    import re
+
+    from tuibrdf.state import viewer
+
+    listed = re.findall(r"^``([a-z_]+)``  ", viewer.__doc__, flags=re.M)
+    transitions = [name for name, fn in inspect.getmembers(viewer.ViewerState,
+                                                          inspect.isfunction)
+                   if not name.startswith("_")
+                   and inspect.signature(fn).return_annotation == "str | None"]
+    assert len(listed) == len(set(listed))
+    assert set(listed) == set(transitions)

@@ -1,6 +1,7 @@
 """``tuibrdf eval``: BRDF values for given directions, as a table or JSON.
 
-The light is at ``(θi, φi = 180°)`` (SPEC §1), so the mirror direction is ``(θr = θi, φr = 0)``.
+The light is at ``(θi, φi)``, φi = 180° unless ``--phi-i`` moves it (SPEC §1), so the mirror
+direction is ``(θr = θi, φr = φi − 180°)``: ``φr = 0`` by default.
 Several ``--theta-r`` and ``--phi-r`` values give their **outer product**, θr varying slowest:
 ``--theta-r 0 30 --phi-r 0 180`` prints the four rows (0, 0), (0, 180), (30, 0), (30, 180).
 Values are in sr⁻¹ (no cosine factor; ``--cosine`` multiplies by cos θr), printed with
@@ -32,8 +33,8 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--theta-r", type=theta_r_deg, nargs="+", required=True, metavar="DEG",
                         help="viewing polar angle(s) θr in degrees, in [0, 90]")
     parser.add_argument("--phi-r", type=phi_r_deg, nargs="+", required=True, metavar="DEG",
-                        help="viewing azimuth(s) φr in degrees, in [-360, 360]; 0 is the "
-                             "mirror side, 180 the light's side")
+                        help="viewing azimuth(s) φr in degrees, in [-360, 360]; with the "
+                             "default --phi-i 180, 0 is the mirror side and 180 the light's")
     parser.add_argument("--cosine", action="store_true",
                         help="print f·cos θr (reflected intensity) instead of f")
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")

@@ -1,14 +1,16 @@
 """``tuibrdf render``: a picture of the BRDF on stdout, the same bytes on any machine.
 
-``tuibrdf render MODEL [-p NAME=VALUE ...] [--theta-i DEG] [--view VIEW] [--width W]
-[--height H] [--color auto|truecolor|256|none | --no-color] [--cmap NAME] [--log] [--cosine]``
+``tuibrdf render MODEL [-p NAME=VALUE ...] [--theta-i DEG] [--phi-i DEG] [--view VIEW]
+[--width W] [--height H] [--color auto|truecolor|256|none | --no-color] [--cmap NAME] [--log]
+[--cosine]``, and the options of single views below.
 
 Views: ``map`` (Lambert equal-area map, the default), ``incidence`` (polar cross-section in the
 plane of incidence), ``perpendicular`` (the section through the lobe's peak across the plane of
-incidence, ``--section-azimuth`` turns it), ``solid`` (3D photometric solid), ``albedo`` (a(θi)
-over 0–90°), ``sphere`` and ``plane`` (the material lit from θi, ``--exposure``, ``--gamma``),
-``slice`` (θh × θd image at ``--phi-d``), ``theta-h`` (f against θh at ``--theta-d``),
-``theta-d`` (f against θd at ``--theta-h``), or ``all``: map, both cross-sections and the albedo
+incidence, ``--section-azimuth`` turns it), ``solid`` (3D photometric solid seen from
+``--azimuth``, ``--elevation``), ``albedo`` (a(θi) over 0–90°), ``sphere`` and ``plane`` (the
+material lit from θi, ``--exposure``, ``--gamma``), ``slice`` (θh × θd image at ``--phi-d``,
+``--linear-theta-h``), ``theta-h`` (f against θh at ``--theta-d``, ``--phi-d``), ``theta-d`` (f
+against θd at ``--theta-h``, ``--phi-d``), or ``all``: map, both cross-sections and the albedo
 curve one below the other, each ``W × H`` cells, with a blank line between them.
 
 Determinism: the size never comes from the terminal (default 80×24), and the console is built

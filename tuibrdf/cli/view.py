@@ -1,7 +1,8 @@
 """``tuibrdf view``: open the interactive viewer (also what plain ``tuibrdf`` does).
 
-``tuibrdf view [MODEL | FILE] [-p NAME=VALUE ...] [--theta-i DEG] [--preset NAME]
-[--color auto|truecolor|256|none | --no-color]``.  A ``.binary`` path opens the measured MERL
+``tuibrdf view [MODEL | FILE] [-p NAME=VALUE ...] [--theta-i DEG] [--phi-i DEG] [--preset NAME]
+[--color auto|truecolor|256|none | --no-color]`` (or ``--material NAME`` instead of the model,
+below).  A ``.binary`` path opens the measured MERL
 material (model ``merl`` with ``file=PATH``); a ``.brdf``, ``.bparam``, ``.py`` or ``.bsdf`` file
 opens through the model registry (:mod:`tuibrdf.core.formats.userfiles`).  ``--preset NAME`` loads a
 saved preset (``s`` in the viewer saves one) or, when no file has that name, one of the seed's

@@ -70,7 +70,7 @@ class Look:
     rgb_mode: str = "auto"  # auto | color | luminance
     azimuth: float = -60.0  # the 3D solid's camera
     elevation: float = 25.0
-    exposure: float = 1.0  # the lit views' tone mapping (core/lit.py)
+    exposure: float = 1.0  # the lit views' tone mapping (core/views/lit.py)
     gamma: float = 2.2
     charset: str = "braille"  # the sections and line plots (render/braille.py)
     #: the curves of an RGB model (sections, albedo): rgb (three) | lum | R | G | B

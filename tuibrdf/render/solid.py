@@ -135,8 +135,8 @@ def solid_image(
         f = luminance(f)
     f, fv = f[: len(dirs)], f[len(dirs):].reshape(corner_dirs.shape[:2])
     top = rmax if rmax > 0 else 1.0
-    # a scale below the peak (the peak above 89° or unbounded, core/horizon.py): the radius is
-    # clipped at it, as the map's colours are
+    # a scale below the peak (the peak above 89° or unbounded, core/sphere/horizon.py): the
+    # radius is clipped at it, as the map's colours are
     f, fv = np.minimum(f, top), np.minimum(fv, top)
     if log:  # radius = decade position in [0, 1], as in the polar plots
         f = radius(f, top, True, LOG_DECADES)

@@ -1,18 +1,24 @@
 """``render_view``: one call from (model, resolved values, θi, size) to a Rich renderable.
 
-Views (:data:`VIEWS`):
+Views (:data:`VIEWS`, declared in :mod:`tuibrdf.render`):
 
-=================  ================================================================================
-``map``            Lambert equal-area map (:mod:`~tuibrdf.core.views.hemimap`) as half blocks: a
-title
-                   line with the peak, the disc (horizon ring, ``×`` on the mirror direction S,
-                   ``o`` on the incident direction's Lambert point) and a colour bar from 0 (or
-                   3 decades below, in log) to the peak
-``incidence``      polar cross-section in the plane of incidence (:mod:`.polar`)
-``perpendicular``  polar cross-section in the perpendicular plane
+=================  ==========================================================================
+``map``            Lambert equal-area map (:mod:`~tuibrdf.core.views.hemimap`) as half blocks:
+                   a title line with the peak, the disc (horizon ring, ``×`` on the mirror
+                   direction S, ``o`` on the incident direction's Lambert point) and a colour
+                   bar from 0 (or 3 decades below, in log) to the peak
+``incidence``      polar cross-section in the plane of incidence (:mod:`.polar_braille`)
+``perpendicular``  polar cross-section through the lobe's peak, across the plane of incidence
+                   (turned by ``section_azimuth_deg``)
 ``solid``          3D photometric solid (:mod:`.solid`)
 ``albedo``         directional albedo a(θi) over 0–90° (:mod:`.albedo_plot`)
-=================  ================================================================================
+``sphere``         the material on a sphere lit from θi (:mod:`.lit_view`)
+``plane``          a large plane lit from θi, seen along the mirror direction
+                   (:mod:`.lit_view`)
+``slice``          f over θh × θd at fixed φd (:mod:`.halfdiff_view`)
+``theta-h``        f against θh at fixed θd and φd (:mod:`.halfdiff_view`)
+``theta-d``        f against θd at fixed θh and φd (:mod:`.halfdiff_view`)
+=================  ==========================================================================
 
 The numbers come from one :class:`~tuibrdf.core.views.frame.FrameRequest` (the same computation the
 viewer uses), the picture from :func:`tuibrdf.render.panes.pane`.

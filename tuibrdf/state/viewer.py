@@ -1,33 +1,43 @@
 """The viewer's state and every transition on it, as plain Python (no Textual).
 
-The app is a thin layer: a key calls one method here, which either changes the state and
-returns ``None`` or refuses and returns a short message for the status line.  Parameter values
-are validated with :meth:`Model.resolve`, so a key can never push a value out of its range or
-break a declared constraint (``kd + ks ≤ 1``).
+The app is a thin layer: a key calls one method here (the key table, :mod:`tuibrdf.app.keys`),
+which changes the state and returns ``None`` (or a note for the status line), or refuses and
+returns a short message saying why.  Parameter values are validated by the side's
+:class:`~tuibrdf.core.material.Material` (:meth:`Model.resolve`), so a key can never push a
+value out of its range or break a declared constraint (``kd + ks ≤ 1``).
 
-====================  =====================================================
+====================  =====================================================================
 method                what it does
-====================  =====================================================
+====================  =====================================================================
 ``step_theta``        θi by ± degrees, clamped to [0°, 90°]
+``set_theta``         θi set to a value in [0°, 90°] (a value out of range is refused)
+``type_theta``        θi typed as text (key t)
 ``select``            move the parameter cursor (wraps)
-``step_param``        the selected parameter ± its step (or coarse step)
+``step_param``        the selected parameter ± its step (or coarse step); a choice cycles
 ``reset_param``       the selected parameter back to its default
-``cycle_model``       next / previous model of the active side, θi kept
-``cycle_view``        map → 3D solid → albedo curve
+``type_value``        the selected parameter typed as text (Enter or =)
+``cycle_model``       next / previous model of the active side (files shown come back), θi kept
+``cycle_view``        the main view: :data:`MAIN_VIEWS` in order, either way
+``toggle_log``        linear / log colour scale
+``cycle_cmap``        next / previous colour map (:data:`~tuibrdf.render.CMAPS`)
+``cycle_channel``     the curves of RGB models: all three → luminance → R → G → B
+``toggle_cosine``     show f or f·cos θr
 ``toggle_compare``    one side ↔ two sides (B starts as a copy of A)
 ``switch_side``       which side the parameter keys act on (compare mode)
 ``apply_preset``      one of :data:`COMPARE_PRESETS` (the seed's comparisons)
+``next_preset``       the next of them; after the last, the sides as they were before
 ``rotate``            azimuth / elevation of the 3D solid (solid view only)
 ``step_phi_i``        the light's azimuth φi (wraps; 180° by default)
-``step_section``      the section azimuth ψ of the section through the peak
-``scale_exposure``    the lit views' exposure × or ÷ 2
+``step_section``      the section azimuth ψ of the section through the peak (wraps)
+``scale_exposure``    the lit views' exposure × a factor (keys: ×2, ÷2)
 ``step_gamma``        the lit views' display gamma
 ``step_fixed``        the half/difference view's fixed angle (θd, θh or φd)
 ``step_phi_d``        φd of the half/difference views
 ``toggle_sqrt_h``     √θh or linear θh axis of the slice
 ``move_probe``        the probe on the map (Lambert coordinates; shown from the first move)
+``set_probe``         the probe at a point of the map (a click on the map or a section)
 ``toggle_probe``      probe on / off
-====================  =====================================================
+====================  =====================================================================
 """
 
 from __future__ import annotations

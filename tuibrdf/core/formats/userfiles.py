@@ -7,11 +7,11 @@ file), the file is loaded by its extension:
 ==========  =================================================  ============================
 extension   format                                             module
 ==========  =================================================  ============================
-.brdf       BRDF Explorer analytic BRDF (GLSL)                 core/brdf_explorer.py
-.bparam     BRDF Explorer saved parameters for a .brdf file    core/brdf_explorer.py
-.py         a Python model file (``MODEL = Model(...)``)       core/pymodel.py
-.bsdf       RGL-EPFL measured material (Dupuy & Jakob 2018)    core/rgl_bsdf.py
-.binary     MERL measured BRDF                                 core/merl.py
+.brdf       BRDF Explorer analytic BRDF (GLSL)                 :mod:`.brdf_explorer`
+.bparam     BRDF Explorer saved parameters for a .brdf file    :mod:`.brdf_explorer`
+.py         a Python model file (``MODEL = Model(...)``)       :mod:`.pymodel`
+.bsdf       RGL-EPFL measured material (Dupuy & Jakob 2018)    :mod:`.rgl_bsdf`
+.binary     MERL measured BRDF                                 :mod:`.merl`
 ==========  =================================================  ============================
 
 The model's registry-style ``name`` is the file's absolute path, so anything that stores a
