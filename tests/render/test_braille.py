@@ -1,5 +1,5 @@
 """The braille plot canvas (``tuibrdf.render.braille``) and the polar sections drawn with it
-(``tuibrdf.render.polar_braille``).
+(``tuibrdf.render.sections``).
 
 Expected dots come from the Unicode braille layout (dot k of a cell is bit k−1; dots 1-2-3-7
 run down the left column, 4-5-6-8 the right one) and from the canvas's documented mapping:
@@ -15,7 +15,7 @@ from rich.console import Console
 
 from tuibrdf.core.registry import get_model
 from tuibrdf.render.braille import BrailleCanvas, charset_for, legend_sample
-from tuibrdf.render.polar_braille import fwhm_text
+from tuibrdf.render.sections import fwhm_text
 from tuibrdf.render.views import render_view
 
 
@@ -227,7 +227,7 @@ def test_guides_drawn_once_are_the_guides_drawn_each_time():
     """The guide circles are drawn once per window (``guide_dots``, cached) and copied onto
     each canvas: every canvas must carry the guides drawn afresh for its own window (the
     function without its cache), whatever window came before."""
-    from tuibrdf.render.polar_braille import guide_dots, plot_window, polar_canvas
+    from tuibrdf.render.sections import guide_dots, plot_window, polar_canvas
 
     t = np.linspace(-90.0, 90.0, 181)
     drawn = []

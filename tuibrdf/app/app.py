@@ -31,7 +31,7 @@ from tuibrdf.core.views.frame import FrameRequest, FrameResult, section_directio
 from tuibrdf.core.views.hemimap import dir_to_uv, geometry
 from tuibrdf.core.views.sections import great_circle
 from tuibrdf.render import panes
-from tuibrdf.render.polar_braille import angle_at
+from tuibrdf.render.sections import angle_at
 from tuibrdf.state.presets import (
     PresetError,
     apply_loaded,

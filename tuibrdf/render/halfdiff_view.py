@@ -30,8 +30,8 @@ from tuibrdf.render.colormap import (
     colorize,
     fmt_value,
 )
+from tuibrdf.render.curves import channel_curves, curve_color
 from tuibrdf.render.halfblock import HalfBlockImage
-from tuibrdf.render.polar import channel_curves, curve_color
 from tuibrdf.render.text import first_fitting
 
 #: width of the y tick labels and the space after them

@@ -32,11 +32,11 @@ from tuibrdf.core.sphere.horizon import HORIZON_DEG, Horizon, PeakScale
 from tuibrdf.core.sphere.peak import Peak
 from tuibrdf.core.views.frame import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
 from tuibrdf.core.views.hemimap import geometry
-from tuibrdf.render.albedo_plot import albedo_plot
+from tuibrdf.render.albedo_plot import albedo_plot, plot_body
 from tuibrdf.render.colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize
+from tuibrdf.render.curves import CHANNEL_WORDS, side_curves
 from tuibrdf.render.halfblock import HalfBlockImage, Mark
-from tuibrdf.render.polar import CHANNEL_WORDS, caption_parts, plot_body, side_curves
-from tuibrdf.render.polar_braille import fwhm_text, polar_canvas
+from tuibrdf.render.sections import caption_parts, fwhm_text, polar_canvas
 from tuibrdf.render.solid import solid_image
 from tuibrdf.render.text import (
     INCIDENT_MARK,

@@ -16,7 +16,7 @@
 - Shading: Lambert-like, ``0.2 + 0.8·|n·l|`` with ``n`` the triangle normal of the *deformed*
   surface and ``l`` a light over the camera's left shoulder, quantised through the colour map.
 - Log (``log=True``): the radius is the decade position ``1 + log10(f / max) / 3`` clipped at 0,
-  as in the polar plots.
+  as in the sections (:func:`.sections.radius`).
 - Axes hint: the surface's outline (circle of radius ``max|p|`` in z = 0) and the normal N in
   blue-grey, the incident direction in cyan, also depth-tested.
 """
@@ -32,7 +32,7 @@ from tuibrdf.core.directions import incident
 from tuibrdf.core.views.frame import SOLID_SUBDIV, solid_samples
 from tuibrdf.render.colormap import LOG_DECADES, palette, quantise
 from tuibrdf.render.halfblock import TRANSPARENT
-from tuibrdf.render.polar import radius
+from tuibrdf.render.sections import radius
 from tuibrdf.render.text import LIGHT_RGB, RING_RGB
 
 SHADE_LEVELS = 64
@@ -138,7 +138,7 @@ def solid_image(
     # a scale below the peak (the peak above 89° or unbounded, core/sphere/horizon.py): the
     # radius is clipped at it, as the map's colours are
     f, fv = np.minimum(f, top), np.minimum(fv, top)
-    if log:  # radius = decade position in [0, 1], as in the polar plots
+    if log:  # radius = decade position in [0, 1], as in the sections
         f = radius(f, top, True, LOG_DECADES)
         fv = radius(fv, top, True, LOG_DECADES)
     pts = f[:, None] * dirs

@@ -7,7 +7,7 @@ Views (:data:`VIEWS`, declared in :mod:`tuibrdf.render`):
                    a title line with the peak, the disc (horizon ring, ``×`` on the mirror
                    direction S, ``o`` on the incident direction's Lambert point) and a colour
                    bar from 0 (or 3 decades below, in log) to the peak
-``incidence``      polar cross-section in the plane of incidence (:mod:`.polar_braille`)
+``incidence``      polar cross-section in the plane of incidence (:mod:`.sections`)
 ``perpendicular``  polar cross-section through the lobe's peak, across the plane of incidence
                    (turned by ``section_azimuth_deg``)
 ``solid``          3D photometric solid (:mod:`.solid`)
