@@ -18,12 +18,12 @@ from tuibrdf.cli.common import (
     add_model_args,
     add_phi_i,
     add_theta_i,
-    fmt,
     fmt_params,
     json_params,
     print_json,
     resolve,
 )
+from tuibrdf.core.conventions import fmt_number
 
 DEFAULT_THETAS = (0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0)
 
@@ -79,6 +79,6 @@ def run(args: argparse.Namespace) -> int:
         vals = row.tolist() if model.rgb else [float(row)]
         d = decimals_for(e)
         flag = "  > 1: not energy-conserving" if o else ""
-        print(" ".join([f"{fmt(t):>8}"] + [f"{x:>{width}.{d}f}" for x in vals]
+        print(" ".join([f"{fmt_number(t):>8}"] + [f"{x:>{width}.{d}f}" for x in vals]
                        + [f"± {float(np.max(e)):.0e}"]) + flag)
     return 0

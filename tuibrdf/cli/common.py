@@ -27,6 +27,8 @@ import re
 import sys
 from collections.abc import Callable, Iterable, Mapping, Sequence
 
+from tuibrdf.core.conventions import fmt_number
+
 TYPE_CHECKING = False  # typing itself costs --help ≈ 3 ms: for annotations only
 if TYPE_CHECKING:  # the declarations import dataclasses and difflib: not for --help
     from typing import Any
@@ -95,18 +97,9 @@ def print_json(doc: object, ascii: bool = True) -> None:
     print(json.dumps(doc, indent=2, ensure_ascii=ascii, allow_nan=False))
 
 
-def fmt(v: Any) -> str:
-    """A number as every table prints it (``%.6g``); tuples joined by commas."""
-    if isinstance(v, tuple | list):
-        return ",".join(fmt(x) for x in v)
-    if isinstance(v, float | int):
-        return f"{v:.6g}"
-    return str(v)
-
-
 def fmt_params(values: Mapping[str, Any]) -> str:
     """``kd=0.5 ks=0.3 n=20`` — the resolved parameters on one line."""
-    return " ".join(f"{k}={fmt(v)}" for k, v in values.items())
+    return " ".join(f"{k}={fmt_number(v)}" for k, v in values.items())
 
 
 def json_params(values: Mapping[str, Any]) -> dict[str, Any]:
@@ -300,7 +293,7 @@ def add_theta_i(parser: argparse.ArgumentParser, *, many: bool = False,
     parser.add_argument("--theta-i", type=bounded("theta_i", 0.0, 90.0), metavar="DEG",
                         help=("incidence angles θi in degrees, each in [0, 90]" if many
                               else "incidence angle θi in degrees, in [0, 90]")
-                             + (f" (default: {fmt(default)})" if default is not None else ""),
+                             + ("" if default is None else f" (default: {fmt_number(default)})"),
                         **kw)
 
 

@@ -16,7 +16,6 @@ from tuibrdf.cli.common import (
     add_model_args,
     add_phi_i,
     add_theta_i,
-    fmt,
     fmt_params,
     json_params,
     phi_r_deg,
@@ -24,6 +23,7 @@ from tuibrdf.cli.common import (
     resolve,
     theta_r_deg,
 )
+from tuibrdf.core.conventions import fmt_number
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -79,8 +79,8 @@ def run(args: argparse.Namespace) -> int:
         }
         print_json(doc)
         return 0
-    print(f"# {model.name}  {fmt_params(params)}  theta_i={fmt(args.theta_i)}"
-          + (f"  phi_i={fmt(args.phi_i)}" if args.phi_i != 180.0 else ""))
+    print(f"# {model.name}  {fmt_params(params)}  theta_i={fmt_number(args.theta_i)}"
+          + (f"  phi_i={fmt_number(args.phi_i)}" if args.phi_i != 180.0 else ""))
     cols = ["f_R", "f_G", "f_B"] if model.rgb else ["f"]
     if args.cosine:
         cols = [c + "*cos" for c in cols]
@@ -88,5 +88,6 @@ def run(args: argparse.Namespace) -> int:
           + "  [1/sr]")
     for tr, pr, v in rows:
         vals = v.tolist() if model.rgb else [float(v)]
-        print(" ".join([f"{fmt(tr):>8}", f"{fmt(pr):>8}"] + [f"{fmt(x):>12}" for x in vals]))
+        print(" ".join([f"{fmt_number(tr):>8}", f"{fmt_number(pr):>8}"]
+                       + [f"{fmt_number(x):>12}" for x in vals]))
     return 0

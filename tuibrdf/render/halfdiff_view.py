@@ -20,6 +20,7 @@ from rich.measure import Measurement
 from rich.segment import Segment
 from rich.text import Text
 
+from tuibrdf.core.conventions import fmt_value
 from tuibrdf.core.views.halfdiff import DEFAULT_PHI_D, SCALE_LIMIT_DEG, scale_max
 from tuibrdf.render.braille import NULL_STYLE, BrailleCanvas, curve_layers, draw_legend, nice_ticks
 from tuibrdf.render.colormap import (
@@ -28,7 +29,6 @@ from tuibrdf.render.colormap import (
     Scale,
     colorbar,
     colorize,
-    fmt_value,
 )
 from tuibrdf.render.curves import channel_curves, curve_color
 from tuibrdf.render.halfblock import HalfBlockImage

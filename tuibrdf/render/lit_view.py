@@ -18,9 +18,9 @@ from __future__ import annotations
 import numpy as np
 from rich.console import Group
 
+from tuibrdf.core.conventions import fmt_value
 from tuibrdf.core.views.lit import DEFAULT_EXPOSURE, DEFAULT_FOV_DEG, DEFAULT_GAMMA
 from tuibrdf.core.views.lit import tone_map as tone_map_core
-from tuibrdf.render.colormap import fmt_value
 from tuibrdf.render.halfblock import HalfBlockImage
 from tuibrdf.render.text import title
 

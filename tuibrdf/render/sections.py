@@ -37,9 +37,10 @@ from functools import lru_cache
 
 import numpy as np
 
+from tuibrdf.core.conventions import fmt_value
 from tuibrdf.core.directions import sincos_deg
 from tuibrdf.render.braille import BrailleCanvas, curve_layers, draw_legend
-from tuibrdf.render.colormap import LOG_DECADES, fmt_value
+from tuibrdf.render.colormap import LOG_DECADES
 from tuibrdf.render.curves import SIDE_MARKERS, curve_color
 from tuibrdf.render.text import LIGHT_RGB
 
