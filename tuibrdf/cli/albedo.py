@@ -24,6 +24,7 @@ from tuibrdf.cli.common import (
     resolve,
 )
 from tuibrdf.core.conventions import fmt_number
+from tuibrdf.core.display import DISPLAY
 
 DEFAULT_THETAS = (0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0)
 
@@ -35,7 +36,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
-def albedos(model, params, thetas, phi_i: float = 180.0):
+def albedos(model, params, thetas, phi_i: float = DISPLAY.phi_i.default):
     """``(a, error)`` for each θi: shapes ``(n,)``, or ``(n, 3)`` for an RGB model."""
     import numpy as np
 

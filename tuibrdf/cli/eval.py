@@ -24,6 +24,7 @@ from tuibrdf.cli.common import (
     theta_r_deg,
 )
 from tuibrdf.core.conventions import fmt_number
+from tuibrdf.core.display import DISPLAY
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -41,7 +42,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
 
 
 def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False,
-           phi_i: float = 180.0):
+           phi_i: float = DISPLAY.phi_i.default):
     """f(θi; θr, φr) over the outer product θr × φr: shape ``(len θr, len φr)`` (+ ``(3,)``
     for an RGB model)."""
     import numpy as np  # here, not at the top: --help stays light
@@ -80,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
         print_json(doc)
         return 0
     print(f"# {model.name}  {fmt_params(params)}  theta_i={fmt_number(args.theta_i)}"
-          + (f"  phi_i={fmt_number(args.phi_i)}" if args.phi_i != 180.0 else ""))
+          + (f"  phi_i={fmt_number(args.phi_i)}" if args.phi_i != DISPLAY.phi_i.default else ""))
     cols = ["f_R", "f_G", "f_B"] if model.rgb else ["f"]
     if args.cosine:
         cols = [c + "*cos" for c in cols]

@@ -34,6 +34,7 @@ from tuibrdf.cli.common import (
     parse_params,
     unknown,
 )
+from tuibrdf.core.display import DISPLAY
 
 COLORS = ("auto", "truecolor", "256", "none")
 FITS = ("abc", "sgd")
@@ -46,7 +47,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                              "(default: lambert)")
     parser.add_argument("-p", "--param", action="append", default=[], metavar="NAME=VALUE",
                         help="set a parameter (repeatable); RGB as R,G,B; angles in degrees")
-    add_theta_i(parser, default=30.0)
+    add_theta_i(parser, default=DISPLAY.theta_i.default)
     add_phi_i(parser)
     parser.add_argument("--preset", metavar="NAME",
                         help="load a saved preset, or a seed comparison: diffuse, specular")

@@ -21,7 +21,8 @@ from rich.segment import Segment
 from rich.text import Text
 
 from tuibrdf.core.conventions import fmt_value
-from tuibrdf.core.views.halfdiff import DEFAULT_PHI_D, SCALE_LIMIT_DEG, scale_max
+from tuibrdf.core.display import DISPLAY
+from tuibrdf.core.views.halfdiff import SCALE_LIMIT_DEG, scale_max
 from tuibrdf.render.braille import NULL_STYLE, BrailleCanvas, curve_layers, draw_legend, nice_ticks
 from tuibrdf.render.colormap import (
     DEFAULT_LEVELS,
@@ -112,9 +113,9 @@ def slice_scale(extra: tuple, phi_d_deg: float) -> float:
 
 
 def slice_picture(name: str, f: np.ndarray, valid: np.ndarray, th: np.ndarray, td: np.ndarray,
-                  width: int, height: int, *, phi_d_deg: float = DEFAULT_PHI_D,
-                  sqrt_h: bool = True, vmax: float | None = None, log: bool = False,
-                  cmap: str = "grey", levels: int = DEFAULT_LEVELS, rgb_mode: str = "auto",
+                  width: int, height: int, *, phi_d_deg: float = DISPLAY.phi_d.default,
+                  sqrt_h: bool = DISPLAY.sqrt_h, vmax: float | None = None, log: bool = False,
+                  cmap: str = DISPLAY.cmap, levels: int = DEFAULT_LEVELS, rgb_mode: str = "auto",
                   color: str = "truecolor") -> Group:
     """The slice view of precomputed samples (:func:`slice_image`); ``vmax`` the colour
     scale's top (default: the slice's own, :func:`slice_scale`)."""

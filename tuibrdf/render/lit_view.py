@@ -7,7 +7,7 @@ dim sky colour (nothing in plain text).  The title gives the brightest radiance 
 (in units of the white Lambert surface facing the light, see :mod:`tuibrdf.core.views.lit`),
 the exposure and gamma, and how much of the surface clips at white.
 
-Tone mapping: ``clamp(exposure · L, 0, 1) ^ (1/γ)`` (a pure power law, default γ = 2.2).  In
+Tone mapping: ``clamp(exposure · L, 0, 1) ^ (1/γ)`` (a pure power law, γ = 2.2 by default).  In
 truecolor the 8-bit result is drawn on :data:`LEVELS` levels per channel (≤ 2/255 off): a
 shaded sphere then has ~1,750 runs of equal cells instead of ~2,600, and a key's picture
 costs ~4 ms instead of ~15–20 ms (every new colour is a new terminal style).
@@ -19,7 +19,8 @@ import numpy as np
 from rich.console import Group
 
 from tuibrdf.core.conventions import fmt_value
-from tuibrdf.core.views.lit import DEFAULT_EXPOSURE, DEFAULT_FOV_DEG, DEFAULT_GAMMA
+from tuibrdf.core.display import DISPLAY
+from tuibrdf.core.views.lit import DEFAULT_FOV_DEG
 from tuibrdf.core.views.lit import tone_map as tone_map_core
 from tuibrdf.render.halfblock import HalfBlockImage
 from tuibrdf.render.text import title
@@ -38,7 +39,8 @@ def quantise_rgb(img: np.ndarray, levels: int = LEVELS) -> np.ndarray:
 
 
 def lit_picture(kind: str, name: str, theta_i_deg: float, rad: np.ndarray, mask: np.ndarray,
-                width: int, *, exposure: float = DEFAULT_EXPOSURE, gamma: float = DEFAULT_GAMMA,
+                width: int, *, exposure: float = DISPLAY.exposure.default,
+                gamma: float = DISPLAY.gamma.default,
                 color: str = "truecolor", fov_deg: float = DEFAULT_FOV_DEG) -> Group:
     """Title + the half-block picture of radiance ``rad`` (``(px_h, px_w, 3)``, the frame's)
     tone-mapped with ``exposure`` and ``gamma``."""

@@ -28,6 +28,7 @@ from rich.console import Group, RenderableType
 from rich.text import Text
 
 from tuibrdf.core.conventions import decimals_for, fmt_value, luminance
+from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.sphere.horizon import HORIZON_DEG, Horizon, PeakScale
 from tuibrdf.core.sphere.peak import Peak
 from tuibrdf.core.views.frame import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
@@ -61,17 +62,18 @@ DIVERGING = ((59, 76, 192), (221, 221, 221), (180, 4, 38))
 
 @dataclass(frozen=True)
 class Look:
-    """How the numbers are drawn (none of it changes a number)."""
+    """How the numbers are drawn (none of it changes a number); the defaults are
+    :data:`~tuibrdf.core.display.DISPLAY`'s."""
 
     color: str = "truecolor"  # truecolor | 256 | none
-    cmap: str = "grey"
+    cmap: str = DISPLAY.cmap
     log: bool = False
     levels: int = DEFAULT_LEVELS
     rgb_mode: str = "auto"  # auto | color | luminance
-    azimuth: float = -60.0  # the 3D solid's camera
-    elevation: float = 25.0
-    exposure: float = 1.0  # the lit views' tone mapping (core/views/lit.py)
-    gamma: float = 2.2
+    azimuth: float = DISPLAY.azimuth.default  # the 3D solid's camera
+    elevation: float = DISPLAY.elevation.default
+    exposure: float = DISPLAY.exposure.default  # the lit views' tone mapping (core/views/lit.py)
+    gamma: float = DISPLAY.gamma.default
     charset: str = "braille"  # the sections and line plots (render/braille.py)
     #: the curves of an RGB model (sections, albedo): rgb (three) | lum | R | G | B
     channel: str = "rgb"

@@ -29,6 +29,7 @@ import numpy as np
 
 from tuibrdf.core.conventions import luminance
 from tuibrdf.core.directions import incident
+from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.views.frame import SOLID_SUBDIV, solid_samples
 from tuibrdf.render.colormap import LOG_DECADES, palette, quantise
 from tuibrdf.render.halfblock import TRANSPARENT
@@ -117,11 +118,11 @@ def solid_image(
     px_h: int,
     *,
     rmax: float,
-    cmap: str = "grey",
+    cmap: str = DISPLAY.cmap,
     log: bool = False,
-    azimuth_deg: float = -60.0,
-    elevation_deg: float = 25.0,
-    phi_i_deg: float = 180.0,
+    azimuth_deg: float = DISPLAY.azimuth.default,
+    elevation_deg: float = DISPLAY.elevation.default,
+    phi_i_deg: float = DISPLAY.phi_i.default,
 ) -> tuple[np.ndarray, np.ndarray]:
     """``(index (px_h, px_w), palette)`` of the shaded solid (the light's guide at θi, φi).
 

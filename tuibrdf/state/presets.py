@@ -35,9 +35,10 @@ import time
 from pathlib import Path
 from typing import Any
 
+from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.formats.files import read_regular
 from tuibrdf.core.registry import get_model
-from tuibrdf.state.viewer import THETA_MAX, THETA_MIN, Side, ViewerState
+from tuibrdf.state.viewer import Side, ViewerState
 
 NAME_RE = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]{0,63}$")
 
@@ -207,11 +208,12 @@ def from_toml(text: str, where: str = "preset") -> tuple[float, list[Side]]:
         if "digits" in msg:
             msg = "a number has too many digits"
         raise PresetError(f"{where}: not a preset: {_one_line(msg)}") from None
-    theta = data.get("theta_i", 30.0)
+    theta = data.get("theta_i", DISPLAY.theta_i.default)
     if isinstance(theta, bool) or not isinstance(theta, int | float) \
-            or not THETA_MIN <= theta <= THETA_MAX:
+            or not DISPLAY.theta_i.accepts(theta):
         raise PresetError(f"{where}: theta_i = {_one_line(repr(theta), 40)} is invalid: "
-                          "expected a number in [0, 90]")
+                          f"expected a number in [{DISPLAY.theta_i.lo:g}, "
+                          f"{DISPLAY.theta_i.hi:g}]")
     raw = data.get("sides")
     if not isinstance(raw, list) or not 1 <= len(raw) <= 2:
         raise PresetError(f"{where}: expected one or two [[sides]] tables")
