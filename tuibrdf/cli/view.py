@@ -109,9 +109,10 @@ def build_state(args: argparse.Namespace):
     from tuibrdf.state.presets import (
         PresetError,
         apply_loaded,
+        find_preset,
         list_presets,
         load_preset,
-        preset_path,
+        where_presets_are,
     )
     from tuibrdf.state.viewer import COMPARE_PRESETS, Side, ViewerState
 
@@ -147,13 +148,13 @@ def build_state(args: argparse.Namespace):
     if args.preset:
         seed = {p.name for p in COMPARE_PRESETS}
         try:
-            path = preset_path(args.preset)
+            path = find_preset(args.preset)  # the new directory first, then the old one
         except PresetError as e:
             raise UsageError(str(e)) from None
         exists = os.path.lexists(path)  # a FIFO or a directory of that name: say what it is
         if not exists and args.preset not in seed:
             have = ", ".join(list_presets() + sorted(seed))
-            raise UsageError(f"no preset named {args.preset!r} in {path.parent} "
+            raise UsageError(f"no preset named {args.preset!r} in {where_presets_are()} "
                              f"(available: {have})")
         if exists:
             try:
