@@ -8,8 +8,8 @@ Input is a *level-index image* (``H_px × W_px`` ints) plus a palette (``L × 3`
 ``-1`` (:data:`TRANSPARENT`) leaves the terminal background visible.  An RGB image goes through
 :meth:`HalfBlockImage.from_rgb`, which builds the palette from the image's distinct colours.
 
-Fast by construction (measured in ``../shared/notes/textual.md``: ≈ 111 ms per 160×48 frame with
-one ``Style`` per cell, ≈ 1.5 ms like this):
+Fast by construction (≈ 111 ms per 160×48 frame with one ``Style`` per cell, ≈ 1.5 ms like
+this, when it was written; ``scripts/bench_draw.py`` measures a frame's drawing now):
 
 1. per cell, ``code = (top + 1) · (P + 1) + (bottom + 1)`` over the palette actually drawn;
 2. runs of equal codes along a row are found with numpy and become **one** ``Segment`` each;
