@@ -1,6 +1,6 @@
 """Benchmark the polar cross-section pane: the braille canvas drawn straight from the frame's
-section arrays (``tuibrdf.render.polar_braille``; the plotext pane it replaced is
-gone, docs/design.md keeps the comparison that decided it).
+section arrays (``tuibrdf.render.sections``; the plotext pane it replaced is gone,
+docs/design.md keeps the comparison that decided it).
 
     python scripts/bench_plots.py [--repeat N] [--size WxH] [--stat median|min]
 
@@ -24,7 +24,8 @@ from rich.console import Console
 
 from tuibrdf.core.material import Material
 from tuibrdf.core.views import frame as scene
-from tuibrdf.render import panes, polar, polar_braille
+from tuibrdf.render import panes, sections
+from tuibrdf.render.curves import channel_curves
 
 CASES = [
     ("cook-torrance", {"kd": 0.0, "f0": 0.04, "m": 0.07}, 60.0),  # the seed's example
@@ -76,12 +77,12 @@ def bench_case(name: str, params: dict, ti: float, w: int, h: int, repeat: int) 
     res = scene.compute_frame(scene.FrameRequest((Material(name, params),), ti), slow=False)
     side = res.sides[0]
     curves = [(lab, scene.SECTION_THETAS, v)
-              for lab, v in polar.channel_curves(name, side.sections["incidence"])]
+              for lab, v in channel_curves(name, side.sections["incidence"])]
     vmax = side.section_max
     look = panes.Look()
 
     def b_plot():
-        canvas, _ = polar_braille.polar_canvas(curves, w, h - 1, theta_i_deg=ti, vmax=vmax)
+        canvas, _ = sections.polar_canvas(curves, w, h - 1, theta_i_deg=ti, vmax=vmax)
         return canvas.rows()
 
     return [

@@ -130,9 +130,6 @@ EQUIVALENT: dict[str, str] = {
     f"{_MF}::beckmann_d::1e-300#0::-": _D_FLOOR,
     f"{_MF}::ggx_lambda_cos::0.0#0::+": _GGX_DEN,
     f"{_MF}::ggx_lambda_cos::0.0#0::-": _GGX_DEN,
-    f"{_MF}::ggx_g1::0.0#0::-": (
-        "den = cos θ + cos θ·Λ > 0 for every direction (α sin θ/2 > 0 on the horizon): "
-        "'den > −0.001' selects the same elements as 'den > 0'"),
     f"{_DF}::_AlphaBeta.__init__::0.0#0::+": _TAN_FILL,
     f"{_DF}::_AlphaBeta.__init__::0.0#0::-": _TAN_FILL,
     f"{_DF}::_polar::1e-300#0::+": _UNIT,

@@ -121,11 +121,12 @@ def test_the_viewer_starts_without_plotext_or_tomllib():
 
 
 def test_the_core_is_grouped_by_trade():
-    # the core's floors, bottom up: base (params, numerics, conventions, directions, lru) ←
+    # the core's floors, bottom up: base (params, numerics, conventions, display, directions,
+    # lru) ←
     # brdf ← formats ← registry, evaluate, material ← sphere ← views, fit.  A trade never
     # imports a trade above it.
-    floor = {"params": 0, "numerics": 0, "conventions": 0, "directions": 0, "lru": 0,
-             "brdf": 1, "formats": 2, "registry": 3, "evaluate": 3, "material": 3,
+    floor = {"params": 0, "numerics": 0, "conventions": 0, "display": 0, "directions": 0,
+             "lru": 0, "brdf": 1, "formats": 2, "registry": 3, "evaluate": 3, "material": 3,
              "sphere": 4, "views": 5, "fit": 5}
     graph = import_graph()
     for mod, deps in graph.items():

@@ -175,7 +175,8 @@ async def test_saved_presets_load_from_the_keyboard(config_home):
         await pilot.press("P")
         assert "no saved presets" in app.message
         for name, kd, theta in (("a-first", 0.3, 40.0), ("b-second", 0.4, 50.0)):
-            app.state.set_param("kd", kd)
+            assert app.state.row.param.name == "kd"
+            assert app.state.type_value(f"{kd}") is None  # what Enter / = does
             app.state.theta_i = theta
             await pilot.press("s")
             await pilot.pause()

@@ -1,5 +1,5 @@
 """The braille plot canvas (``tuibrdf.render.braille``) and the polar sections drawn with it
-(``tuibrdf.render.polar_braille``).
+(``tuibrdf.render.sections``).
 
 Expected dots come from the Unicode braille layout (dot k of a cell is bit k−1; dots 1-2-3-7
 run down the left column, 4-5-6-8 the right one) and from the canvas's documented mapping:
@@ -15,7 +15,7 @@ from rich.console import Console
 
 from tuibrdf.core.registry import get_model
 from tuibrdf.render.braille import BrailleCanvas, charset_for, legend_sample
-from tuibrdf.render.polar_braille import fwhm_text
+from tuibrdf.render.sections import fwhm_text
 from tuibrdf.render.views import render_view
 
 
@@ -29,13 +29,18 @@ def peak_section_view(m, values, theta_i, w, h, *, azimuth_deg=90.0, **kw):
                        section_azimuth_deg=azimuth_deg, **kw)
 
 
+def text_rows(canvas: BrailleCanvas) -> list[str]:
+    """The characters of each row, as Rich draws the canvas (its rows of segments)."""
+    return ["".join(s.text for s in row) for row in canvas.rows()]
+
+
 def lit_dots(canvas: BrailleCanvas) -> set[tuple[int, int]]:
     """Decode the characters back into (dot row, dot column): an independent reading of the
     output, through the Unicode layout rather than the canvas's own arrays."""
     bit_of = {(0, 0): 0, (1, 0): 1, (2, 0): 2, (0, 1): 3, (1, 1): 4, (2, 1): 5, (3, 0): 6,
               (3, 1): 7}
     dots = set()
-    for r, line in enumerate(canvas.lines()):
+    for r, line in enumerate(text_rows(canvas)):
         for c, ch in enumerate(line):
             code = ord(ch) - 0x2800 if ch != " " else 0
             assert 0 <= code < 256, ch
@@ -52,8 +57,8 @@ def test_horizontal_line_lights_exactly_its_row():
     cv = BrailleCanvas(10, 3, (0.0, 20.0), (0.0, 12.0), color="none")
     cv.polyline(np.array([2.5, 9.5]), np.array([6.5, 6.5]), cv.layer(None))
     assert lit_dots(cv) == {(5, c) for c in range(2, 10)}
-    assert cv.lines()[1] == " " + "⠒" * 4 + " " * 5
-    assert cv.lines()[0] == cv.lines()[2] == " " * 10
+    assert text_rows(cv)[1] == " " + "⠒" * 4 + " " * 5
+    assert text_rows(cv)[0] == text_rows(cv)[2] == " " * 10
 
 
 def test_vertical_and_diagonal_lines_are_connected():
@@ -67,7 +72,7 @@ def test_vertical_and_diagonal_lines_are_connected():
 def test_circle_dots_lie_within_half_a_dot_of_the_radius():
     # square dots: 40 × 20 cells = 80 × 80 dots over a 80 × 80 data square; centre (40, 40)
     cv = BrailleCanvas(40, 20, (0.0, 80.0), (0.0, 80.0), color="none")
-    cv.circle(40.0, 40.0, 30.0, cv.layer(None))
+    cv.polyline(*cv.arc_points(40.0, 40.0, 30.0), cv.layer(None))  # as guide_dots draws
     dots = lit_dots(cv)
     rows = np.array([d[0] for d in dots])
     cols = np.array([d[1] for d in dots])
@@ -113,8 +118,8 @@ def test_ascii_fallback_uses_markers_per_layer():
     cv.polyline(np.array([0.5, 19.5]), np.array([0.5, 0.5]), g)
     cv.polyline(np.array([0.5, 9.5]), np.array([7.5, 7.5]), a)
     # sparse: 1 dot in 4 along the path, dots 0, 4, 8, 12, 16 → every 2nd cell
-    assert cv.lines() == ["*****     ", ". . . . . "]
-    assert all(ord(ch) < 128 for line in cv.lines() for ch in line)
+    assert text_rows(cv) == ["*****     ", ". . . . . "]
+    assert all(ord(ch) < 128 for line in text_rows(cv) for ch in line)
 
 
 def test_text_overlay_and_non_finite_points():
@@ -123,7 +128,7 @@ def test_text_overlay_and_non_finite_points():
     # a NaN breaks the line: the two halves are drawn, nothing joins them
     cv.polyline(np.array([0.5, 3.5, np.nan, 16.5, 19.5]), np.full(5, 7.5), lid)
     cv.text(1, 2, "hello, world")  # cropped at the right edge
-    assert cv.lines() == ["⠉⠉      ⠉⠉", "  hello, w"]
+    assert text_rows(cv) == ["⠉⠉      ⠉⠉", "  hello, w"]
 
 
 def test_charset_for_encoding():
@@ -222,7 +227,7 @@ def test_guides_drawn_once_are_the_guides_drawn_each_time():
     """The guide circles are drawn once per window (``guide_dots``, cached) and copied onto
     each canvas: every canvas must carry the guides drawn afresh for its own window (the
     function without its cache), whatever window came before."""
-    from tuibrdf.render.polar_braille import guide_dots, plot_window, polar_canvas
+    from tuibrdf.render.sections import guide_dots, plot_window, polar_canvas
 
     t = np.linspace(-90.0, 90.0, 181)
     drawn = []
@@ -249,11 +254,12 @@ def test_points_on_the_limits_are_drawn_in_the_edge_dots():
     a = cv.layer("red")
     cv.polyline(np.array([2.25, 87.75]), np.array([0.0, 0.0]), a)  # first to last dot centre
     assert (cv.owner[-1] == a).all()  # the whole bottom row of dots
-    cv.points(np.array([90.0]), np.array([1.0]), a)
+    cv.polyline(np.array([90.0]), np.array([1.0]), a)  # a lone point
     assert cv.owner[0, -1] == a  # the top-right dot
     b = cv.layer("cyan")
     just_out = 90.0 * (1 + 1e-9)
-    cv.points(np.array([just_out, 45.0]), np.array([0.5, -1e-9]), b)
+    # lone points (a NaN between them breaks the line) just beyond the right and bottom edges
+    cv.polyline(np.array([just_out, np.nan, 45.0]), np.array([0.5, np.nan, -1e-9]), b)
     assert not (cv.owner == b).any()
 
 
@@ -285,7 +291,7 @@ def test_a_legend_with_more_curves_than_rows_names_every_curve_a_side_a_line():
     # compare mode, two RGB sides in a section of 4 rows: 6 curves, 2 lines, every channel
     # named in its colour after its side's line sample (B:blue was cut before)
     c = _legend_canvas(4, COMPARE_RGB, COMPARE_PATTERNS)
-    lines, rows = c.lines(), c.rows()
+    lines, rows = text_rows(c), c.rows()
     for r, side, pattern in ((0, "A", "solid"), (1, "B", "dotted")):
         sample = legend_sample(pattern, "braille", "")
         assert lines[r].startswith(f"{sample} {side}:red green blue")
@@ -299,7 +305,7 @@ def test_a_legend_with_more_curves_than_rows_names_every_curve_a_side_a_line():
 
 def test_a_legend_that_fits_keeps_one_line_a_curve():
     c = _legend_canvas(6, COMPARE_RGB, COMPARE_PATTERNS)
-    lines = c.lines()
+    lines = text_rows(c)
     for r, lab in enumerate(COMPARE_RGB):
         assert lines[r].rstrip().endswith(" " + lab)
 
@@ -308,7 +314,7 @@ def test_a_legend_folds_only_curves_of_one_side_drawn_alike():
     # labels with no side, or one side's curves in different patterns, keep a line each
     # (what does not fit is cut, as before)
     c = _legend_canvas(2, ["red", "green", "blue"], ["solid", "dotted", "solid"])
-    assert [x.split()[-1] for x in c.lines()] == ["red", "green"]
+    assert [x.split()[-1] for x in text_rows(c)] == ["red", "green"]
     c = _legend_canvas(2, ["A:red", "A:green", "A:blue"], ["solid", "dotted", "dotted"])
-    lines = [x.rstrip() for x in c.lines()]
+    lines = [x.rstrip() for x in text_rows(c)]
     assert lines[0].endswith(" A:red") and lines[1].endswith(" A:green blue")

@@ -4,8 +4,8 @@ fits the curves (item 8)."""
 import numpy as np
 
 from tuibrdf.render.albedo_plot import nice_top
+from tuibrdf.render.curves import SIDE_MARKERS, side_curves
 from tuibrdf.render.panes import signed_text
-from tuibrdf.render.polar import SIDE_MARKERS, side_curves
 
 
 def test_each_side_has_its_own_marker_and_legend_entries():

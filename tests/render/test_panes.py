@@ -15,8 +15,7 @@ from tuibrdf.core.registry import MODELS
 from tuibrdf.core.views import frame as scene
 from tuibrdf.render import panes
 from tuibrdf.render.colormap import Scale, colorbar
-from tuibrdf.render.halfdiff_view import theta_d_view, theta_h_view
-from tuibrdf.render.views import map_pixels
+from tuibrdf.render.views import map_pixels, render_view
 
 
 def lines(renderable, width=200) -> list[str]:
@@ -123,8 +122,8 @@ def test_line_plot_labels_the_bottom_of_its_axis():
     # the linear y axis runs from 0: its last row carries "0" (it carried no label, and the
     # tick at −0.0 from the tick rounding would have read "-0")
     ct = MODELS["cook-torrance"]
-    rows = lines(theta_h_view(ct, ct.resolve({}), 60, 14, theta_d_deg=30.0,
-                              color="none"), 60)
+    rows = lines(render_view("theta-h", ct, ct.resolve({}), 30.0, 60, 14, theta_d_deg=30.0,
+                             color="none"), 60)
     labels = [r[:7].strip() for r in rows[1:-1]]  # between the title and the θh axis
     assert labels[-1] == "0"
     assert "-0" not in labels
@@ -188,8 +187,8 @@ def test_clipped_theta_d_plot_says_where_its_axis_stops(width):
     top = float(evaluate("cook-torrance", {}, np.array([0.0, np.sin(t), np.cos(t)]),
                          np.array([0.0, -np.sin(t), np.cos(t)])))
     ct = MODELS["cook-torrance"]
-    head = lines(theta_d_view(ct, ct.resolve({}), width, 12, theta_h_deg=0.0, color="none"),
-                 width)[0]
+    head = lines(render_view("theta-d", ct, ct.resolve({}), 30.0, width, 12, theta_h_deg=0.0,
+                             color="none"), width)[0]
     assert head.startswith("f(θd) at θh=0° φd=90°") or "  f(θd) at θh=0° φd=90°" in head
     assert re.search(rf"scale {re.escape(fmt_value(top))}( sr⁻¹)? \(θ≤85°\)", head), head
     assert len(head) <= width

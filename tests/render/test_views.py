@@ -32,6 +32,14 @@ def test_views_and_cmaps_tuples():
     assert "grey" in CMAPS and "viridis" in CMAPS and "inferno" in CMAPS
 
 
+def test_the_module_docstring_lists_every_view():
+    # the table of views in tuibrdf/render/views.py's docstring, one row per view, in order
+    import tuibrdf.render.views as views
+
+    rows = re.findall(r"^``([a-z-]+)``  ", views.__doc__, flags=re.M)
+    assert tuple(rows) == VIEWS
+
+
 @pytest.mark.parametrize("view", DONE_VIEWS)
 @pytest.mark.parametrize("name", MODELS_NO_FILE)
 def test_every_model_every_view_plain(view, name):

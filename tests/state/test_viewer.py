@@ -282,7 +282,7 @@ def test_a_model_file_is_titled_by_its_name_reread_when_edited_and_cycled_back_t
 
 
 def test_issue13_view_settings_stay_in_range():
-    from tuibrdf.state.viewer import EXPOSURE_MAX, MAIN_VIEWS
+    from tuibrdf.core.display import DISPLAY
 
     s = ViewerState()
     assert s.step_fixed(5) is not None  # map view: no fixed angle, refused with a reason
@@ -297,7 +297,7 @@ def test_issue13_view_settings_stay_in_range():
     assert s.phi_d == 95.0
     for _ in range(20):
         s.scale_exposure(2.0)
-    assert s.exposure == EXPOSURE_MAX and s.scale_exposure(2.0) is not None
+    assert s.exposure == DISPLAY.exposure.hi == 4096.0 and s.scale_exposure(2.0) is not None
     s.step_gamma(10)
     assert s.gamma <= 3.0
     for _ in range(13):
@@ -413,3 +413,20 @@ def test_every_key_on_a_fork_leaves_the_state_as_it_was_and_does_what_it_does_th
         again = fresh()
         assert getattr(again, method)(*args) == said, method
         assert _seen_all(ahead) == _seen_all(again), method
+
+
+def test_the_module_docstring_lists_every_transition():
+    # the table in tuibrdf/state/viewer.py's docstring names every public method of
+    # ViewerState that answers a key (returns str | None), and nothing else
+    import inspect
+    import re
+
+    from tuibrdf.state import viewer
+
+    listed = re.findall(r"^``([a-z_]+)``  ", viewer.__doc__, flags=re.M)
+    transitions = [name for name, fn in inspect.getmembers(viewer.ViewerState,
+                                                          inspect.isfunction)
+                   if not name.startswith("_")
+                   and inspect.signature(fn).return_annotation == "str | None"]
+    assert len(listed) == len(set(listed))
+    assert set(listed) == set(transitions)

@@ -25,13 +25,13 @@ from tuibrdf.app.paint import ViewerScreen
 from tuibrdf.app.screens import HelpScreen, SafeCommandPalette, SaveScreen, ValueScreen
 from tuibrdf.app.text import PANES
 from tuibrdf.app.widgets import ParamPanel, Picture, QuietStatic, StatusLine
+from tuibrdf.core.conventions import fmt_number
 from tuibrdf.core.directions import from_degrees
-from tuibrdf.core.params import _fmt
 from tuibrdf.core.views.frame import FrameRequest, FrameResult, section_directions
 from tuibrdf.core.views.hemimap import dir_to_uv, geometry
 from tuibrdf.core.views.sections import great_circle
 from tuibrdf.render import panes
-from tuibrdf.render.polar_braille import angle_at
+from tuibrdf.render.sections import angle_at
 from tuibrdf.state.presets import (
     PresetError,
     apply_loaded,
@@ -270,7 +270,7 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         s = self.state
         row = s.row
         p = row.param
-        current = _fmt(s.row_value(row))
+        current = fmt_number(s.row_value(row))
         prompt = f"{s.side.spec.title} {row.label} ({p.doc or p.name})\n" \
                  f"now {current}; {p.range_text()}"
         if p.kind == "choice":

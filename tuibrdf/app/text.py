@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from rich.text import Text
 
+from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.views.frame import FrameResult
 from tuibrdf.render import VIEW_TITLES, panes
 from tuibrdf.state.viewer import COMPARE_PRESETS, Side, ViewerState
@@ -49,7 +50,7 @@ def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
     (each map's title and colour bar show them)."""
     line = Text()
     line.append(f"θi {s.theta_i:g}°", style="bold")
-    if s.phi_i != 180.0:
+    if s.phi_i != DISPLAY.phi_i.default:
         line.append(f" φi {s.phi_i:g}°", style="bold")
     materials = tuple(x.material for x in s.sides)
     files = [f for side in s.sides for f in side_files(side) if f in loading]
@@ -75,7 +76,8 @@ def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
 
 
 def view_settings(s: ViewerState) -> str:
-    """The settings of the view shown (`` · exp 1 γ 2.2``), and ψ when it is not 90°."""
+    """The settings of the view shown (`` · exp 1 γ 2.2``), and ψ when it is not its default
+    (90°)."""
     out = ""
     if s.view in ("sphere", "plane"):
         out += f" · exp {s.exposure:g} γ {s.gamma:g}"
@@ -85,7 +87,7 @@ def view_settings(s: ViewerState) -> str:
         out += f" · θd {s.theta_d:g}° φd {s.phi_d:g}°"
     elif s.view == "theta-d":
         out += f" · θh {s.theta_h:g}° φd {s.phi_d:g}°"
-    if s.section_azimuth != 90.0:
+    if s.section_azimuth != DISPLAY.section_azimuth.default:
         out += f" · section ψ {s.section_azimuth:g}°"
     return out
 

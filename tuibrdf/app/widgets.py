@@ -19,7 +19,7 @@ from textual.style import Style as TextualStyle
 from textual.widget import Widget
 from textual.widgets import Static
 
-from tuibrdf.core.params import _fmt
+from tuibrdf.core.conventions import fmt_number
 from tuibrdf.render.lines import BLANK, fit_row, pane_lines, render_rows
 from tuibrdf.render.rowdiff import ChangedRow
 from tuibrdf.state.viewer import Side, ViewerState
@@ -380,7 +380,7 @@ class ParamPanel(DrawnRows):
             v = state.row_value(row, side)
             p = row.param
             label = row.label if len(row.label) <= lw else row.label[:lw - 1] + "…"
-            shown = os.path.basename(str(v)) if p.kind == "path" else _fmt(v)
+            shown = os.path.basename(str(v)) if p.kind == "path" else fmt_number(v)
             unit = p.unit if p.unit not in ("", None) else ""
             line = [(f"{'▶' if sel else ' '} {label:<{lw}}", ""),
                     (f"{shown:>8}", "reverse" if sel else "bold"), (f" {unit:<2}", "")]

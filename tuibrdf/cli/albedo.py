@@ -18,12 +18,13 @@ from tuibrdf.cli.common import (
     add_model_args,
     add_phi_i,
     add_theta_i,
-    fmt,
     fmt_params,
     json_params,
     print_json,
     resolve,
 )
+from tuibrdf.core.conventions import fmt_number
+from tuibrdf.core.display import DISPLAY
 
 DEFAULT_THETAS = (0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0)
 
@@ -35,7 +36,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
-def albedos(model, params, thetas, phi_i: float = 180.0):
+def albedos(model, params, thetas, phi_i: float = DISPLAY.phi_i.default):
     """``(a, error)`` for each θi: shapes ``(n,)``, or ``(n, 3)`` for an RGB model."""
     import numpy as np
 
@@ -79,6 +80,6 @@ def run(args: argparse.Namespace) -> int:
         vals = row.tolist() if model.rgb else [float(row)]
         d = decimals_for(e)
         flag = "  > 1: not energy-conserving" if o else ""
-        print(" ".join([f"{fmt(t):>8}"] + [f"{x:>{width}.{d}f}" for x in vals]
+        print(" ".join([f"{fmt_number(t):>8}"] + [f"{x:>{width}.{d}f}" for x in vals]
                        + [f"± {float(np.max(e)):.0e}"]) + flag)
     return 0

@@ -27,6 +27,9 @@ import re
 import sys
 from collections.abc import Callable, Iterable, Mapping, Sequence
 
+from tuibrdf.core.conventions import fmt_number
+from tuibrdf.core.display import DISPLAY
+
 TYPE_CHECKING = False  # typing itself costs --help ≈ 3 ms: for annotations only
 if TYPE_CHECKING:  # the declarations import dataclasses and difflib: not for --help
     from typing import Any
@@ -95,18 +98,9 @@ def print_json(doc: object, ascii: bool = True) -> None:
     print(json.dumps(doc, indent=2, ensure_ascii=ascii, allow_nan=False))
 
 
-def fmt(v: Any) -> str:
-    """A number as every table prints it (``%.6g``); tuples joined by commas."""
-    if isinstance(v, tuple | list):
-        return ",".join(fmt(x) for x in v)
-    if isinstance(v, float | int):
-        return f"{v:.6g}"
-    return str(v)
-
-
 def fmt_params(values: Mapping[str, Any]) -> str:
     """``kd=0.5 ks=0.3 n=20`` — the resolved parameters on one line."""
-    return " ".join(f"{k}={fmt(v)}" for k, v in values.items())
+    return " ".join(f"{k}={fmt_number(v)}" for k, v in values.items())
 
 
 def json_params(values: Mapping[str, Any]) -> dict[str, Any]:
@@ -159,6 +153,20 @@ def bounded(name: str, lo: float, hi: float, unit: str = "°") -> Callable[[str]
 
     parse.__name__ = name
     return parse
+
+
+def setting_type(name: str, setting) -> Callable[[str], float]:
+    """:func:`bounded` to a display setting's range (:data:`~tuibrdf.core.display.DISPLAY`):
+    the range the viewer's keys keep it in."""
+    return bounded(name, setting.lo, setting.hi, setting.unit)
+
+
+def add_setting(parser: argparse.ArgumentParser, flag: str, setting, metavar: str,
+                help: str) -> None:
+    """``flag`` for a display setting: its range, and its default in the help."""
+    parser.add_argument(flag, type=setting_type(flag[2:], setting), default=setting.default,
+                        metavar=metavar, help=f"{help} (default {fmt_number(setting.default)}, "
+                                              f"range {setting.range_text()})")
 
 
 def int_in(name: str, lo: int, hi: int) -> Callable[[str], int]:
@@ -283,24 +291,29 @@ def parse_value(model: Model, p: Param, raw: str) -> Any:
 
 
 def add_phi_i(parser: argparse.ArgumentParser) -> None:
-    """``--phi-i DEG``: the light's azimuth, in [-360, 360]° (default 180: the seed's)."""
-    parser.add_argument("--phi-i", type=bounded("phi_i", -360.0, 360.0), default=180.0,
-                        metavar="DEG", help="light azimuth φi in degrees (default 180: the "
-                                            "light on the −x side, as in the source document)")
+    """``--phi-i DEG``: the light's azimuth (:data:`DISPLAY`: 180°, the seed's, in ±360°)."""
+    s = DISPLAY.phi_i
+    parser.add_argument("--phi-i", type=setting_type("phi_i", s), default=s.default,
+                        metavar="DEG", help=f"light azimuth φi in degrees (default "
+                                            f"{fmt_number(s.default)}: the light on the −x "
+                                            "side, as in the source document)")
 
 
 def add_theta_i(parser: argparse.ArgumentParser, *, many: bool = False,
                 default: Any = None) -> None:
-    """``--theta-i DEG`` (or ``DEG [DEG ...]`` with ``many``), in [0, 90]°."""
+    """``--theta-i DEG`` (or ``DEG [DEG ...]`` with ``many``), in :data:`DISPLAY`'s range of
+    θi, [0, 90]°; without a ``default`` the option is required."""
+    s = DISPLAY.theta_i
     kw: dict[str, Any] = {"nargs": "+"} if many else {}
     if default is None:
         kw["required"] = True
     else:
         kw["default"] = default
-    parser.add_argument("--theta-i", type=bounded("theta_i", 0.0, 90.0), metavar="DEG",
-                        help=("incidence angles θi in degrees, each in [0, 90]" if many
-                              else "incidence angle θi in degrees, in [0, 90]")
-                             + (f" (default: {fmt(default)})" if default is not None else ""),
+    rng = f"[{s.lo:g}, {s.hi:g}]"
+    parser.add_argument("--theta-i", type=setting_type("theta_i", s), metavar="DEG",
+                        help=(f"incidence angles θi in degrees, each in {rng}" if many
+                              else f"incidence angle θi in degrees, in {rng}")
+                             + ("" if default is None else f" (default: {fmt_number(default)})"),
                         **kw)
 
 

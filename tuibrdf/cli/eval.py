@@ -1,6 +1,7 @@
 """``tuibrdf eval``: BRDF values for given directions, as a table or JSON.
 
-The light is at ``(θi, φi = 180°)`` (SPEC §1), so the mirror direction is ``(θr = θi, φr = 0)``.
+The light is at ``(θi, φi)``, φi = 180° unless ``--phi-i`` moves it (SPEC §1), so the mirror
+direction is ``(θr = θi, φr = φi − 180°)``: ``φr = 0`` by default.
 Several ``--theta-r`` and ``--phi-r`` values give their **outer product**, θr varying slowest:
 ``--theta-r 0 30 --phi-r 0 180`` prints the four rows (0, 0), (0, 180), (30, 0), (30, 180).
 Values are in sr⁻¹ (no cosine factor; ``--cosine`` multiplies by cos θr), printed with
@@ -15,7 +16,6 @@ from tuibrdf.cli.common import (
     add_model_args,
     add_phi_i,
     add_theta_i,
-    fmt,
     fmt_params,
     json_params,
     phi_r_deg,
@@ -23,6 +23,8 @@ from tuibrdf.cli.common import (
     resolve,
     theta_r_deg,
 )
+from tuibrdf.core.conventions import fmt_number
+from tuibrdf.core.display import DISPLAY
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -32,15 +34,15 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--theta-r", type=theta_r_deg, nargs="+", required=True, metavar="DEG",
                         help="viewing polar angle(s) θr in degrees, in [0, 90]")
     parser.add_argument("--phi-r", type=phi_r_deg, nargs="+", required=True, metavar="DEG",
-                        help="viewing azimuth(s) φr in degrees, in [-360, 360]; 0 is the "
-                             "mirror side, 180 the light's side")
+                        help="viewing azimuth(s) φr in degrees, in [-360, 360]; with the "
+                             "default --phi-i 180, 0 is the mirror side and 180 the light's")
     parser.add_argument("--cosine", action="store_true",
                         help="print f·cos θr (reflected intensity) instead of f")
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
 def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False,
-           phi_i: float = 180.0):
+           phi_i: float = DISPLAY.phi_i.default):
     """f(θi; θr, φr) over the outer product θr × φr: shape ``(len θr, len φr)`` (+ ``(3,)``
     for an RGB model)."""
     import numpy as np  # here, not at the top: --help stays light
@@ -75,8 +77,8 @@ def run(args: argparse.Namespace) -> int:
         }
         print_json(doc)
         return 0
-    print(f"# {model.name}  {fmt_params(params)}  theta_i={fmt(args.theta_i)}"
-          + (f"  phi_i={fmt(args.phi_i)}" if args.phi_i != 180.0 else ""))
+    print(f"# {model.name}  {fmt_params(params)}  theta_i={fmt_number(args.theta_i)}"
+          + (f"  phi_i={fmt_number(args.phi_i)}" if args.phi_i != DISPLAY.phi_i.default else ""))
     cols = ["f_R", "f_G", "f_B"] if model.rgb else ["f"]
     if args.cosine:
         cols = [c + "*cos" for c in cols]
@@ -84,5 +86,6 @@ def run(args: argparse.Namespace) -> int:
           + "  [1/sr]")
     for tr, pr, v in rows:
         vals = v.tolist() if model.rgb else [float(v)]
-        print(" ".join([f"{fmt(tr):>8}", f"{fmt(pr):>8}"] + [f"{fmt(x):>12}" for x in vals]))
+        print(" ".join([f"{fmt_number(tr):>8}", f"{fmt_number(pr):>8}"]
+                       + [f"{fmt_number(x):>12}" for x in vals]))
     return 0

@@ -15,7 +15,8 @@ from __future__ import annotations
 
 import argparse
 
-from tuibrdf.cli.common import UsageError, fmt, fmt_params, json_params, parse_params, print_json
+from tuibrdf.cli.common import UsageError, fmt_params, json_params, parse_params, print_json
+from tuibrdf.core.conventions import fmt_number
 
 #: ``tuibrdf.core.fit.STRIDE``, repeated so that ``--help`` does not import numpy (a test
 #: checks that they agree)
@@ -118,12 +119,12 @@ def run(args: argparse.Namespace) -> int:
           f"{result.seconds:.1f} s; objective: {OBJECTIVE}")
     for c, p in zip(result.channels, result.params, strict=True):
         print(f"{c:>4}  {fmt_params(p)}")
-        print(f"      as options: {' '.join(f'-p {k}={fmt(v)}' for k, v in p.items())}")
-    print(f"residual {fmt(result.residual)}")
+        print(f"      as options: {' '.join(f'-p {k}={fmt_number(v)}' for k, v in p.items())}")
+    print(f"residual {fmt_number(result.residual)}")
     if published:
         print(f"published fits of {published['material']}, same objective: "
-              f"abc residual {fmt(published['abc'])} (Löw et al. 2012), "
-              f"sgd residual {fmt(published['sgd'])} (Bagher et al. 2012)")
+              f"abc residual {fmt_number(published['abc'])} (Löw et al. 2012), "
+              f"sgd residual {fmt_number(published['sgd'])} (Bagher et al. 2012)")
     print(albedo_lines(albedo))
     for line in judgement(bounds, ratio):
         print(line)
@@ -153,11 +154,11 @@ def judgement(bounds: list[dict], ratio: dict) -> list[str]:
 
     out = []
     for b in bounds:
-        out.append(f"warning: {b['param']} at its {b['bound']}imum {fmt(b['value'])} "
+        out.append(f"warning: {b['param']} at its {b['bound']}imum {fmt_number(b['value'])} "
                    f"({', '.join(b['channels'])}): the model wants a value past its range")
     if ratio["poor"]:
         out.append(f"poor fit: albedo of the fit is {ratio['ratio']:.2f}× the data's "
-                   f"(θi {fmt(ratio['theta_i'])}°, channel {ratio['channel']}; flagged "
+                   f"(θi {fmt_number(ratio['theta_i'])}°, channel {ratio['channel']}; flagged "
                    f"outside 1/{POOR_ALBEDO_RATIO:g}–{POOR_ALBEDO_RATIO:g}×): try another model")
     if not out:
         out.append(f"fit ok: no parameter at a bound, albedos within {POOR_ALBEDO_RATIO:g}× of "

@@ -5,10 +5,9 @@ sRGB colour) where stdout is a colour terminal, then the directional albedo a(θ
 ABC and SGD fits at θi = 0° and 60°.  Colour follows ``tuibrdf render``'s rule (``--color auto``:
 plain text when piped, with ``NO_COLOR`` or ``TERM=dumb``).  The albedos are read from
 ``tuibrdf/core/brdf/data/material_albedo.tsv`` (computed by the albedo quadrature, see
-:mod:`~tuibrdf.core.sphere.material_albedo`), so the listing takes milliseconds and is the same on
-every
-machine.  ``--json`` adds each material's other name in the SGD data (accepted as an alias) and the
-stored digits.
+:mod:`~tuibrdf.core.sphere.material_albedo`), so the listing takes milliseconds and is the
+same on every machine.  ``--json`` adds each material's other name in the SGD data (accepted as
+an alias) and the stored digits.
 """
 
 from __future__ import annotations

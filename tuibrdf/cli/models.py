@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import argparse
 
-from tuibrdf.cli.common import TYPE_CHECKING, fmt, print_json
+from tuibrdf.cli.common import TYPE_CHECKING, print_json
+from tuibrdf.core.conventions import fmt_number
 
 if TYPE_CHECKING:
     from typing import Any
@@ -55,7 +56,7 @@ def model_text(m: Model) -> list[str]:
     if m.summary:
         lines.append(f"  {m.summary}")
     lines.append(f"  {kind}, {recip}" + (f"; horizon: {m.horizon}" if m.horizon else ""))
-    rows = [COLUMNS] + [(p.name, p.symbol, p.range_text(), fmt(p.default),
+    rows = [COLUMNS] + [(p.name, p.symbol, p.range_text(), fmt_number(p.default),
                          "°" if p.unit == "deg" else p.unit, p.doc) for p in m.params]
     widths = [max(len(r[i]) for r in rows) for i in range(len(COLUMNS))]
     if m.params:

@@ -1,14 +1,16 @@
 """``tuibrdf render``: a picture of the BRDF on stdout, the same bytes on any machine.
 
-``tuibrdf render MODEL [-p NAME=VALUE ...] [--theta-i DEG] [--view VIEW] [--width W]
-[--height H] [--color auto|truecolor|256|none | --no-color] [--cmap NAME] [--log] [--cosine]``
+``tuibrdf render MODEL [-p NAME=VALUE ...] [--theta-i DEG] [--phi-i DEG] [--view VIEW]
+[--width W] [--height H] [--color auto|truecolor|256|none | --no-color] [--cmap NAME] [--log]
+[--cosine]``, and the options of single views below.
 
 Views: ``map`` (Lambert equal-area map, the default), ``incidence`` (polar cross-section in the
 plane of incidence), ``perpendicular`` (the section through the lobe's peak across the plane of
-incidence, ``--section-azimuth`` turns it), ``solid`` (3D photometric solid), ``albedo`` (a(θi)
-over 0–90°), ``sphere`` and ``plane`` (the material lit from θi, ``--exposure``, ``--gamma``),
-``slice`` (θh × θd image at ``--phi-d``), ``theta-h`` (f against θh at ``--theta-d``),
-``theta-d`` (f against θd at ``--theta-h``), or ``all``: map, both cross-sections and the albedo
+incidence, ``--section-azimuth`` turns it), ``solid`` (3D photometric solid seen from
+``--azimuth``, ``--elevation``), ``albedo`` (a(θi) over 0–90°), ``sphere`` and ``plane`` (the
+material lit from θi, ``--exposure``, ``--gamma``), ``slice`` (θh × θd image at ``--phi-d``,
+``--linear-theta-h``), ``theta-h`` (f against θh at ``--theta-d``, ``--phi-d``), ``theta-d`` (f
+against θd at ``--theta-h``, ``--phi-d``), or ``all``: map, both cross-sections and the albedo
 curve one below the other, each ``W × H`` cells, with a blank line between them.
 
 Determinism: the size never comes from the terminal (default 80×24), and the console is built
@@ -30,21 +32,19 @@ from tuibrdf.cli.common import (
     TYPE_CHECKING,
     add_model_args,
     add_phi_i,
+    add_setting,
     add_theta_i,
-    bounded,
     choices_type,
     int_in,
     isatty,
     resolve,
 )
-from tuibrdf.render import CMAPS, EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, VIEWS
+from tuibrdf.core.display import DISPLAY
+from tuibrdf.render import CMAPS, MIN_HEIGHT, MIN_WIDTH, VIEWS
 
 if TYPE_CHECKING:
     from typing import Any
 
-#: the lit and half/difference views (in :data:`tuibrdf.render.VIEWS`, declared there with no
-#: import so ``--help`` stays light)
-EXTRA = EXTRA_VIEWS
 #: what ``--view all`` draws
 ALL = ("map", "incidence", "perpendicular", "albedo")
 COLORS = ("auto", "truecolor", "256", "none")
@@ -53,7 +53,7 @@ MAX_SIZE = 1000
 
 def add_args(parser: argparse.ArgumentParser) -> None:
     add_model_args(parser)
-    add_theta_i(parser, default=30.0)
+    add_theta_i(parser, default=DISPLAY.theta_i.default)
     add_phi_i(parser)
     views = (*VIEWS, "all")
     parser.add_argument("--view", type=choices_type("view", views), default="map",
@@ -72,39 +72,33 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                              "(NO_COLOR and TERM=dumb respected)")
     parser.add_argument("--no-color", dest="color", action="store_const", const="none",
                         help="plain text, the same as --color none")
-    parser.add_argument("--cmap", type=choices_type("colour map", CMAPS), default="grey",
+    parser.add_argument("--cmap", type=choices_type("colour map", CMAPS), default=DISPLAY.cmap,
                         metavar="|".join(CMAPS), help="colour map of the map and the solid "
-                                                      "(default grey, as in the source "
-                                                      "document)")
+                                                      f"(default {DISPLAY.cmap}, as in the "
+                                                      "source document)")
     parser.add_argument("--log", action="store_true",
                         help="logarithmic scale (3 decades below the maximum)")
     parser.add_argument("--cosine", action="store_true",
                         help="show f·cos θr (reflected intensity) instead of f")
-    parser.add_argument("--azimuth", type=bounded("azimuth", -360.0, 360.0), default=-60.0,
-                        metavar="DEG", help="3D solid: view azimuth in degrees (default -60)")
-    parser.add_argument("--elevation", type=bounded("elevation", -90.0, 90.0), default=25.0,
-                        metavar="DEG", help="3D solid: view elevation in degrees (default 25)")
+    add_setting(parser, "--azimuth", DISPLAY.azimuth, "DEG",
+                "3D solid: view azimuth in degrees")
+    add_setting(parser, "--elevation", DISPLAY.elevation, "DEG",
+                "3D solid: view elevation in degrees")
     add_extra_args(parser)
 
 
 def add_extra_args(parser: argparse.ArgumentParser) -> None:
     """Options of the perpendicular, lit and half/difference views."""
-    parser.add_argument("--section-azimuth", type=bounded("section azimuth", -180.0, 180.0),
-                        default=90.0, metavar="DEG",
-                        help="perpendicular: turn the section about the lobe's peak; 90 "
-                             "(default) is across the plane of incidence, 0 the plane itself")
-    parser.add_argument("--exposure", type=bounded("exposure", 0.0, 1e6, ""), default=1.0,
-                        metavar="X", help="sphere, plane: radiance scale before the clip at "
-                                          "white (default 1: a white Lambert surface facing "
-                                          "the light is white)")
-    parser.add_argument("--gamma", type=bounded("gamma", 0.1, 10.0, ""), default=2.2,
-                        metavar="G", help="sphere, plane: display gamma (default 2.2)")
-    parser.add_argument("--theta-d", type=bounded("theta-d", 0.0, 90.0), default=30.0,
-                        metavar="DEG", help="theta-h: the fixed θd (default 30)")
-    parser.add_argument("--theta-h", type=bounded("theta-h", 0.0, 90.0), default=0.0,
-                        metavar="DEG", help="theta-d: the fixed θh (default 0)")
-    parser.add_argument("--phi-d", type=bounded("phi-d", 0.0, 180.0), default=90.0,
-                        metavar="DEG", help="slice, theta-h, theta-d: the fixed φd (default 90)")
+    add_setting(parser, "--section-azimuth", DISPLAY.section_azimuth, "DEG",
+                "perpendicular: turn the section about the lobe's peak; 90 is across the "
+                "plane of incidence, 0 the plane itself")
+    add_setting(parser, "--exposure", DISPLAY.exposure, "X",
+                "sphere, plane: radiance scale before the clip at white (1: a white Lambert "
+                "surface facing the light is white)")
+    add_setting(parser, "--gamma", DISPLAY.gamma, "G", "sphere, plane: display gamma")
+    add_setting(parser, "--theta-d", DISPLAY.theta_d, "DEG", "theta-h: the fixed θd")
+    add_setting(parser, "--theta-h", DISPLAY.theta_h, "DEG", "theta-d: the fixed θh")
+    add_setting(parser, "--phi-d", DISPLAY.phi_d, "DEG", "slice, theta-h, theta-d: the fixed φd")
     parser.add_argument("--linear-theta-h", action="store_true",
                         help="slice: a linear θh axis instead of MERL's √θh")
 

@@ -57,7 +57,7 @@ def _block(ch: str) -> str:
 
 
 def _braille(ch: str) -> str:
-    """A braille cell (U+2800–U+28FF, plotext's curves) by its number of dots."""
+    """A braille cell (U+2800–U+28FF: the plots' curves) by its number of dots."""
     dots = bin(ord(ch) - 0x2800).count("1")
     return " " if dots == 0 else "." if dots <= 2 else ":" if dots <= 4 else "#"
 

@@ -1,7 +1,8 @@
 """``tuibrdf view``: open the interactive viewer (also what plain ``tuibrdf`` does).
 
-``tuibrdf view [MODEL | FILE] [-p NAME=VALUE ...] [--theta-i DEG] [--preset NAME]
-[--color auto|truecolor|256|none | --no-color]``.  A ``.binary`` path opens the measured MERL
+``tuibrdf view [MODEL | FILE] [-p NAME=VALUE ...] [--theta-i DEG] [--phi-i DEG] [--preset NAME]
+[--color auto|truecolor|256|none | --no-color]`` (or ``--material NAME`` instead of the model,
+below).  A ``.binary`` path opens the measured MERL
 material (model ``merl`` with ``file=PATH``); a ``.brdf``, ``.bparam``, ``.py`` or ``.bsdf`` file
 opens through the model registry (:mod:`tuibrdf.core.formats.userfiles`).  ``--preset NAME`` loads a
 saved preset (``s`` in the viewer saves one) or, when no file has that name, one of the seed's
@@ -33,6 +34,7 @@ from tuibrdf.cli.common import (
     parse_params,
     unknown,
 )
+from tuibrdf.core.display import DISPLAY
 
 COLORS = ("auto", "truecolor", "256", "none")
 FITS = ("abc", "sgd")
@@ -45,7 +47,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                              "(default: lambert)")
     parser.add_argument("-p", "--param", action="append", default=[], metavar="NAME=VALUE",
                         help="set a parameter (repeatable); RGB as R,G,B; angles in degrees")
-    add_theta_i(parser, default=30.0)
+    add_theta_i(parser, default=DISPLAY.theta_i.default)
     add_phi_i(parser)
     parser.add_argument("--preset", metavar="NAME",
                         help="load a saved preset, or a seed comparison: diffuse, specular")
@@ -107,9 +109,10 @@ def build_state(args: argparse.Namespace):
     from tuibrdf.state.presets import (
         PresetError,
         apply_loaded,
+        find_preset,
         list_presets,
         load_preset,
-        preset_path,
+        where_presets_are,
     )
     from tuibrdf.state.viewer import COMPARE_PRESETS, Side, ViewerState
 
@@ -145,13 +148,13 @@ def build_state(args: argparse.Namespace):
     if args.preset:
         seed = {p.name for p in COMPARE_PRESETS}
         try:
-            path = preset_path(args.preset)
+            path = find_preset(args.preset)  # the new directory first, then the old one
         except PresetError as e:
             raise UsageError(str(e)) from None
         exists = os.path.lexists(path)  # a FIFO or a directory of that name: say what it is
         if not exists and args.preset not in seed:
             have = ", ".join(list_presets() + sorted(seed))
-            raise UsageError(f"no preset named {args.preset!r} in {path.parent} "
+            raise UsageError(f"no preset named {args.preset!r} in {where_presets_are()} "
                              f"(available: {have})")
         if exists:
             try:

@@ -6,9 +6,10 @@ tests/test_architecture.py checks it):
 =================  ==========================================================================
 base               :mod:`.params` (parameter declarations, :class:`~.params.Model`),
                    :mod:`.numerics` (the floating-point policy), :mod:`.conventions`
-                   (luminance, number formats, display defaults), :mod:`.directions` (the
-                   shading frame: angles ↔ directions, the half/difference angles, the one
-                   range check of θi and φi), :mod:`.lru` (the one LRU cache)
+                   (luminance, number formats), :mod:`.display` (the look's defaults and
+                   ranges), :mod:`.directions` (the shading frame: angles ↔ directions, the
+                   half/difference angles, the one range check of θi and φi), :mod:`.lru`
+                   (the one LRU cache)
 :mod:`.brdf`       the reflectance models: Fresnel, microfacet pieces, the model families,
                    the published fits of the 100 MERL materials and their data
 :mod:`.formats`    user files in, models out: MERL, RGL ``.bsdf``, BRDF Explorer ``.brdf``

@@ -17,7 +17,8 @@ import os
 from collections.abc import Mapping
 from typing import Any
 
-from tuibrdf.core.params import Model, Value, _fmt
+from tuibrdf.core.conventions import fmt_number
+from tuibrdf.core.params import Model, Value
 from tuibrdf.core.registry import MODELS, get_model
 
 
@@ -102,6 +103,6 @@ class Material:
 
     def describe(self) -> str:
         """``phong kd=0.2 ks=0.5 n=20`` — for titles and messages."""
-        vals = " ".join(f"{k}={_fmt(os.path.basename(v) if k == 'file' else v)}"
+        vals = " ".join(f"{k}={fmt_number(os.path.basename(v) if k == 'file' else v)}"
                         for k, v in self.items)
         return f"{self.label} {vals}".strip()

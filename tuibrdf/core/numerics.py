@@ -55,7 +55,7 @@ def safe_sqrt(x: np.ndarray) -> np.ndarray:
 #: User shaders (BRDF Explorer ``.brdf`` files) were written for a GPU's IEEE arithmetic: both
 #: sides of a branch run on every direction and a formula may overflow on directions whose value
 #: is then discarded.  Their translated code runs under this policy (no exception, no warning);
-#: the shader model replaces any NaN, ±inf or negative result by 0 (core/brdf_explorer.py).
+#: the shader model replaces any NaN, ±inf or negative result by 0 (core/formats/brdf_explorer.py).
 SHADER_ERRSTATE = {"divide": "ignore", "over": "ignore", "invalid": "ignore", "under": "ignore"}
 
 

@@ -25,6 +25,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from tuibrdf.core.conventions import fmt_number
+
 Value = float | tuple[float, float, float] | str
 
 
@@ -64,7 +66,7 @@ class Param:
         if self.kind == "path":
             return "a file path"
         unit = "°" if self.unit == "deg" else (f" {self.unit}" if self.unit else "")
-        rng = f"[{_fmt(self.min)}, {_fmt(self.max)}]{unit}"
+        rng = f"[{fmt_number(self.min)}, {fmt_number(self.max)}]{unit}"
         return f"three values in {rng} (R,G,B)" if self.kind == "rgb" else f"in {rng}"
 
     def validate(self, value: Any, model: str = "") -> Value:
@@ -186,7 +188,7 @@ class Model:
             values[name] = self.param(name).validate(value, self.name)
         for c in self.constraints:
             if not c.holds(values):
-                got = ", ".join(f"{n} = {_fmt(values[n])}" for n in c.names)
+                got = ", ".join(f"{n} = {fmt_number(values[n])}" for n in c.names)
                 raise ValueError(f"{self.name}: constraint {c.text} violated ({got})")
         return values
 
@@ -199,11 +201,3 @@ def unknown_message(what: str, name: str, valid: Sequence[str]) -> str:
     close = difflib.get_close_matches(name, list(valid), n=1)
     hint = f" (did you mean {close[0]!r}?)" if close else ""
     return f"{what} {name!r}{hint}; valid: {', '.join(valid)}"
-
-
-def _fmt(v: Any) -> str:
-    if isinstance(v, float):
-        return f"{v:g}"
-    if isinstance(v, tuple):
-        return ",".join(_fmt(x) for x in v)
-    return str(v)

@@ -1,8 +1,9 @@
-"""Directional albedo curve a(θi) over 0–90° (SPEC §4 view 4), drawn with plotext.
+"""Directional albedo curve a(θi) over 0–90° (SPEC §4 view 4), drawn with plotext (the one
+plot that still is: the others are braille canvases, :mod:`.braille`).
 
-The curve, ``a(θi) = ∫ f(wi, wo) cos θr dω`` at every 3°, comes with the frame
-(``SideFrame.curve`` of :mod:`tuibrdf.core.views.frame`, cached per material: moving θi only
-moves the marker); the pane with its title is :func:`tuibrdf.render.panes.albedo_pane`.  The axis is
+The curve, ``a(θi) = ∫ f(wi, wo) cos θr dω`` at every 3°, comes with the frame (each side's
+``curve``, :mod:`tuibrdf.core.views.frame`, cached per material: moving θi only moves the
+marker); the pane with its title is :func:`tuibrdf.render.panes.albedo_pane`.  The axis is
 scaled to the curves (a specular albedo of 0.05 fills the plot; the line ``a = 1`` is drawn
 when it is in range) and labelled; θi is marked by a vertical line and a point on each curve,
 the x range starting just left of 0° so that θi = 0 stays visible.  RGB models get the curves
@@ -11,9 +12,19 @@ the channel choice asks for; in compare mode each side has its own marker.
 
 from __future__ import annotations
 
-import numpy as np
+import threading
 
-from tuibrdf.render.polar import GUIDE_COLOR, INCIDENT_COLOR, PLOT_LOCK, curve_color, finish_plot
+import numpy as np
+from rich.text import Text
+
+from tuibrdf.render.curves import curve_color
+
+#: plotext keeps its figure in module-global state: every build runs under this lock
+#: (``clf`` → plot → ``build`` → ``clf``), so it is deterministic, and the app may draw from
+#: worker threads
+PLOT_LOCK = threading.Lock()
+GUIDE_COLOR = 244  # xterm grey: the line a = 1
+INCIDENT_COLOR = "yellow"  # the θi marker
 
 
 def albedo_plot(
@@ -85,3 +96,22 @@ def nice_step(top: float) -> float:
         if top / (m * e) <= 6:
             return m * e
     return 2 * e
+
+
+def finish_plot(color: str) -> str:
+    """``plt.build()`` then ``plt.clf()`` (call under :data:`PLOT_LOCK`): the figure's text
+    without plotext's final newline, without colours when ``color == "none"``."""
+    import plotext as plt  # ≈ 20 ms: when a plot is drawn, not at the viewer's start
+
+    text = plt.build()
+    plt.clf()
+    if text.endswith("\n"):  # plotext ends its last line with a newline
+        text = text[:-1]
+    return plt.uncolorize(text) if color == "none" else text
+
+
+def plot_body(text: str, color: str) -> Text:
+    """A built plot as a non-wrapping Rich ``Text`` (ANSI colours parsed unless plain)."""
+    body = Text(text) if color == "none" else Text.from_ansi(text)
+    body.no_wrap = True
+    return body

@@ -83,8 +83,9 @@ class BrailleCanvas:
     """A ``width × height`` cell canvas mapping data ``xlim × ylim`` onto its dots (y up).
 
     ``color``: ``truecolor``/``256`` (layer colours) or ``none``; ``charset``: ``braille`` or
-    ``ascii``.  Draw with :meth:`polyline`, :meth:`points`, :meth:`circle`, :meth:`text`; it is
-    a Rich renderable and :meth:`rows` gives the segments per row (exactly ``width`` cells)."""
+    ``ascii``.  Draw with :meth:`polyline` (lines, lone points, arcs from :meth:`arc_points`)
+    and :meth:`text`; it is a Rich renderable and :meth:`rows` gives the segments per row
+    (exactly ``width`` cells)."""
 
     def __init__(
         self,
@@ -142,12 +143,6 @@ class BrailleCanvas:
         r = np.minimum(np.rint(rows[ok]).astype(np.int64), self.dot_h - 1)
         self.owner[r, c] = layer
 
-    def points(self, x: np.ndarray, y: np.ndarray, layer: int) -> None:
-        """One dot per finite point."""
-        cx, ry = self.to_dots(x, y)
-        ok = np.isfinite(cx) & np.isfinite(ry)
-        self._set(cx[ok], ry[ok], layer)
-
     def polyline(self, x: np.ndarray, y: np.ndarray, layer: int) -> None:
         """The segments between consecutive points (a non-finite point breaks the line), dots
         kept by the layer's pattern counted along the whole path."""
@@ -197,16 +192,11 @@ class BrailleCanvas:
         self._set(xs[keep], ys[keep], layer)
         self._set(cx[lone], ry[lone], layer)
 
-    def circle(self, cx: float, cy: float, r: float, layer: int,
-               t0_deg: float = 0.0, t1_deg: float = 360.0) -> None:
-        """An arc of radius ``r`` (data units, x and y scaled alike) from angle ``t0`` to
-        ``t1`` measured from +y toward +x (the polar plots' θ), in chords of about one dot."""
-        self.polyline(*self.arc_points(cx, cy, r, t0_deg, t1_deg), layer)
-
     def arc_points(self, cx: float, cy: float, r: float, t0_deg: float = 0.0,
                    t1_deg: float = 360.0) -> tuple[np.ndarray, np.ndarray]:
-        """The points :meth:`circle` joins: chords of about one dot (several arcs can be drawn
-        in one :meth:`polyline` call, separated by NaN)."""
+        """The points of an arc of radius ``r`` (data units, x and y scaled alike) from angle
+        ``t0`` to ``t1`` measured from +y toward +x (the polar plots' θ), about one dot apart:
+        :meth:`polyline` draws it (several arcs in one call, separated by NaN)."""
         (x0, x1) = self.xlim
         r_dots = abs(r) * self.dot_w / (x1 - x0)  # x1 > x0
         n = int(np.clip(np.ceil(np.radians(abs(t1_deg - t0_deg)) * r_dots), 8, 20000))
@@ -291,10 +281,6 @@ class BrailleCanvas:
         if diff is not None:
             mark_changed(out, old[2], ~same, diff)
         return chars, colour, out
-
-    def lines(self) -> list[str]:
-        """The characters of each row (for tests and plain output)."""
-        return ["".join(s.text for s in row) for row in self.rows()]
 
     def __rich_console__(self, console: Console, options: ConsoleOptions) -> RenderResult:
         new_line = Segment.line()

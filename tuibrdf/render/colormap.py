@@ -36,6 +36,7 @@ from rich.console import Group
 from rich.text import Text
 
 from tuibrdf.core.conventions import fmt_value, luminance
+from tuibrdf.core.display import DISPLAY
 from tuibrdf.render import CMAPS
 from tuibrdf.render.halfblock import TRANSPARENT, HalfBlockImage
 
@@ -269,7 +270,7 @@ class Colored:
 
 def colorize(
     values: np.ndarray,
-    cmap: str = "grey",
+    cmap: str = DISPLAY.cmap,
     *,
     levels: int = DEFAULT_LEVELS,
     log: bool = False,
@@ -307,7 +308,7 @@ def colorize(
 
 def colorbar(
     scale: Scale,
-    cmap: str = "grey",
+    cmap: str = DISPLAY.cmap,
     width: int = 40,
     *,
     levels: int = DEFAULT_LEVELS,

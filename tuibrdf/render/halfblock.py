@@ -8,8 +8,8 @@ Input is a *level-index image* (``H_px × W_px`` ints) plus a palette (``L × 3`
 ``-1`` (:data:`TRANSPARENT`) leaves the terminal background visible.  An RGB image goes through
 :meth:`HalfBlockImage.from_rgb`, which builds the palette from the image's distinct colours.
 
-Fast by construction (measured in ``../shared/notes/textual.md``: ≈ 111 ms per 160×48 frame with
-one ``Style`` per cell, ≈ 1.5 ms like this):
+Fast by construction (≈ 111 ms per 160×48 frame with one ``Style`` per cell, ≈ 1.5 ms like
+this, when it was written; ``scripts/bench_draw.py`` measures a frame's drawing now):
 
 1. per cell, ``code = (top + 1) · (P + 1) + (bottom + 1)`` over the palette actually drawn;
 2. runs of equal codes along a row are found with numpy and become **one** ``Segment`` each;
@@ -31,7 +31,7 @@ Every segment has a non-None ``Style`` (Textual 8.2's ``NO_COLOR`` filter crashe
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Literal
@@ -408,8 +408,3 @@ def console_system(console: Console) -> ColorSystem:
     if cs is None:
         return "none"
     return "truecolor" if cs == "truecolor" else "256"
-
-
-def segments_text(rows: Iterable[Iterable[Segment]]) -> list[str]:
-    """The characters of each row (for tests and plain output)."""
-    return ["".join(s.text for s in row) for row in rows]

@@ -1,20 +1,18 @@
-"""Half/difference-angle views (:mod:`tuibrdf.core.views.halfdiff`): the θh × θd image at fixed φd
-and the line plots f(θh) at fixed θd, f(θd) at fixed θh.
+"""Half/difference-angle views (:mod:`tuibrdf.core.views.halfdiff`) drawn from the frame's samples
+(:func:`tuibrdf.render.panes.extra_pane`): the θh × θd image at fixed φd and the line plots
+f(θh) at fixed θd, f(θd) at fixed θh.
 
-**Image slice** (:func:`slice_view`): θh along x (0° left … 90° right, uniform in √θh by
+**Image slice** (:func:`slice_picture`): θh along x (0° left … 90° right, uniform in √θh by
 default as MERL's table), θd along y (0° at the bottom … 90° at the top), half-block pixels in
 the chosen colour map (RGB models in colour with ``grey``), background where ``wi`` or ``wo``
 is below the horizon; θd tick labels on the left, θh ticks underneath, then the colour bar.
 
-**Line plots** (:func:`theta_h_view`, :func:`theta_d_view`): braille curves (:mod:`.braille`)
-over 0–90° with y ticks (linear, or decades in log mode); the curve stops where the angles
-leave the hemisphere.  RGB models get one curve per channel, told apart by colour and by dot
-pattern.
+**Line plots** (:func:`line_picture`): braille curves (:mod:`.braille`) over 0–90° with y ticks
+(linear, or decades in log mode); the curve stops where the angles leave the hemisphere.  RGB
+models get one curve per channel, told apart by colour and by dot pattern.
 """
 
 from __future__ import annotations
-
-from typing import Any
 
 import numpy as np
 from rich.console import Console, ConsoleOptions, Group, RenderResult
@@ -22,15 +20,9 @@ from rich.measure import Measurement
 from rich.segment import Segment
 from rich.text import Text
 
-from tuibrdf.core.params import Model
-from tuibrdf.core.views.halfdiff import (
-    DEFAULT_PHI_D,
-    SCALE_LIMIT_DEG,
-    scale_max,
-    slice_image,
-    theta_d_curve,
-    theta_h_curve,
-)
+from tuibrdf.core.conventions import fmt_value
+from tuibrdf.core.display import DISPLAY
+from tuibrdf.core.views.halfdiff import SCALE_LIMIT_DEG, scale_max
 from tuibrdf.render.braille import NULL_STYLE, BrailleCanvas, curve_layers, draw_legend, nice_ticks
 from tuibrdf.render.colormap import (
     DEFAULT_LEVELS,
@@ -38,10 +30,9 @@ from tuibrdf.render.colormap import (
     Scale,
     colorbar,
     colorize,
-    fmt_value,
 )
+from tuibrdf.render.curves import channel_curves, curve_color
 from tuibrdf.render.halfblock import HalfBlockImage
-from tuibrdf.render.polar import channel_curves, curve_color
 from tuibrdf.render.text import first_fitting
 
 #: width of the y tick labels and the space after them
@@ -110,32 +101,6 @@ def scale_note(f: np.ndarray, valid: np.ndarray, vmax: float) -> list[list[tuple
     return [[(f"max {fmt_value(peak)} sr⁻¹", 1)]]
 
 
-def slice_view(
-    model: Model,
-    values: dict[str, Any],
-    width: int,
-    height: int,
-    *,
-    phi_d_deg: float = DEFAULT_PHI_D,
-    sqrt_h: bool = True,
-    log: bool = False,
-    cmap: str = "grey",
-    levels: int = DEFAULT_LEVELS,
-    rgb_mode: str = "auto",
-    color: str = "truecolor",
-) -> Group:
-    """Title, θh × θd image (``height − 4`` rows: title, θh ticks and a two-line colour bar
-    take the rest) with θd labels, θh ticks and the colour bar."""
-    img_w, rows = int(width) - MARGIN, int(height) - 4
-    if img_w < 4 or rows < 2:
-        raise ValueError(f"view size {width}×{height} too small for the θh × θd image")
-    f, valid, th, td = slice_image(model, values, phi_d_deg, n_h=img_w, n_d=2 * rows,
-                                   sqrt_h=sqrt_h)
-    return slice_picture(model.name, f, valid, th, td, width, height, phi_d_deg=phi_d_deg,
-                         sqrt_h=sqrt_h, log=log, cmap=cmap, levels=levels, rgb_mode=rgb_mode,
-                         color=color)
-
-
 def slice_pixels(width: int, height: int) -> tuple[int, int]:
     """``(n_h, n_d)``: the θh × θd samples of a ``width × height`` slice view."""
     return int(width) - MARGIN, 2 * (int(height) - 4)
@@ -148,9 +113,9 @@ def slice_scale(extra: tuple, phi_d_deg: float) -> float:
 
 
 def slice_picture(name: str, f: np.ndarray, valid: np.ndarray, th: np.ndarray, td: np.ndarray,
-                  width: int, height: int, *, phi_d_deg: float = DEFAULT_PHI_D,
-                  sqrt_h: bool = True, vmax: float | None = None, log: bool = False,
-                  cmap: str = "grey", levels: int = DEFAULT_LEVELS, rgb_mode: str = "auto",
+                  width: int, height: int, *, phi_d_deg: float = DISPLAY.phi_d.default,
+                  sqrt_h: bool = DISPLAY.sqrt_h, vmax: float | None = None, log: bool = False,
+                  cmap: str = DISPLAY.cmap, levels: int = DEFAULT_LEVELS, rgb_mode: str = "auto",
                   color: str = "truecolor") -> Group:
     """The slice view of precomputed samples (:func:`slice_image`); ``vmax`` the colour
     scale's top (default: the slice's own, :func:`slice_scale`)."""
@@ -269,25 +234,3 @@ def line_view(
     head = first_fitting([[*title_parts, *note, *tail] for note in scale_note(f_raw, valid, scale)],
                          int(width))
     return Group(head, LeftLabelled(canvas, labels), axis)
-
-
-def theta_h_view(model: Model, values: dict[str, Any], width: int, height: int, *,
-                 theta_d_deg: float = 0.0, phi_d_deg: float = DEFAULT_PHI_D,
-                 log: bool = False, color: str = "truecolor", charset: str = "braille") -> Group:
-    """f against θh at fixed θd and φd."""
-    xs, f, valid = theta_h_curve(model, values, theta_d_deg, phi_d_deg, n=361)
-    scale = scale_max(f, xs, theta_d_deg, phi_d_deg)
-    return line_view([(model.name, 2), (f"f(θh) at θd={theta_d_deg:g}° φd={phi_d_deg:g}°", 0)],
-                     xs, f, valid, model.name, scale, width, height, xlabel="θh", log=log,
-                     color=color, charset=charset)
-
-
-def theta_d_view(model: Model, values: dict[str, Any], width: int, height: int, *,
-                 theta_h_deg: float = 0.0, phi_d_deg: float = DEFAULT_PHI_D,
-                 log: bool = False, color: str = "truecolor", charset: str = "braille") -> Group:
-    """f against θd at fixed θh and φd."""
-    xs, f, valid = theta_d_curve(model, values, theta_h_deg, phi_d_deg, n=361)
-    scale = scale_max(f, theta_h_deg, xs, phi_d_deg)
-    return line_view([(model.name, 2), (f"f(θd) at θh={theta_h_deg:g}° φd={phi_d_deg:g}°", 0)],
-                     xs, f, valid, model.name, scale, width, height, xlabel="θd", log=log,
-                     color=color, charset=charset)

@@ -28,15 +28,16 @@ from rich.console import Group, RenderableType
 from rich.text import Text
 
 from tuibrdf.core.conventions import decimals_for, fmt_value, luminance
+from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.sphere.horizon import HORIZON_DEG, Horizon, PeakScale
 from tuibrdf.core.sphere.peak import Peak
 from tuibrdf.core.views.frame import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
 from tuibrdf.core.views.hemimap import geometry
-from tuibrdf.render.albedo_plot import albedo_plot
+from tuibrdf.render.albedo_plot import albedo_plot, plot_body
 from tuibrdf.render.colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize
+from tuibrdf.render.curves import CHANNEL_WORDS, side_curves
 from tuibrdf.render.halfblock import HalfBlockImage, Mark
-from tuibrdf.render.polar import CHANNEL_WORDS, caption_parts, plot_body, side_curves
-from tuibrdf.render.polar_braille import fwhm_text, polar_canvas
+from tuibrdf.render.sections import caption_parts, fwhm_text, polar_canvas
 from tuibrdf.render.solid import solid_image
 from tuibrdf.render.text import (
     INCIDENT_MARK,
@@ -61,17 +62,18 @@ DIVERGING = ((59, 76, 192), (221, 221, 221), (180, 4, 38))
 
 @dataclass(frozen=True)
 class Look:
-    """How the numbers are drawn (none of it changes a number)."""
+    """How the numbers are drawn (none of it changes a number); the defaults are
+    :data:`~tuibrdf.core.display.DISPLAY`'s."""
 
     color: str = "truecolor"  # truecolor | 256 | none
-    cmap: str = "grey"
+    cmap: str = DISPLAY.cmap
     log: bool = False
     levels: int = DEFAULT_LEVELS
     rgb_mode: str = "auto"  # auto | color | luminance
-    azimuth: float = -60.0  # the 3D solid's camera
-    elevation: float = 25.0
-    exposure: float = 1.0  # the lit views' tone mapping (core/lit.py)
-    gamma: float = 2.2
+    azimuth: float = DISPLAY.azimuth.default  # the 3D solid's camera
+    elevation: float = DISPLAY.elevation.default
+    exposure: float = DISPLAY.exposure.default  # the lit views' tone mapping (core/views/lit.py)
+    gamma: float = DISPLAY.gamma.default
     charset: str = "braille"  # the sections and line plots (render/braille.py)
     #: the curves of an RGB model (sections, albedo): rgb (three) | lum | R | G | B
     channel: str = "rgb"

@@ -16,7 +16,7 @@
 - Shading: Lambert-like, ``0.2 + 0.8·|n·l|`` with ``n`` the triangle normal of the *deformed*
   surface and ``l`` a light over the camera's left shoulder, quantised through the colour map.
 - Log (``log=True``): the radius is the decade position ``1 + log10(f / max) / 3`` clipped at 0,
-  as in the polar plots.
+  as in the sections (:func:`.sections.radius`).
 - Axes hint: the surface's outline (circle of radius ``max|p|`` in z = 0) and the normal N in
   blue-grey, the incident direction in cyan, also depth-tested.
 """
@@ -29,10 +29,11 @@ import numpy as np
 
 from tuibrdf.core.conventions import luminance
 from tuibrdf.core.directions import incident
+from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.views.frame import SOLID_SUBDIV, solid_samples
 from tuibrdf.render.colormap import LOG_DECADES, palette, quantise
 from tuibrdf.render.halfblock import TRANSPARENT
-from tuibrdf.render.polar import radius
+from tuibrdf.render.sections import radius
 from tuibrdf.render.text import LIGHT_RGB, RING_RGB
 
 SHADE_LEVELS = 64
@@ -117,11 +118,11 @@ def solid_image(
     px_h: int,
     *,
     rmax: float,
-    cmap: str = "grey",
+    cmap: str = DISPLAY.cmap,
     log: bool = False,
-    azimuth_deg: float = -60.0,
-    elevation_deg: float = 25.0,
-    phi_i_deg: float = 180.0,
+    azimuth_deg: float = DISPLAY.azimuth.default,
+    elevation_deg: float = DISPLAY.elevation.default,
+    phi_i_deg: float = DISPLAY.phi_i.default,
 ) -> tuple[np.ndarray, np.ndarray]:
     """``(index (px_h, px_w), palette)`` of the shaded solid (the light's guide at θi, φi).
 
@@ -135,10 +136,10 @@ def solid_image(
         f = luminance(f)
     f, fv = f[: len(dirs)], f[len(dirs):].reshape(corner_dirs.shape[:2])
     top = rmax if rmax > 0 else 1.0
-    # a scale below the peak (the peak above 89° or unbounded, core/horizon.py): the radius is
-    # clipped at it, as the map's colours are
+    # a scale below the peak (the peak above 89° or unbounded, core/sphere/horizon.py): the
+    # radius is clipped at it, as the map's colours are
     f, fv = np.minimum(f, top), np.minimum(fv, top)
-    if log:  # radius = decade position in [0, 1], as in the polar plots
+    if log:  # radius = decade position in [0, 1], as in the sections
         f = radius(f, top, True, LOG_DECADES)
         fv = radius(fv, top, True, LOG_DECADES)
     pts = f[:, None] * dirs

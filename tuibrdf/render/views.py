@@ -1,18 +1,24 @@
 """``render_view``: one call from (model, resolved values, θi, size) to a Rich renderable.
 
-Views (:data:`VIEWS`):
+Views (:data:`VIEWS`, declared in :mod:`tuibrdf.render`):
 
-=================  ================================================================================
-``map``            Lambert equal-area map (:mod:`~tuibrdf.core.views.hemimap`) as half blocks: a
-title
-                   line with the peak, the disc (horizon ring, ``×`` on the mirror direction S,
-                   ``o`` on the incident direction's Lambert point) and a colour bar from 0 (or
-                   3 decades below, in log) to the peak
-``incidence``      polar cross-section in the plane of incidence (:mod:`.polar`)
-``perpendicular``  polar cross-section in the perpendicular plane
+=================  ==========================================================================
+``map``            Lambert equal-area map (:mod:`~tuibrdf.core.views.hemimap`) as half blocks:
+                   a title line with the peak, the disc (horizon ring, ``×`` on the mirror
+                   direction S, ``o`` on the incident direction's Lambert point) and a colour
+                   bar from 0 (or 3 decades below, in log) to the peak
+``incidence``      polar cross-section in the plane of incidence (:mod:`.sections`)
+``perpendicular``  polar cross-section through the lobe's peak, across the plane of incidence
+                   (turned by ``section_azimuth_deg``)
 ``solid``          3D photometric solid (:mod:`.solid`)
 ``albedo``         directional albedo a(θi) over 0–90° (:mod:`.albedo_plot`)
-=================  ================================================================================
+``sphere``         the material on a sphere lit from θi (:mod:`.lit_view`)
+``plane``          a large plane lit from θi, seen along the mirror direction
+                   (:mod:`.lit_view`)
+``slice``          f over θh × θd at fixed φd (:mod:`.halfdiff_view`)
+``theta-h``        f against θh at fixed θd and φd (:mod:`.halfdiff_view`)
+``theta-d``        f against θd at fixed θh and φd (:mod:`.halfdiff_view`)
+=================  ==========================================================================
 
 The numbers come from one :class:`~tuibrdf.core.views.frame.FrameRequest` (the same computation the
 viewer uses), the picture from :func:`tuibrdf.render.panes.pane`.
@@ -32,6 +38,7 @@ from typing import Any
 
 from rich.console import RenderableType
 
+from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.material import Material
 from tuibrdf.core.params import Model
 from tuibrdf.core.views.frame import FrameRequest, compute_frame
@@ -96,35 +103,36 @@ def render_view(
     height: int,
     *,
     color: str = "truecolor",
-    cmap: str = "grey",
+    cmap: str = DISPLAY.cmap,
     log: bool = False,
     cosine: bool = False,
     levels: int = DEFAULT_LEVELS,
     method: str = DEFAULT_METHOD,
     rgb_mode: str = "auto",
-    azimuth_deg: float = -60.0,
-    elevation_deg: float = 25.0,
-    section_azimuth_deg: float = 90.0,
-    exposure: float = 1.0,
-    gamma: float = 2.2,
-    theta_d_deg: float = 30.0,
-    theta_h_deg: float = 0.0,
-    phi_d_deg: float = 90.0,
-    sqrt_h: bool = True,
+    azimuth_deg: float = DISPLAY.azimuth.default,
+    elevation_deg: float = DISPLAY.elevation.default,
+    section_azimuth_deg: float = DISPLAY.section_azimuth.default,
+    exposure: float = DISPLAY.exposure.default,
+    gamma: float = DISPLAY.gamma.default,
+    theta_d_deg: float = DISPLAY.theta_d.default,
+    theta_h_deg: float = DISPLAY.theta_h.default,
+    phi_d_deg: float = DISPLAY.phi_d.default,
+    sqrt_h: bool = DISPLAY.sqrt_h,
     charset: str = "braille",
-    phi_i_deg: float = 180.0,
+    phi_i_deg: float = DISPLAY.phi_i.default,
 ) -> RenderableType:
     """The picture of ``view`` in ``width × height`` terminal cells (title line included).
 
     ``values`` are validated again (a :class:`~tuibrdf.core.material.Material` is built);
-    ``theta_i_deg`` in [0, 90].  Raises ``ValueError`` for an unknown view, colour system or
-    map, or a size below 12×6.
+    ``theta_i_deg`` in [0, 90]; the look's defaults are :data:`~tuibrdf.core.display.DISPLAY`'s.
+    Raises ``ValueError`` for an unknown view, colour system or map, or a size below 12×6.
     """
     width, height = int(width), int(height)
     check_common(view, width, height, color, cmap)
     theta_i = float(theta_i_deg)
-    if not 0.0 <= theta_i <= 90.0:
-        raise ValueError(f"theta_i {theta_i_deg} out of range: expected 0..90 degrees")
+    if not DISPLAY.theta_i.accepts(theta_i):
+        raise ValueError(f"theta_i {theta_i_deg} out of range: expected "
+                         f"{DISPLAY.theta_i.lo:g}..{DISPLAY.theta_i.hi:g} degrees")
     req = request_for(view, (Material(model, values),), theta_i, width, height, cosine=cosine,
                       method=method, section_azimuth=float(section_azimuth_deg),
                       theta_d=float(theta_d_deg), theta_h=float(theta_h_deg),

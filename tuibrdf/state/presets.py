@@ -1,8 +1,13 @@
 """Saved parameter sets: one small TOML file per preset (no Textual).
 
-Files live in ``$XDG_CONFIG_HOME/tuibrdf/presets/NAME.toml`` (``~/.config`` when the variable
-is unset), are read with :mod:`tomllib`, and are written atomically (a temporary file in the
-same directory, then :func:`os.replace`), so a crash never leaves half a preset behind.  A
+Presets are saved in :func:`preset_dir`, ``platformdirs.user_config_path("tuibrdf") /
+"presets"`` (on Linux ``$XDG_CONFIG_HOME/tuibrdf/presets``, ``~/.config`` when the variable is
+unset; on macOS ``~/Library/Application Support/tuibrdf/presets``), as ``NAME.toml``.  They are
+read from there and from where earlier versions saved them on every system,
+``$XDG_CONFIG_HOME/tuibrdf/presets`` or ``~/.config/tuibrdf/presets`` (:func:`legacy_preset_dir`;
+the same directory on Linux), so no preset is lost; a name in both is the new one.  Files are
+read with :mod:`tomllib` and written atomically (a temporary file in the same directory, then
+:func:`os.replace`), so a crash never leaves half a preset behind.  A
 preset holds θi and one or two sides (two in compare mode)::
 
     # tuibrdf preset
@@ -35,9 +40,10 @@ import time
 from pathlib import Path
 from typing import Any
 
+from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.formats.files import read_regular
 from tuibrdf.core.registry import get_model
-from tuibrdf.state.viewer import THETA_MAX, THETA_MIN, Side, ViewerState
+from tuibrdf.state.viewer import Side, ViewerState
 
 NAME_RE = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]{0,63}$")
 
@@ -56,28 +62,71 @@ class PresetError(ValueError):
 
 
 def preset_dir() -> Path:
+    """Where presets are saved: the user's configuration directory for tuibrdf (platformdirs;
+    ``appauthor=False``: no second ``tuibrdf`` level on Windows)."""
+    from platformdirs import user_config_path  # ≈ 10 ms: when a preset is listed or saved
+
+    return user_config_path("tuibrdf", appauthor=False) / "presets"
+
+
+def legacy_preset_dir() -> Path:
+    """Where tuibrdf saved presets before :func:`preset_dir`, on every system:
+    ``$XDG_CONFIG_HOME/tuibrdf/presets``, ``~/.config`` when the variable is unset."""
     base = os.environ.get("XDG_CONFIG_HOME") or os.path.join(os.path.expanduser("~"), ".config")
     return Path(base) / "tuibrdf" / "presets"
 
 
-def preset_path(name: str) -> Path:
+def preset_dirs() -> list[Path]:
+    """The directories presets are read from, the one saved to first (one on Linux)."""
+    new, old = preset_dir(), legacy_preset_dir()
+    return [new] if old == new else [new, old]
+
+
+def where_presets_are() -> str:
+    """The directories :func:`preset_dirs`, as a message names them."""
+    return " or ".join(str(d) for d in preset_dirs())
+
+
+def _check_name(name: str) -> None:
     if not NAME_RE.match(name):
         raise PresetError(f"preset name {name!r} is invalid: use letters, digits, _ . - "
                           "(at most 64 characters)")
+
+
+def preset_path(name: str) -> Path:
+    """Where preset ``name`` is saved (:func:`preset_dir`); :class:`PresetError` for a bad
+    name."""
+    _check_name(name)
+    return preset_dir() / f"{name}.toml"
+
+
+def find_preset(name: str) -> Path:
+    """Where preset ``name`` is read from: the first of :func:`preset_dirs` that has an entry
+    of that name (whatever it is: a FIFO or a directory is reported by the reader), else its
+    :func:`preset_path`; :class:`PresetError` for a bad name."""
+    _check_name(name)
+    for d in preset_dirs():
+        path = d / f"{name}.toml"
+        if os.path.lexists(path):
+            return path
     return preset_dir() / f"{name}.toml"
 
 
 def list_presets() -> list[str]:
-    """Names of the saved presets (regular files ``NAME.toml`` with a valid name), sorted.
-    Never raises: an unreadable directory lists nothing."""
-    d = preset_dir()
-    try:
-        if not d.is_dir():
-            return []
-        clean_stale(d)
-        return sorted(p.stem for p in d.glob("*.toml") if NAME_RE.match(p.stem) and p.is_file())
-    except OSError:
-        return []
+    """Names of the saved presets (regular files ``NAME.toml`` with a valid name) in every
+    one of :func:`preset_dirs`, sorted.  Never raises: an unreadable directory lists
+    nothing."""
+    names: set[str] = set()
+    for d in preset_dirs():
+        try:
+            if not d.is_dir():
+                continue
+            clean_stale(d)
+            names.update(p.stem for p in d.glob("*.toml")
+                         if NAME_RE.match(p.stem) and p.is_file())
+        except OSError:
+            continue
+    return sorted(names)
 
 
 def clean_stale(d: Path, now: float | None = None) -> int:
@@ -207,11 +256,12 @@ def from_toml(text: str, where: str = "preset") -> tuple[float, list[Side]]:
         if "digits" in msg:
             msg = "a number has too many digits"
         raise PresetError(f"{where}: not a preset: {_one_line(msg)}") from None
-    theta = data.get("theta_i", 30.0)
+    theta = data.get("theta_i", DISPLAY.theta_i.default)
     if isinstance(theta, bool) or not isinstance(theta, int | float) \
-            or not THETA_MIN <= theta <= THETA_MAX:
+            or not DISPLAY.theta_i.accepts(theta):
         raise PresetError(f"{where}: theta_i = {_one_line(repr(theta), 40)} is invalid: "
-                          "expected a number in [0, 90]")
+                          f"expected a number in [{DISPLAY.theta_i.lo:g}, "
+                          f"{DISPLAY.theta_i.hi:g}]")
     raw = data.get("sides")
     if not isinstance(raw, list) or not 1 <= len(raw) <= 2:
         raise PresetError(f"{where}: expected one or two [[sides]] tables")
@@ -241,16 +291,16 @@ def _one_line(text: str, limit: int = 300) -> str:
 
 
 def load_preset(name: str) -> tuple[float, list[Side]]:
-    """``(theta_i, sides)`` of the saved preset ``name``; raises :class:`PresetError` (one
-    line naming the file) for a missing, non-regular, oversized, undecodable or malformed
-    file.  Never blocks on a FIFO."""
-    path = preset_path(name)
+    """``(theta_i, sides)`` of the saved preset ``name`` (:func:`find_preset`: the new
+    directory first); raises :class:`PresetError` (one line naming the file) for a missing,
+    non-regular, oversized, undecodable or malformed file.  Never blocks on a FIFO."""
+    path = find_preset(name)
     try:
         text = read_regular(path, MAX_BYTES).decode("utf-8")
     except FileNotFoundError:
         have = list_presets()
         hint = f"; saved presets: {', '.join(have)}" if have else ""
-        raise PresetError(f"no preset named {name!r} in {path.parent}{hint}") from None
+        raise PresetError(f"no preset named {name!r} in {where_presets_are()}{hint}") from None
     except OSError as e:
         raise PresetError(f"cannot read {path}: {_why(e)}") from None
     except UnicodeDecodeError as e:

@@ -1,33 +1,43 @@
 """The viewer's state and every transition on it, as plain Python (no Textual).
 
-The app is a thin layer: a key calls one method here, which either changes the state and
-returns ``None`` or refuses and returns a short message for the status line.  Parameter values
-are validated with :meth:`Model.resolve`, so a key can never push a value out of its range or
-break a declared constraint (``kd + ks ≤ 1``).
+The app is a thin layer: a key calls one method here (the key table, :mod:`tuibrdf.app.keys`),
+which changes the state and returns ``None`` (or a note for the status line), or refuses and
+returns a short message saying why.  Parameter values are validated by the side's
+:class:`~tuibrdf.core.material.Material` (:meth:`Model.resolve`), so a key can never push a
+value out of its range or break a declared constraint (``kd + ks ≤ 1``).
 
-====================  =====================================================
+====================  =====================================================================
 method                what it does
-====================  =====================================================
+====================  =====================================================================
 ``step_theta``        θi by ± degrees, clamped to [0°, 90°]
+``set_theta``         θi set to a value in [0°, 90°] (a value out of range is refused)
+``type_theta``        θi typed as text (key t)
 ``select``            move the parameter cursor (wraps)
-``step_param``        the selected parameter ± its step (or coarse step)
+``step_param``        the selected parameter ± its step (or coarse step); a choice cycles
 ``reset_param``       the selected parameter back to its default
-``cycle_model``       next / previous model of the active side, θi kept
-``cycle_view``        map → 3D solid → albedo curve
+``type_value``        the selected parameter typed as text (Enter or =)
+``cycle_model``       next / previous model of the active side (files shown come back), θi kept
+``cycle_view``        the main view: :data:`MAIN_VIEWS` in order, either way
+``toggle_log``        linear / log colour scale
+``cycle_cmap``        next / previous colour map (:data:`~tuibrdf.render.CMAPS`)
+``cycle_channel``     the curves of RGB models: all three → luminance → R → G → B
+``toggle_cosine``     show f or f·cos θr
 ``toggle_compare``    one side ↔ two sides (B starts as a copy of A)
 ``switch_side``       which side the parameter keys act on (compare mode)
 ``apply_preset``      one of :data:`COMPARE_PRESETS` (the seed's comparisons)
+``next_preset``       the next of them; after the last, the sides as they were before
 ``rotate``            azimuth / elevation of the 3D solid (solid view only)
 ``step_phi_i``        the light's azimuth φi (wraps; 180° by default)
-``step_section``      the section azimuth ψ of the section through the peak
-``scale_exposure``    the lit views' exposure × or ÷ 2
+``step_section``      the section azimuth ψ of the section through the peak (wraps)
+``scale_exposure``    the lit views' exposure × a factor (keys: ×2, ÷2)
 ``step_gamma``        the lit views' display gamma
 ``step_fixed``        the half/difference view's fixed angle (θd, θh or φd)
 ``step_phi_d``        φd of the half/difference views
 ``toggle_sqrt_h``     √θh or linear θh axis of the slice
 ``move_probe``        the probe on the map (Lambert coordinates; shown from the first move)
+``set_probe``         the probe at a point of the map (a click on the map or a section)
 ``toggle_probe``      probe on / off
-====================  =====================================================
+====================  =====================================================================
 """
 
 from __future__ import annotations
@@ -37,6 +47,7 @@ import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
+from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.material import Material
 from tuibrdf.core.params import Model, Param, Value
 from tuibrdf.core.registry import MODELS
@@ -49,14 +60,9 @@ CHANNEL_NAMES = {"rgb": "R, G and B", "lum": "luminance (Rec.709)", "R": "red on
 MAIN_VIEWS = ("map", "solid", "albedo", "sphere", "plane", "slice", "theta-h", "theta-d")
 #: the half/difference views and the angle each one's ``d`` key steps
 FIXED_ANGLE = {"theta-h": "theta_d", "theta-d": "theta_h", "slice": "phi_d"}
-EXPOSURE_MIN, EXPOSURE_MAX = 2.0**-12, 2.0**12
-GAMMA_MIN, GAMMA_MAX = 1.0, 3.0
 #: the probe's step on the map, in Lambert units (the disc's radius is √2)
 PROBE_STEP = 0.05
 SQRT2 = 2.0**0.5
-
-THETA_MIN, THETA_MAX = 0.0, 90.0
-ELEVATION_MIN, ELEVATION_MAX = -10.0, 90.0
 
 
 @dataclass(frozen=True)
@@ -182,13 +188,13 @@ class ViewerState:
 
     sides: list[Side] = field(default_factory=lambda: [Side.of("lambert")])
     active: int = 0
-    theta_i: float = 30.0
+    theta_i: float = DISPLAY.theta_i.default
     view: str = "map"
     log: bool = False
-    cmap: str = CMAPS[0]
+    cmap: str = DISPLAY.cmap
     cosine: bool = False
-    azimuth: float = -60.0
-    elevation: float = 25.0
+    azimuth: float = DISPLAY.azimuth.default
+    elevation: float = DISPLAY.elevation.default
     preset: str = ""  # name of the compare preset last applied, if any
     #: the sides (and active side) before the first preset: ``p`` past the last preset
     #: returns to them, so a preset never throws tuned values away
@@ -197,14 +203,14 @@ class ViewerState:
     channel: str = "rgb"
     #: models read from files (absolute paths) the session has shown: ``m`` cycles back
     files: list[str] = field(default_factory=list)
-    section_azimuth: float = 90.0  # ψ of the section through the peak
-    phi_i: float = 180.0  # the light's azimuth (180°: on the left of the map)
-    exposure: float = 1.0  # lit sphere / plane
-    gamma: float = 2.2
-    theta_d: float = 30.0  # half/difference views: the fixed angles
-    theta_h: float = 0.0
-    phi_d: float = 90.0
-    sqrt_h: bool = True
+    section_azimuth: float = DISPLAY.section_azimuth.default  # ψ of the section through the peak
+    phi_i: float = DISPLAY.phi_i.default  # the light's azimuth (180°: on the left of the map)
+    exposure: float = DISPLAY.exposure.default  # lit sphere / plane
+    gamma: float = DISPLAY.gamma.default
+    theta_d: float = DISPLAY.theta_d.default  # half/difference views: the fixed angles
+    theta_h: float = DISPLAY.theta_h.default
+    phi_d: float = DISPLAY.phi_d.default
+    sqrt_h: bool = DISPLAY.sqrt_h
     #: the probe's Lambert coordinates on the map (None: hidden)
     probe: tuple[float, float] | None = None
     #: values last used for each model, so cycling away and back keeps them
@@ -241,16 +247,16 @@ class ViewerState:
 
     # -- θi ---------------------------------------------------------------------------------
     def step_theta(self, delta: float) -> str | None:
-        new = min(THETA_MAX, max(THETA_MIN, _round(self.theta_i + delta)))
+        new = DISPLAY.theta_i.clamp(_round(self.theta_i + delta))
         if new == self.theta_i:
             edge = "90° (grazing)" if delta > 0 else "0° (normal incidence)"
-            return f"θi is already {edge}; range 0–90°"
+            return f"θi is already {edge}; range {DISPLAY.theta_i.range_text()}"
         self.theta_i = new
         return None
 
     def set_theta(self, deg: float) -> str | None:
-        if not THETA_MIN <= deg <= THETA_MAX:  # also refuses NaN
-            return f"θi = {deg:g}° is out of range 0–90°"
+        if not DISPLAY.theta_i.accepts(deg):  # also refuses NaN
+            return f"θi = {deg:g}° is out of range {DISPLAY.theta_i.range_text()}"
         self.theta_i = float(deg)
         return None
 
@@ -301,9 +307,6 @@ class ViewerState:
             return self._commit(row.param.name, self._with_channel(row, default[row.channel]))
         return self._commit(row.param.name, default)
 
-    def set_param(self, name: str, value: Any) -> str | None:
-        return self._commit(name, value)
-
     def type_value(self, text: str) -> str | None:
         """A value typed for the selected row (Enter or = opens the input): a number checked
         against the declared range, a choice (name or alias), or a file path."""
@@ -329,7 +332,7 @@ class ViewerState:
         try:
             return self.set_theta(parse_number(text))
         except ValueError as e:
-            return f"θi: {e}; expected 0–90°"
+            return f"θi: {e}; expected {DISPLAY.theta_i.range_text()}"
 
     # -- models, views, toggles ----------------------------------------------------------------
     def model_after(self, delta: int) -> str:
@@ -430,9 +433,9 @@ class ViewerState:
         if self.view != "solid":
             return ", . e E (or ctrl+arrows) rotate the 3D solid (press v for that view)"
         self.azimuth = (self.azimuth + d_azimuth + 180.0) % 360.0 - 180.0
-        el = min(ELEVATION_MAX, max(ELEVATION_MIN, self.elevation + d_elevation))
+        el = DISPLAY.elevation.clamp(self.elevation + d_elevation)
         if d_elevation and el == self.elevation:
-            return f"elevation is already {el:g}° (range {ELEVATION_MIN:g}–{ELEVATION_MAX:g}°)"
+            return f"elevation is already {el:g}° (range {DISPLAY.elevation.range_text()})"
         self.elevation = el
         return None
 
@@ -449,16 +452,16 @@ class ViewerState:
         return None
 
     def scale_exposure(self, factor: float) -> str | None:
-        new = min(EXPOSURE_MAX, max(EXPOSURE_MIN, self.exposure * factor))
+        new = DISPLAY.exposure.clamp(self.exposure * factor)
         if new == self.exposure:
-            return f"exposure is already {new:g} (range 2^-12–2^12)"
+            return f"exposure is already {new:g} (range {DISPLAY.exposure.range_text()})"
         self.exposure = new
         return None
 
     def step_gamma(self, delta: float) -> str | None:
-        new = min(GAMMA_MAX, max(GAMMA_MIN, _round(self.gamma + delta)))
+        new = DISPLAY.gamma.clamp(_round(self.gamma + delta))
         if new == self.gamma:
-            return f"gamma is already {new:g} (range {GAMMA_MIN:g}–{GAMMA_MAX:g})"
+            return f"gamma is already {new:g} (range {DISPLAY.gamma.range_text()})"
         self.gamma = new
         return None
 
@@ -471,16 +474,18 @@ class ViewerState:
         if name == "phi_d":
             return self.step_phi_d(delta)
         old = getattr(self, name)
-        new = min(90.0, max(0.0, _round(old + delta)))
+        setting = getattr(DISPLAY, name)
+        new = setting.clamp(_round(old + delta))
         if new == old:
-            return f"{'θd' if name == 'theta_d' else 'θh'} is already {new:g}° (range 0–90°)"
+            return (f"{'θd' if name == 'theta_d' else 'θh'} is already {new:g}° "
+                    f"(range {setting.range_text()})")
         setattr(self, name, new)
         return None
 
     def step_phi_d(self, delta: float) -> str | None:
-        new = min(180.0, max(0.0, _round(self.phi_d + delta)))
+        new = DISPLAY.phi_d.clamp(_round(self.phi_d + delta))
         if new == self.phi_d:
-            return f"φd is already {new:g}° (range 0–180°)"
+            return f"φd is already {new:g}° (range {DISPLAY.phi_d.range_text()})"
         self.phi_d = new
         return None
 

@@ -151,10 +151,15 @@ def test_fresnel_schlick_reference(cos_psi, f0):
     assert_close(got, want)
 
 
-def test_index_from_f0():
-    """f0 = ((n − 1)/(n + 1))²: glass n = 1.5 has f0 = 0.04, n = 2 has f0 = 1/9."""
-    assert fresnel_mod.index_from_f0(0.04) == pytest.approx(1.5, rel=1e-14)
-    assert fresnel_mod.index_from_f0(1.0 / 9.0) == pytest.approx(2.0, rel=1e-14)
+@pytest.mark.parametrize("n", [1.5, 2.0])
+def test_fresnel_exact_recovers_the_index_from_f0(n):
+    """f0 = ((n − 1)/(n + 1))² (glass n = 1.5: f0 = 0.04; n = 2: f0 = 1/9), and the exact
+    Fresnel term recovers n from it: at Brewster's angle (tan θ = n) rp = 0 and θ + θt = 90°,
+    so rs = −sin(θ − θt) = −(n² − 1)/(n² + 1) and F = rs²/2 (n = 2: a 3-4-5 triangle, F =
+    0.18 exactly; n = 1.5: (5/13)²/2 = 0.0739645)."""
+    f0 = ((n - 1.0) / (n + 1.0)) ** 2
+    got = float(fresnel_mod.fresnel_exact(np.array(1.0 / math.sqrt(1.0 + n * n)), f0))
+    assert got == pytest.approx(((n * n - 1.0) / (n * n + 1.0)) ** 2 / 2.0, rel=1e-14)
 
 
 # ------------------------------------------------------------------------------ Lambert
@@ -373,8 +378,11 @@ def test_ggx_one_direction_on_the_horizon_is_the_limit():
 
 @pytest.mark.parametrize("cos_t, alpha", [(0.77, 0.3), (0.12, 0.65), (0.999, 0.05), (1e-4, 1e-3)])
 def test_smith_g1(cos_t, alpha):
-    """G1 = 1/(1 + Λ) (Heitz eq. 43 with eq. 72)."""
-    got = float(microfacet.ggx_g1(np.array(cos_t), np.array(1.0 - cos_t * cos_t), alpha))
+    """G1 = 1/(1 + Λ) (Heitz eq. 43 with eq. 72), as cos/(cos + cos·Λ) from the cos·Λ the
+    models' G2 is built from (:func:`~tuibrdf.core.brdf.microfacet.ggx_lambda_cos`)."""
+    cos_lambda = float(microfacet.ggx_lambda_cos(np.array(cos_t), np.array(1.0 - cos_t * cos_t),
+                                                 alpha))
+    got = cos_t / (cos_t + cos_lambda)
     w = (math.sqrt(1.0 - cos_t * cos_t), 0.0, cos_t)
     assert_close(got, 1.0 / (1.0 + smith_lambda_ref(w, alpha)))
 

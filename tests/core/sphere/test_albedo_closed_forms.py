@@ -110,7 +110,7 @@ def test_smith_g1_weak_white_furnace(alpha, theta_o):
     # Heitz 2014 eq. 19: ∫ G1(wo) max(0, wo·h) D(h) dωh = cos θo (the visible projected area)
     wo = from_degrees(theta_o, 25.0)
     co, s2o = wo[2], wo[0] ** 2 + wo[1] ** 2
-    g1 = float(microfacet.ggx_g1(np.array(co), np.array(s2o), alpha))
+    g1 = float(co / (co + microfacet.ggx_lambda_cos(np.array(co), np.array(s2o), alpha)))
 
     def g(h):
         c = h[:, 2]

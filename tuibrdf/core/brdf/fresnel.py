@@ -25,12 +25,6 @@ from functools import lru_cache
 import numpy as np
 
 
-def index_from_f0(f0: float) -> float:
-    """Real refractive index with normal-incidence reflectance ``f0`` (0 ≤ f0 < 1)."""
-    r = np.sqrt(f0)
-    return float((1.0 + r) / (1.0 - r))
-
-
 def _clip01(c) -> np.ndarray:
     return np.minimum(np.maximum(np.asarray(c, dtype=float), 0.0), 1.0)
 

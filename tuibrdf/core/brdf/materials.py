@@ -31,7 +31,6 @@ DATA_DIR = Path(__file__).resolve().parent / "data"
 FILES = {"abc": DATA_DIR / "abc.tsv", "sgd": DATA_DIR / "sgd.tsv"}
 N_MATERIALS = 100
 
-ABC_FIELDS = ("kd", "a", "b", "c", "eta")
 SGD_FIELDS = ("rho_d", "rho_s", "alpha", "p", "f0", "f1", "kappa", "lambda", "c_g", "k",
               "theta0", "error")
 #: columns after the name(s): (field, width) in file order

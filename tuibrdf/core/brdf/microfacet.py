@@ -74,12 +74,6 @@ def ggx_lambda_cos(cos_t: np.ndarray, sin2_t: np.ndarray, alpha: float) -> np.nd
     return safe_div(a2s2, den, den > 0.0)  # den = 0 only if sin = cos = 0: not a direction
 
 
-def ggx_g1(cos_t: np.ndarray, sin2_t: np.ndarray, alpha: float) -> np.ndarray:
-    """``G1 = 1/(1 + Λ) = cos/(cos + cosΛ)``; 0 on the horizon."""
-    den = cos_t + ggx_lambda_cos(cos_t, sin2_t, alpha)
-    return safe_div(cos_t, den, den > 0.0)
-
-
 def ggx_g2_over_cos(
     cos_i: np.ndarray, sin2_i: np.ndarray, cos_o: np.ndarray, sin2_o: np.ndarray, alpha: float
 ) -> np.ndarray:

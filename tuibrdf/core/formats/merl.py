@@ -277,14 +277,6 @@ def bin_coordinates(theta_h, theta_d, phi_d):
     return t_h, t_d, t_p
 
 
-def bin_index(theta_h, theta_d, phi_d):
-    """``(iθh, iθd, iφd)``: the bin that contains the angles, as in BRDFRead.cpp."""
-    t_h, t_d, t_p = bin_coordinates(theta_h, theta_d, phi_d)
-    return (np.minimum(t_h.astype(np.intp), N_THETA_H - 1),
-            np.minimum(t_d.astype(np.intp), N_THETA_D - 1),
-            np.minimum(t_p.astype(np.intp), N_PHI_D - 1))
-
-
 def flat_index(i_h, i_d, i_p):
     """Index into one channel's plane: ``iφd + 180·(iθd + 90·iθh)``."""
     return i_p + N_PHI_D * (i_d + N_THETA_D * i_h)
@@ -422,5 +414,5 @@ def clear_cache() -> None:
 
 
 __all__ = ["FILE_BYTES", "LOOKUPS", "MERL", "MerlData", "MerlError", "SCALES",
-           "bin_coordinates", "bin_index", "check_file", "clear_cache", "evaluate",
+           "bin_coordinates", "check_file", "clear_cache", "evaluate",
            "flat_index", "from_half_diff", "half_diff", "is_loaded", "load", "load_cached"]

@@ -7,11 +7,11 @@ file), the file is loaded by its extension:
 ==========  =================================================  ============================
 extension   format                                             module
 ==========  =================================================  ============================
-.brdf       BRDF Explorer analytic BRDF (GLSL)                 core/brdf_explorer.py
-.bparam     BRDF Explorer saved parameters for a .brdf file    core/brdf_explorer.py
-.py         a Python model file (``MODEL = Model(...)``)       core/pymodel.py
-.bsdf       RGL-EPFL measured material (Dupuy & Jakob 2018)    core/rgl_bsdf.py
-.binary     MERL measured BRDF                                 core/merl.py
+.brdf       BRDF Explorer analytic BRDF (GLSL)                 :mod:`.brdf_explorer`
+.bparam     BRDF Explorer saved parameters for a .brdf file    :mod:`.brdf_explorer`
+.py         a Python model file (``MODEL = Model(...)``)       :mod:`.pymodel`
+.bsdf       RGL-EPFL measured material (Dupuy & Jakob 2018)    :mod:`.rgl_bsdf`
+.binary     MERL measured BRDF                                 :mod:`.merl`
 ==========  =================================================  ============================
 
 The model's registry-style ``name`` is the file's absolute path, so anything that stores a
@@ -21,8 +21,8 @@ next lookup; an unchanged one is not re-read.
 
 Installed packages add models through the entry-point group ``tuibrdf.models``: each entry
 point's name is a model name and its object a :class:`~tuibrdf.core.params.Model`.  They are
-loaded lazily (on the first lookup of that name, or by :func:`plugin_models`); a plugin that
-fails to load is reported in one line.
+loaded lazily, on the first lookup of that name; a plugin that fails to load is an error
+of one line.
 """
 
 from __future__ import annotations
@@ -169,21 +169,3 @@ def plugin_model(name: str) -> Model | None:
             _PLUGINS[name] = model
             return model
     return None
-
-
-def plugin_models(warn: Callable[[str], None] | None = None) -> dict[str, Model]:
-    """Every installed plugin model; a plugin that fails to load is skipped with one line
-    passed to ``warn`` (default: printed on stderr)."""
-    if warn is None:
-        import sys
-
-        def warn(msg: str) -> None:
-            print(f"tuibrdf: warning: {msg}", file=sys.stderr)
-
-    out = {}
-    for ep in _entry_points():
-        try:
-            out[ep.name] = plugin_model(ep.name)
-        except UserFileError as e:
-            warn(str(e))
-    return {k: v for k, v in out.items() if v is not None}

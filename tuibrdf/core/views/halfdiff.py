@@ -29,12 +29,14 @@ from __future__ import annotations
 
 import numpy as np
 
+from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.formats.merl import from_half_diff
 from tuibrdf.core.params import Model
 
 #: the fixed φd of the views by default: 90°, BRDF Explorer's image-slice default
-DEFAULT_PHI_D = 90.0
+#: (:data:`~tuibrdf.core.display.DISPLAY`)
+DEFAULT_PHI_D = DISPLAY.phi_d.default
 #: cosines at or below this count as on the horizon
 HORIZON_EPS = 1e-12
 #: directions farther than this from the normal do not set the views' scale

@@ -1,23 +1,33 @@
-"""Polar cross-sections drawn straight from numpy on a braille canvas (:mod:`.braille`).
+"""The polar cross-sections, drawn straight from numpy on a braille canvas (:mod:`.braille`):
+the panes ``incidence`` and ``perpendicular`` (:func:`tuibrdf.render.panes.section_pane`).
 
-The same pictures as :mod:`.polar` (plotext), at a fraction of the cost (``scripts/
-bench_plots.py``; numbers in ``docs/design.md``): curves ``r(θ)`` drawn at ``x = r sin θ``,
-``y = r cos θ`` for ``θ ∈ [−90°, 90°]``, guide circles (1-2-5 steps, or one per decade in log
-mode) and the horizon line, the incident direction as a line, one data unit the same length
-on screen in x and y (a cell is twice as tall as wide).  Titles and captions are those of
-:mod:`.polar`.
+A section's values ``r(θ)`` for ``θ ∈ [−90°, 90°]`` (the frame's section arrays,
+:mod:`tuibrdf.core.views.frame`; nothing is evaluated here) are drawn at ``x = r sin θ``,
+``y = r cos θ``, negative θ on the left:
 
-- :func:`polar_canvas` draws curves (the frame's section arrays,
-  :mod:`tuibrdf.core.views.frame`; nothing is evaluated here) for :func:`tuibrdf.render.panes.
-  section_pane`, which also draws the section through the lobe's peak: the great circle through
-  the frame's peak turned by the *section azimuth* ψ about it (90° = across the peak's vertical
-  plane, the seed's "largeur … dans un plan perpendiculaire"; 0° = that plane itself), the peak
-  straight up so that θ on the plot is the signed angle from the peak and the width reads off;
+- plane of incidence: ``wo = (sin θr, 0, cos θr)`` turned to the light's azimuth: the right half
+  is the mirror side, the left half the light's side; the incident direction is drawn as a line;
+- the section through the lobe's peak: the great circle through the frame's peak turned by the
+  *section azimuth* ψ about it (90° = across the peak's vertical plane, the seed's "largeur …
+  dans un plan perpendiculaire"; 0° = that plane itself), the peak straight up, so that θ on
+  the plot is the signed angle from the peak and the width reads off (:func:`fwhm_text`).
+
+Radius = value (linear), or in log mode ``1 + log10(v / vmax) / decades`` clipped at 0 (the
+centre is ``vmax·10^-decades`` and below: :func:`radius`).  Guide circles: 1-2-5 steps in linear
+mode (:func:`circle_step`), one per decade in log mode, and the horizon line; the caption says
+their spacing.  The window gives one data unit the same length on screen in x and y, a cell
+being twice as tall as wide (:data:`CELL_ASPECT`): circles are round.  Several curves
+(comparisons, or the R, G, B channels of a colour model) share one radius scale and get a
+legend in the top-left corner.
+
+- :func:`polar_canvas` draws the curves on a canvas and returns it with its caption;
 - :func:`angle_at` inverts the plot's geometry (a click on a section);
 - :func:`fwhm_text` the width of a lobe.
 
 ``charset="ascii"`` gives one marker character per cell (:mod:`.braille`); each curve has its
-own dot pattern as well as its colour, so plain text still tells the curves apart.
+own dot pattern as well as its colour, so plain text still tells the curves apart.  (plotext
+drew these plots before, at several times the cost: ``scripts/bench_plots.py``,
+docs/render.md.)
 """
 
 from __future__ import annotations
@@ -27,34 +37,57 @@ from functools import lru_cache
 
 import numpy as np
 
+from tuibrdf.core.conventions import fmt_value
 from tuibrdf.core.directions import sincos_deg
 from tuibrdf.render.braille import BrailleCanvas, curve_layers, draw_legend
-from tuibrdf.render.colormap import LOG_DECADES, fmt_value
-from tuibrdf.render.polar import (
-    CELL_ASPECT,
-    SIDE_MARKERS,
-    curve_color,
-    nice_step,
-    radius,
-)
+from tuibrdf.render.colormap import LOG_DECADES
+from tuibrdf.render.curves import SIDE_MARKERS, curve_color
 from tuibrdf.render.text import LIGHT_RGB
 
 GUIDE = "color(244)"
 #: the light in the sections: the colour of its mark on the map and of its line in the solid
 INCIDENT = "#{:02x}{:02x}{:02x}".format(*LIGHT_RGB)
-#: samples along a section (1° steps, as :func:`.polar.section_curves`)
-N_SAMPLES = 181
-
-Curve = tuple  # (label, θ degrees, values[, side marker, colour]) — see polar.side_curves
-#: side A and side B of a comparison on the braille canvas: dot pattern and ASCII marker
+CELL_ASPECT = 2.0  # a terminal cell is about twice as tall as it is wide
+#: side A and side B of a comparison (:data:`.curves.SIDE_MARKERS`) on the braille canvas: dot
+#: pattern and ASCII marker
 SIDE_PATTERNS = ("solid", "dotted")
 SIDE_ASCII = ("*", "+")
 
 
+def circle_step(vmax: float) -> float:
+    """A 1-2-5 step giving 2 to 5 guide circles up to ``vmax``."""
+    if vmax <= 0:
+        return 1.0
+    e = 10.0 ** np.floor(np.log10(vmax))
+    for m in (0.2, 0.5, 1.0, 2.0, 5.0):
+        if vmax / (m * e) <= 5:
+            return m * e
+    return 10 * e  # not reached: vmax / (5e) < 2
+
+
+def radius(values: np.ndarray, vmax: float, log: bool, decades: float) -> np.ndarray:
+    """Plot radius of ``values``: the value itself, or the log position in [0, 1]."""
+    v = np.asarray(values, dtype=float)
+    if not log:
+        return v
+    # values at or below the centre value (zeros included) sit at the centre; lo > 0 even for
+    # a subnormal vmax, whose vmax·10⁻³ underflows to 0 (log10(0) would warn)
+    lo = max(vmax * 10.0**-decades, 5e-324)
+    r = 1.0 + np.log10(np.maximum(v, lo) / vmax) / decades
+    return np.clip(np.where(v > lo, r, 0.0), 0.0, 1.0)
+
+
+def caption_parts(caption: str) -> list[tuple[str, int]]:
+    """A caption as title parts: the maximum stays, the circle spacing may go (as a whole:
+    a cropped "circles every 0.1" would read "circles every 0")."""
+    first, *rest = caption.split(" · ")
+    return [(first, 0), *((r, 1) for r in rest)]
+
+
 def plot_window(width: int, height: int, rmax: float) -> tuple[float, float, float]:
     """``(xr, y0, y1)``: the data window of a ``width × height`` polar plot of radius
-    ``rmax`` (x in [−xr, xr], y in [y0, y1]); equal aspect, as :mod:`.polar`: one data unit
-    spans the same length in x and y on screen."""
+    ``rmax`` (x in [−xr, xr], y in [y0, y1]); equal aspect: one data unit spans the same length
+    in x and y on screen."""
     span = rmax * 1.08
     k = max(2 * span / width, span / (CELL_ASPECT * height))
     y0 = -0.03 * rmax
@@ -93,7 +126,7 @@ def guide_dots(width: int, height: int, xr: float, y0: float, y1: float, rmax: f
 
 
 def polar_canvas(
-    curves: Sequence[Curve],
+    curves: Sequence[tuple],
     width: int,
     height: int,
     *,
@@ -104,8 +137,8 @@ def polar_canvas(
     vmax: float | None = None,
     charset: str = "braille",
 ) -> tuple[BrailleCanvas, str]:
-    """The polar plot of ``curves`` on a ``width × height`` canvas; returns ``(canvas,
-    caption)`` as :func:`.polar.polar_plot` returns ``(text, caption)``."""
+    """The polar plot of ``curves`` (:data:`.curves.Curve`) on a ``width × height`` canvas;
+    returns ``(canvas, caption)``."""
     own = max((float(np.max(c[2])) for c in curves), default=0.0)
     vmax = max(own, vmax or 0.0)
     vmax = vmax if vmax > 0 else 1.0  # an all-zero curve still gets a unit circle
@@ -114,7 +147,7 @@ def polar_canvas(
         caption = (f"section max {fmt_value(own)} · log, circles every decade below "
                    f"{fmt_value(vmax)}")
     else:
-        step = nice_step(vmax)
+        step = circle_step(vmax)
         guides = list(step * np.arange(1, int(np.floor(vmax / step + 1e-9)) + 1))
         rmax = max(vmax, guides[-1] if guides else vmax)
         caption = f"section max {fmt_value(own)} · circles every {fmt_value(step)}"
@@ -130,7 +163,7 @@ def polar_canvas(
     colors = [c[4] if len(c) > 4 else curve_color(c[0], j) for j, c in enumerate(curves)]
     ids = curve_layers(canvas, [c[:3] for c in curves], colors)
     for j, c in enumerate(curves):
-        if len(c) > 3:  # a compare side's own style (polar.side_curves): A and B differ in
+        if len(c) > 3:  # a compare side's own style (curves.side_curves): A and B differ in
             k = SIDE_MARKERS.index(c[3])  # every colour mode, by dot pattern and marker
             ids[j] = canvas.layer(colors[j], SIDE_PATTERNS[k], SIDE_ASCII[k])
     for (_, thetas, vals, *_style), lid in zip(curves, ids, strict=True):

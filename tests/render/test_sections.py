@@ -1,4 +1,5 @@
-"""Polar cross-sections (tuibrdf/render/polar.py; the values from tuibrdf/core/views/frame.py)."""
+"""The polar cross-sections (tuibrdf/render/sections.py; the values from
+tuibrdf/core/views/frame.py)."""
 
 import numpy as np
 import pytest
@@ -8,8 +9,8 @@ from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
 from tuibrdf.core.views import frame as scene
 from tuibrdf.core.views.frame import section_directions
-from tuibrdf.render.polar import channel_curves, radius
-from tuibrdf.render.polar_braille import angle_at, plot_window, polar_canvas
+from tuibrdf.render.curves import channel_curves
+from tuibrdf.render.sections import angle_at, plot_window, polar_canvas, radius
 
 
 def section_curves(model, values, theta_i, plane):
