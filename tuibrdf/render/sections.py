@@ -25,9 +25,7 @@ legend in the top-left corner.
 - :func:`fwhm_text` the width of a lobe.
 
 ``charset="ascii"`` gives one marker character per cell (:mod:`.braille`); each curve has its
-own dot pattern as well as its colour, so plain text still tells the curves apart.  (plotext
-drew these plots before, at several times the cost: ``scripts/bench_plots.py``,
-docs/render.md.)
+own dot pattern as well as its colour, so plain text still tells the curves apart.
 """
 
 from __future__ import annotations

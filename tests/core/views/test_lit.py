@@ -123,7 +123,7 @@ def test_tone_map_formula_and_bad_arguments():
 def test_rgb_model_gives_coloured_pixels():
     # glTF with a red base colour: the diffuse part is red, so the lit sphere's centre is red
     m, v = model(("gltf", {"base_color": [0.8, 0.1, 0.1], "metallic": 0.0}))
-    rad, _ = lit_sphere(m, v, 0.0, 21, 21)
+    rad, _ = lit_sphere(m, v, incident(0.0), 21, 21)
     r, g, b = rad[10, 10]
     assert r > 3 * g and g == pytest.approx(b)
     img = tone_map(rad)
@@ -136,13 +136,14 @@ def test_rgb_model_gives_coloured_pixels():
                                         if n != "merl"))
 @pytest.mark.parametrize("theta_i", [0.0, 89.9, 90.0])
 def test_every_model_lit_is_finite_and_non_negative(name, theta_i):
-    # stability sweep (as tests/core/brdf/test_stability.py): grazing and horizon light included,
-    # where
-    # the sphere's terminator and the plane's horizon put directions exactly on the horizon
+    # stability sweep (as tests/core/brdf/test_stability.py): grazing and horizon light
+    # included, where the sphere's terminator and the plane's horizon put directions exactly
+    # on the horizon
     m = get_model(name)
     v = m.resolve({})
-    for lit in (lit_sphere, lit_plane):
-        rad, mask = lit(m, v, theta_i, 32, 24)
+    wi = incident(theta_i)
+    for rad, mask in (lit_sphere(m, v, wi, 32, 24),
+                      lit_plane(m, v, wi, 32, 24, view_deg=theta_i)):
         assert np.all(np.isfinite(rad)) and np.all(rad >= 0.0)
         assert np.all(rad[~mask] == 0.0)
     # the light on the horizon gives cos θi = 0 on the plane: black
