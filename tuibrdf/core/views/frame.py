@@ -58,6 +58,7 @@ from tuibrdf.core.directions import (
     incident,
     sincos_deg,
 )
+from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.evaluate import f_cos
 from tuibrdf.core.lru import LRU
 from tuibrdf.core.material import Material
@@ -104,15 +105,15 @@ class FrameRequest:
     solid: bool = False
     curve: bool = False
     #: ψ of the section through the peak (90°: across the peak's vertical plane)
-    section_azimuth: float = 90.0
+    section_azimuth: float = DISPLAY.section_azimuth.default
     #: one of :data:`EXTRA_VIEWS` when shown, with its pixel grid (sphere, plane, slice) or
     #: ``None`` (line plots); and the fixed angles of the half/difference views
     extra: str | None = None
     extra_px: tuple[int, int] | None = None
-    theta_d: float = 30.0
-    theta_h: float = 0.0
-    phi_d: float = 90.0
-    sqrt_h: bool = True
+    theta_d: float = DISPLAY.theta_d.default
+    theta_h: float = DISPLAY.theta_h.default
+    phi_d: float = DISPLAY.phi_d.default
+    sqrt_h: bool = DISPLAY.sqrt_h
     #: the probe's Lambert coordinates on the map (:mod:`tuibrdf.core.views.hemimap`), or None
     probe: tuple[float, float] | None = None
     #: the light's azimuth (degrees, in [0, 360)); 180° puts it on the −x side

@@ -44,14 +44,13 @@ from functools import lru_cache
 import numpy as np
 
 from tuibrdf.core.directions import sincos_deg
+from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.params import Model
 
 #: irradiance on a surface facing the light: a white Lambert surface then has radiance 1
 E_PERP = np.pi
 DEFAULT_FOV_DEG = 40.0
-DEFAULT_EXPOSURE = 1.0
-DEFAULT_GAMMA = 2.2
 
 
 def _radiance(model: Model, values: dict, wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
@@ -164,8 +163,8 @@ def lit_plane(model: Model, values: dict, wi: np.ndarray, px_w: int, px_h: int, 
     return np.where(hits[..., None], rad, 0.0), hits
 
 
-def tone_map(radiance: np.ndarray, exposure: float = DEFAULT_EXPOSURE,
-             gamma: float = DEFAULT_GAMMA) -> np.ndarray:
+def tone_map(radiance: np.ndarray, exposure: float = DISPLAY.exposure.default,
+             gamma: float = DISPLAY.gamma.default) -> np.ndarray:
     """``uint8`` display values: ``round(255 · clamp(exposure · L, 0, 1) ^ (1/γ))``."""
     if not (np.isfinite(exposure) and exposure >= 0):
         raise ValueError(f"exposure {exposure}: expected a finite value ≥ 0")
