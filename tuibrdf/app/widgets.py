@@ -13,7 +13,7 @@ from rich.style import Style
 from rich.text import Text
 from textual.css.scalar import Unit
 from textual.filter import ANSIToTruecolor
-from textual.geometry import Region, Size
+from textual.geometry import Region
 from textual.strip import Strip
 from textual.style import Style as TextualStyle
 from textual.widget import Widget
@@ -172,21 +172,12 @@ class Picture(Rows):
         #: the renderable shown: the next one takes the rows they share from it
         self._shown: RenderableType | None = None
 
-    def show(self, renderable: RenderableType, key: object = None,
-             lines: list[list[Segment]] | None = None) -> None:
-        """Show ``renderable`` (``lines``: its rows at this size, drawn already)."""
+    def show(self, renderable: RenderableType, key: object = None) -> None:
+        """Show ``renderable``, drawn from ``key`` (None: from nothing the app names)."""
         w, h = self.size.width, self.size.height
         self.shown_for = key
         like, self._shown = self._shown, renderable
-        if lines is None:
-            lines = pane_lines(renderable, self.app.console, w, h, like)
-        self._set(lines, w, h)
-
-    def drawn(self) -> tuple[object, RenderableType, list[list[Segment]], Size] | None:
-        """What is shown, when it was drawn from a key: ``(key, renderable, rows, size)``."""
-        if self.shown_for is None:
-            return None
-        return self.shown_for, self._shown, self._lines, self.size
+        self._set(pane_lines(renderable, self.app.console, w, h, like), w, h)
 
     def on_resize(self, event) -> None:
         self.shown_for = None
