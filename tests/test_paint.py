@@ -23,7 +23,7 @@ from textual.strip import Strip
 from textual.widget import Widget
 
 from tests.pilot import wait_for
-from tuibrdf.app import frames, paint
+from tuibrdf.app import frames, textual_internals
 from tuibrdf.app.app import BrdfApp
 from tuibrdf.app.paint import ViewerCompositor, _cells
 from tuibrdf.app.state import Side, ViewerState
@@ -128,7 +128,7 @@ async def test_every_paint_shows_the_cells_textuals_own_paint_shows(monkeypatch,
     # keys through every view, compare mode (bordered pictures: Textual's own lines), the
     # help screen over the viewer and back; after each partial paint the terminal fed the
     # viewer's bytes and the one fed Textual's own update for the same regions agree
-    assert paint.SUPPORTED  # the Textual this runs with (8.2)
+    assert textual_internals.PARTIAL_PAINT  # the Textual this runs with (8.2)
     twin = Twin(monkeypatch, *size)
     app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
     twin.console = app.console

@@ -30,9 +30,10 @@ from .layout import CSS, arrange
 from .loading import MeasuredData
 from .paint import ViewerScreen
 from .presets import PresetError, apply_loaded, list_presets, load_preset, preset_dir, save_preset
-from .screens import HelpScreen, SafeCommandPalette, SaveScreen, ValueScreen
+from .screens import HelpScreen, SaveScreen, ValueScreen
 from .state import ViewerState
 from .text import PANES
+from .textual_internals import SafeCommandPalette
 from .widgets import ParamPanel, Picture, QuietStatic, StatusLine
 
 #: after start-up (Textual, numpy, the models: ≈ 10⁵ objects kept for the whole session) the

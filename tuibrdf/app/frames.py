@@ -37,6 +37,7 @@ from ..core.scene import FrameRequest, FrameResult
 from ..render import EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, panes
 from ..render.views import extra_pixels, map_pixels
 from .text import PANES, TERSE_FORMS, legend_text, status_text, visible_panes
+from .textual_internals import writer_backlog
 
 RETRY_S = 0.02  # re-check a busy writer after this long
 #: a frame not computed by then: the panels and status line go ahead of it (a key's new value
@@ -252,13 +253,6 @@ class FrameDelivery:
             self._panels()
             self._status()
 
-    def _writer_busy(self) -> bool:
-        """Frames still queued for the terminal (Textual's private writer; guarded)."""
-        try:
-            return self._driver._writer_thread._queue.qsize() > 0  # type: ignore[union-attr]
-        except AttributeError:
-            return False
-
     def show_frame(self, res: FrameResult) -> None:
         """Draw ``res`` if it is still the current request (and not the fast part of a frame
         shown complete already): every visible pane, the panels and the status line in one go
@@ -269,7 +263,7 @@ class FrameDelivery:
         if not res.complete and shown is not None and shown.request == res.request \
                 and shown.complete:
             return
-        if self._writer_busy():  # trailing edge: try again when the terminal has caught up
+        if writer_backlog(self):  # trailing edge: try again when the terminal has caught up
             self.set_timer(RETRY_S, partial(self.show_frame, res))
             return
         self._stop_pending()  # this request's frame is shown: its panels and status with it

@@ -16,31 +16,28 @@ from the map's left edge.
 renders only when one of its pieces is written and no widget in front has filled it;
 :class:`SpansUpdate` writes each span from its first cell.  The cells on the terminal are the
 same as with Textual's own update after every paint (tests/test_paint.py replays both into a
-terminal model); the bytes are fewer.  The Textual internals this relies on are checked once
-(:data:`SUPPORTED`); without them the screen is Textual's, unchanged.
+terminal model); the bytes are fewer (a θi key at 160×48: about half).  The Textual internals
+this relies on are reached through :mod:`.textual_internals`; without them
+(:data:`~.textual_internals.PARTIAL_PAINT` false) the screen is Textual's, unchanged.
 """
 
 from __future__ import annotations
 
 from rich.cells import cell_len
 from rich.color import ColorSystem
-from rich.console import Console
+from rich.console import COLOR_SYSTEMS, Console
 from rich.segment import Segment
-from textual._compositor import ChopsUpdate, Compositor
 from textual.geometry import Region
 from textual.screen import Screen
 from textual.strip import Strip
 
-
-def _supported() -> bool:
-    """Textual's compositor has what :class:`ViewerCompositor` uses (Textual 8.2)."""
-    probe = Compositor()
-    return all(hasattr(probe, name) for name in
-               ("_dirty_regions", "_regions_to_spans", "cuts", "visible_widgets",
-                "render_partial_update", "size")) and hasattr(ChopsUpdate, "render_segments")
-
-
-SUPPORTED = _supported()
+from .textual_internals import (
+    ChopsUpdate,
+    Compositor,
+    install_compositor,
+    regions_to_spans,
+    take_dirty_regions,
+)
 
 
 def _cells(strip: Strip, start: int, stop: int, system: ColorSystem) -> tuple[int, str]:
@@ -77,7 +74,8 @@ class SpansUpdate(ChopsUpdate):
     re-sent the row from the map's left edge; the cells before the span did not change."""
 
     def render_segments(self, console: Console) -> str:
-        system = console._color_system or ColorSystem.TRUECOLOR  # as Strip.render
+        # the colour system Strip.render uses (Rich's name for it, back to the enum)
+        system = COLOR_SYSTEMS.get(console.color_system) or ColorSystem.TRUECOLOR
         sequences: list[str] = []
         append = sequences.append
         chops, chop_ends = self.chops, self.chop_ends
@@ -102,12 +100,11 @@ class ViewerCompositor(Compositor):
     """Textual's compositor; its partial update renders and divides only what is written."""
 
     def render_partial_update(self) -> ChopsUpdate | None:
-        regions = self._dirty_regions.copy()
-        self._dirty_regions.clear()
+        regions = take_dirty_regions(self)
         if not regions:
             return None
         height = self.size.height
-        spans = [span for span in self._regions_to_spans(regions) if 0 <= span[0] < height]
+        spans = [span for span in regions_to_spans(self, regions) if 0 <= span[0] < height]
         if not spans:
             return None
         cuts = self.cuts
@@ -154,9 +151,9 @@ class ViewerCompositor(Compositor):
 
 
 class ViewerScreen(Screen):
-    """The viewer's main screen: :class:`ViewerCompositor` when Textual has what it uses."""
+    """The viewer's main screen, painted by :class:`ViewerCompositor` when Textual has what it
+    uses."""
 
     def __init__(self, *args, **kw) -> None:
         super().__init__(*args, **kw)
-        if SUPPORTED:
-            self._compositor = ViewerCompositor()
+        install_compositor(self, ViewerCompositor())

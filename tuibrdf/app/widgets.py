@@ -23,6 +23,7 @@ from ..core.params import _fmt
 from ..render.lines import BLANK, fit_row, pane_lines, render_rows
 from ..render.rowdiff import ChangedRow
 from .state import Side, ViewerState
+from .textual_internals import styles_key
 
 
 def changed_span(sa: list[Segment], sb: list[Segment], width: int) -> tuple[int, int]:
@@ -95,7 +96,7 @@ class Rows(Widget):
 
     def _styles_key(self) -> tuple:
         """What the widget's look depends on: the styles of the widget and its ancestors."""
-        return tuple(node.styles._cache_key for node in self.ancestors_with_self)
+        return styles_key(self)
 
     #: (the styles' keys of the widget and its ancestors, the side padding or None, its
     #: style): :meth:`_sides`, computed again when any of those styles changed
@@ -129,8 +130,7 @@ class Rows(Widget):
         sides, pad = self._sides()
         hover = self.hover_style
         if (sides is None or self.get_line_filters()
-                or (self.auto_links and hover._link_id and hover._meta
-                    and "@click" in hover.meta)):
+                or (self.auto_links and hover.link_id and "@click" in hover.meta)):
             return super().render_lines(crop)
         (left, right), outer, strips = sides, self.outer_size, self._strips
         width = outer.width - left - right
