@@ -242,11 +242,11 @@ async def test_a_crash_in_the_frame_worker_stops_the_app(monkeypatch, inline_s):
 
 async def test_a_fast_frame_is_computed_on_the_event_loop_a_slow_one_in_the_worker(
         monkeypatch):
-    # a frame of registered models whose kind took less than INLINE_S lately is computed
-    # where the key is handled (no thread to start and wait for); the first of a kind, a slow
-    # kind and a new albedo curve go to the worker.  The times the viewer notes are a clock
-    # of the test's: real time (every frame far below the INLINE_S set here, however busy the
-    # machine) plus twice INLINE_S for each frame the test makes slow
+    # a frame of registered models is computed where the key is handled (no thread to start
+    # and wait for) unless a frame of its kind took INLINE_S of CPU time or more lately; then,
+    # and for a new albedo curve, the worker.  The CPU times the viewer notes are a clock of
+    # the test's: the thread's CPU time (every frame far below the INLINE_S set here, however
+    # busy the machine) plus twice INLINE_S for each frame the test makes slow
     import threading
     import time
     import types
@@ -257,7 +257,7 @@ async def test_a_fast_frame_is_computed_on_the_event_loop_a_slow_one_in_the_work
     monkeypatch.setattr(frames, "INLINE_S", 5.0)
     extra = [0.0]
     monkeypatch.setattr(frames, "time", types.SimpleNamespace(
-        perf_counter=lambda: time.perf_counter() + extra[0]))
+        thread_time=lambda: time.thread_time() + extra[0]))
     scene.clear_caches()
     where: list[tuple[float, bool, bool]] = []  # (θi, curve, on the event loop)
     real = scene.compute_frame
@@ -279,20 +279,17 @@ async def test_a_fast_frame_is_computed_on_the_event_loop_a_slow_one_in_the_work
                                   and app.frame.complete)
 
         await frame_of(30.0)
-        assert where and not any(loop for _, _, loop in where)  # the first: the worker
-        theta = 30.0
-        for _ in range(frames.INLINE_KEEP + 1):  # the first of a kind is the slowest (cold)
-            theta += 1.0
-            await pilot.press("right")
-            await frame_of(theta)
-        assert [loop for t, _, loop in where if t == theta] == [True]
-        slow_from[0] = theta + 1.0  # from here: twice INLINE_S
-        await pilot.press("right")  # known fast: on the loop, and now known slow
-        await frame_of(theta + 1.0)
-        assert [loop for t, _, loop in where if t == theta + 1.0] == [True]
+        assert where and all(loop for _, _, loop in where)  # the first of a kind too
         await pilot.press("right")
-        await frame_of(theta + 2.0)
-        assert not any(loop for t, _, loop in where if t == theta + 2.0)
+        await frame_of(31.0)
+        assert [loop for t, _, loop in where if t == 31.0] == [True]
+        slow_from[0] = 32.0  # from here: twice INLINE_S
+        await pilot.press("right")  # not known slow: on the loop, and now known slow
+        await frame_of(32.0)
+        assert [loop for t, _, loop in where if t == 32.0] == [True]
+        await pilot.press("right")
+        await frame_of(33.0)
+        assert where and not any(loop for t, _, loop in where if t == 33.0)
         app.state.view = "albedo"  # the albedo curve, never computed: the worker
         app._changed("", relayout=True)
         assert await wait_for(pilot, lambda: app.frame.request.curve and app.frame.complete)

@@ -3,16 +3,17 @@
 status line, drawn from that one result.
 
 A request computed before is shown at once (the core caches results by request).  A frame of
-registered models only (:func:`built_in`: no model file, no measured data) whose kind took
-less than :data:`INLINE_S` to compute lately is computed on the event loop, where the key is
-handled.  Every other frame is computed by :meth:`FrameDelivery.compute` in an exclusive thread
-worker (``@work(exclusive=True, thread=True)``): the newest request cancels the older ones, and
-a result that is no longer the current request is dropped, so the latest state always wins and
-its frame always arrives.  The worker posts the fast part (maps, sections, peak) as soon as it
-has it and the slow part (albedo, albedo curve) when done (:class:`FrameComputed`); a frame not
-there after :data:`PENDING_S` lets the panels and the status line go ahead of it.  So the
-kernel of a model read from a user's file (``.py``, ``.brdf``, ``.bsdf``) or from measured data
-(MERL) never runs on the event loop (in sync mode, for tests, every frame does).
+registered models only (:func:`built_in`: no model file, no measured data) is computed on the
+event loop, where the key is handled, unless frames of its kind took :data:`INLINE_S` of CPU
+time or more lately.  Every other frame is computed by :meth:`FrameDelivery.compute` in an
+exclusive thread worker (``@work(exclusive=True, thread=True)``): the newest request cancels
+the older ones, and a result that is no longer the current request is dropped, so the latest
+state always wins and its frame always arrives.  The worker posts the fast part (maps,
+sections, peak) as soon as it has it and the slow part (albedo, albedo curve) when done
+(:class:`FrameComputed`); a frame not there after :data:`PENDING_S` lets the panels and the
+status line go ahead of it.  So the kernel of a model read from a user's file (``.py``,
+``.brdf``, ``.bsdf``) or from measured data (MERL) never runs on the event loop (in sync
+mode, for tests, every frame does).
 
 A frame waits while Textual's output thread still has writes queued for the terminal (a slow
 link), and each pane is redrawn only when what it shows changed, through
@@ -47,12 +48,13 @@ PENDING_S = 0.05
 #: (ValueError, OSError) and a floating-point exception from a kernel (the kernels raise on
 #: one, core/numerics.py; a picture is not worth losing the session over)
 DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
-#: a frame of registered models whose kind (:meth:`FrameDelivery._kind`) took less than this
-#: to compute lately is computed on the event loop, not in the worker: handing it to a thread
-#: and back costs the loop and the thread turns with the interpreter lock.  With the drawing,
-#: such a frame still leaves the loop free between two keys of a key held at 30 a second; a
-#: slower one (an albedo curve, a sharp lobe's albedo) keeps the worker, which a newer key
-#: cancels
+#: a frame of registered models is computed on the event loop, not in the worker (handing it
+#: to a thread and back costs two hand-offs, each a wake-up the scheduler of a busy machine
+#: may delay), unless frames of its kind (:meth:`FrameDelivery._kind`) took this much CPU
+#: time or more lately: such a frame still leaves the loop free between two keys of a key held
+#: at 30 a second; a slower one (a sharp lobe's albedo, a large solid) keeps the worker, which
+#: shows the pictures before the albedo and which a newer key cancels.  CPU time, not wall
+#: time: what a frame costs, not how busy the machine is
 INLINE_S = 0.012
 #: the computing times kept per kind of frame (the largest decides)
 INLINE_KEEP = 3
@@ -66,8 +68,8 @@ def built_in(material: Material) -> bool:
 
 
 class FrameComputed(Message):
-    """A result of the frame worker, for the event loop; ``seconds``: what computing it took,
-    when none of it was cached (else None)."""
+    """A result of the frame worker, for the event loop; ``seconds``: the CPU time computing
+    it took, when none of it was cached (else None)."""
 
     def __init__(self, result: FrameResult, seconds: float | None) -> None:
         super().__init__()
@@ -180,31 +182,30 @@ class FrameDelivery:
                 req.extra, req.extra_px)
 
     def _took(self, req: FrameRequest, seconds: float) -> None:
-        """Note the time a frame of ``req``'s kind took to compute, none of it cached."""
+        """Note the CPU time a frame of ``req``'s kind took to compute, none of it cached."""
         kept = self._costs.setdefault(self._kind(req), [])
         kept.append(seconds)
         del kept[:-INLINE_KEEP]
 
     def _quick(self, req: FrameRequest) -> bool:
         """Whether ``req``'s frame is computed on the event loop: registered models only
-        (:func:`built_in`), no new albedo curve, and frames of its kind took less than
-        :data:`INLINE_S` lately (none yet: the worker, which times them)."""
+        (:func:`built_in`), no new albedo curve, and no frame of its kind took
+        :data:`INLINE_S` or more lately."""
         if scene.needs_curve(req) or not all(built_in(m) for m in req.materials):
             return False
-        kept = self._costs.get(self._kind(req))
-        return bool(kept) and max(kept) < INLINE_S
+        return max(self._costs.get(self._kind(req), ()), default=0.0) < INLINE_S
 
     def _compute_here(self, req: FrameRequest, fresh: bool) -> None:
         """Compute and show ``req``'s frame now, on the event loop (``fresh``: none of it is
         cached, its time is then noted)."""
-        start = time.perf_counter()
+        start = time.thread_time()
         try:
             res = scene.compute_frame(req)
         except DRAW_ERRORS as e:
             self._failed(req, e)
             return
         if fresh:
-            self._took(req, time.perf_counter() - start)
+            self._took(req, time.thread_time() - start)
         self.show_frame(res)
 
     @work(exclusive=True, thread=True, group="frame", description="frame")  # (Textual would
@@ -225,14 +226,14 @@ class FrameDelivery:
         if worker.is_cancelled:
             return
         fresh = scene.cached_frame(req) is None
-        start = time.perf_counter()
+        start = time.thread_time()
         try:
             res = scene.compute_frame(req, slow=False)
-            post(res, time.perf_counter() - start if res.complete and fresh else None)
+            post(res, time.thread_time() - start if res.complete and fresh else None)
             if not res.complete and not worker.is_cancelled:
                 res = scene.compute_frame(req, check=lambda: not worker.is_cancelled)
                 if res is not None:
-                    post(res, time.perf_counter() - start if fresh else None)
+                    post(res, time.thread_time() - start if fresh else None)
         except DRAW_ERRORS as e:  # a data file that vanished or changed on disk
             if not worker.is_cancelled:
                 try:
