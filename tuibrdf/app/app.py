@@ -168,8 +168,8 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self.call_later(self._update, self._changes)
 
     def _update(self, change: int) -> None:
-        """The frame at once when computed before, else from the worker (the panels and the
-        status line go with it, so one key costs one paint)."""
+        """The layout if the change asked for it, then the frame (:meth:`refresh_frame`: the
+        panels and the status line go with it, so one key costs one paint)."""
         if change != self._changes:
             return  # a newer change is queued behind this one
         try:
