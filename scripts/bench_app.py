@@ -8,9 +8,7 @@ timestamps the bytes the app writes back:
   thread writes a frame in one go; the largest burst when none is that big: a small update).
   Parameter change (``-`` on phong's Kd), θi change (→ only, from θi = 0°: every key
   asks for an albedo never computed before), model change (``m``), and → and ``+`` in turn
-  (each key another than the one before it: what the viewer prepares ahead for a repeated
-  key, docs/benchmarks.md, is then the frame of the key before).  p50 / p95 over ``--reps`` keys
-  each.
+  (each key another than the one before it).  p50 / p95 over ``--reps`` keys each.
 * **all panes**: key → the last byte before the output stays idle for ``SETTLE_S`` (map, the
   two sections, the status line's albedo and peak from a worker thread), for every key kind.
 * **bytes per update**: all bytes written for one 1° θi key, against the minimum for the cells
@@ -28,8 +26,10 @@ timestamps the bytes the app writes back:
   sphere, lit plane, θh × θd slice, f(θh), f(θd)): a parameter key and the view's own key.
 
 Usage: ``python scripts/bench_app.py [--sizes 80x24,160x48,240x70] [--reps 20] [--views]
-[--load N]``; ``--load N`` runs N processes spinning on the CPU meanwhile (a shared machine).
-Prints a Markdown table.  Numbers depend on the machine: read them as "about".
+[--load N] [--write-docs]``; ``--load N`` runs N processes spinning on the CPU meanwhile (a
+shared machine).  Prints a Markdown table; ``--write-docs`` also writes it into
+docs/benchmarks.md (scripts/benchdoc.py: its own section per ``--views`` and ``--load``, with
+the command, the machine and the date).  Numbers depend on the machine: read them as "about".
 """
 
 from __future__ import annotations
@@ -338,10 +338,16 @@ def view_latency(w: int, h: int, color: str, reps: int, view: str) -> dict:
     return out
 
 
-def views_table(sizes, colors, reps: int) -> None:
-    print("| size | colours | view | param p50/p95 ms | param all panes p50/p95 ms "
-          "| own key | own p50/p95 ms | own all panes p50/p95 ms |")
-    print("|---|---|---|---|---|---|---|---|")
+def emit(lines: list[str], line: str) -> None:
+    """Print a line of the table as soon as it is measured, and keep it."""
+    print(line, flush=True)
+    lines.append(line)
+
+
+def views_table(sizes, colors, reps: int, lines: list[str]) -> None:
+    emit(lines, "| size | colours | view | param p50/p95 ms | param all panes p50/p95 ms "
+         "| own key | own p50/p95 ms | own all panes p50/p95 ms |")
+    emit(lines, "|---|---|---|---|---|---|---|---|")
     for w, h in sizes:
         for color in colors:
             for view in VIEW_KEYS:
@@ -351,8 +357,8 @@ def views_table(sizes, colors, reps: int) -> None:
                     cells.append(f"{r[k][0] * 1e3:.0f} / {r[k][1] * 1e3:.0f}")
                     cells.append(f"{r[k][2] * 1e3:.0f} / {r[k][3] * 1e3:.0f}")
                 own = "/".join(VIEW_KEYS[view][1])
-                print(f"| {w}×{h} | {color} | {view} | {cells[0]} | {cells[1]} | {own} | "
-                      f"{cells[2]} | {cells[3]} |", flush=True)
+                emit(lines, f"| {w}×{h} | {color} | {view} | {cells[0]} | {cells[1]} | {own} | "
+                     f"{cells[2]} | {cells[3]} |")
 
 
 def help_time() -> float:
@@ -378,22 +384,35 @@ def main() -> int:
                     help="key → frame on each of issue 13's views instead")
     ap.add_argument("--load", type=int, default=0, metavar="N",
                     help="N other processes spinning on the CPU meanwhile (a shared machine)")
+    ap.add_argument("--write-docs", action="store_true",
+                    help="also write the table into docs/benchmarks.md (its own section)")
     args = ap.parse_args()
+    from benchdoc import command_line, machine, write_section
+
+    started = machine()  # (the load average before the spinning processes start)
     with loaded(args.load):
-        return run(args)
+        lines = run(args)
+    if args.write_docs:
+        name = "bench_app" + ("-views" if args.views else "") + (
+            f"-load{args.load}" if args.load else "")
+        doc = write_section(name, "\n".join(lines), command_line(), machine_line=started)
+        print(f"written into {doc}")
+    return 0
 
 
-def run(args: argparse.Namespace) -> int:
+def run(args: argparse.Namespace) -> list[str]:
+    """Measure and print the table; its lines."""
     sizes = [tuple(int(v) for v in s.split("x")) for s in args.sizes.split(",")]
     colors = args.colors.split(",")
+    lines: list[str] = []
     if args.views:
-        views_table(sizes, colors, args.reps)
-        return 0
+        views_table(sizes, colors, args.reps, lines)
+        return lines
     kinds = ("param", "theta", "model", "mixed")
-    print("| size | colours | startup s | main view p50/p95 ms: param | θi | model | → and + "
-          "| all panes p50/p95 ms: param | θi | model | → and + | bytes per 1° θi / changed "
-          "cells' minimum | CPU per key ms: param | θi | model | → and + | catch-up s |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    emit(lines, "| size | colours | startup s | main view p50/p95 ms: param | θi | model | "
+         "→ and + | all panes p50/p95 ms: param | θi | model | → and + | bytes per 1° θi / "
+         "changed cells' minimum | CPU per key ms: param | θi | model | → and + | catch-up s |")
+    emit(lines, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for w, h in sizes:
         for color in colors:
             r = latency(w, h, color, args.reps)
@@ -404,10 +423,11 @@ def run(args: argparse.Namespace) -> int:
             sent = (f"{least[0] / 1e3:.1f} / {least[1] / 1e3:.1f} kB = {least[0] / least[1]:.2f}×"
                     if least else f"{r['theta'][2] / 1e3:.1f} kB / ?")
             cpu = [f"{r[k][6] * 1e3:.1f}" for k in kinds]
-            print(f"| {w}×{h} | {color} | {r['startup']:.2f} | {' | '.join(ms)} | "
-                  f"{' | '.join(done)} | {sent} | {' | '.join(cpu)} | {cu:.2f} |", flush=True)
-    print(f"\n`tuibrdf --help`: {help_time() * 1e3:.0f} ms (median of 5)")
-    return 0
+            emit(lines, f"| {w}×{h} | {color} | {r['startup']:.2f} | {' | '.join(ms)} | "
+                 f"{' | '.join(done)} | {sent} | {' | '.join(cpu)} | {cu:.2f} |")
+    emit(lines, "")
+    emit(lines, f"`tuibrdf --help`: {help_time() * 1e3:.0f} ms (median of 5)")
+    return lines
 
 
 if __name__ == "__main__":

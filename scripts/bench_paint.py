@@ -7,8 +7,7 @@ The viewer runs headless (Textual's test harness); θi steps 0.5° a frame from 
 computed beforehand, then shown (``show_frame``) and painted.  Per frame: the CPU time of the
 paint (``Screen._compositor_refresh``: the compositor and turning its update into text, the
 event loop's thread) and the characters of text it makes.  *textual*: Textual's compositor,
-its styles cache's lines and its update timer; *viewer*: the viewer's screen (a tree without
-it, e.g. ``PYTHONPATH=<tree>``, measures only Textual's, as it paints there).  Not a test:
+its styles cache's lines and its update timer; *viewer*: the viewer's screen.  Not a test:
 the numbers depend on the machine (docs/benchmarks.md has them and their command).
 """
 
@@ -26,20 +25,15 @@ async def run(model: str, frames: int, w: int, h: int, viewer: bool) -> tuple[li
     from textual.screen import Screen
     from textual.widget import Widget
 
+    from tuibrdf.app import textual_internals
     from tuibrdf.app.app import BrdfApp
     from tuibrdf.app.widgets import Rows
     from tuibrdf.core.views import frame as scene
     from tuibrdf.state.viewer import Side, ViewerState
 
-    try:
-        from tuibrdf.app import paint
-    except ImportError:  # a tree before the viewer's own paint: Textual's, as it is
-        paint = None
-    saved = Rows.render_lines, Screen._compositor_refresh
-    if paint is not None:
-        saved_paint = paint.SUPPORTED, paint.PAINT_NOW
-    if not viewer and paint is not None:
-        paint.SUPPORTED = paint.PAINT_NOW = False
+    saved = Rows.render_lines, Screen._compositor_refresh, textual_internals.PARTIAL_PAINT
+    if not viewer:  # Textual's compositor and its styles cache's lines
+        textual_internals.PARTIAL_PAINT = False
         Rows.render_lines = Widget.render_lines
     cpu: list[float] = []
     chars: list[int] = []
@@ -71,9 +65,7 @@ async def run(model: str, frames: int, w: int, h: int, viewer: bool) -> tuple[li
                 app.show_frame(res)
                 await pilot.pause()
     finally:
-        Rows.render_lines, Screen._compositor_refresh = saved
-        if paint is not None:
-            paint.SUPPORTED, paint.PAINT_NOW = saved_paint
+        Rows.render_lines, Screen._compositor_refresh, textual_internals.PARTIAL_PAINT = saved
     return cpu, chars
 
 
@@ -88,13 +80,8 @@ def main() -> int:
     w, h = (int(v) for v in args.size.split("x"))
     print(f"{args.model}, {args.frames} θi frames, {w}×{h}, truecolor; per frame: paint CPU ms "
           "p50 / p95, characters written")
-    try:
-        import tuibrdf.app.paint  # noqa: F401
-        modes = (False, True)
-    except ImportError:  # a tree without it: Textual's paint only
-        modes = (False,)
     for i in range(args.runs):
-        for viewer in modes:
+        for viewer in (False, True):
             cpu, chars = asyncio.run(run(args.model, args.frames, w, h, viewer))
             ms = sorted(t * 1e3 for t in cpu)
             print(f"run {i + 1} {'viewer ' if viewer else 'textual'}  paints {len(ms):3d}  "

@@ -1,12 +1,13 @@
 """The viewer's start-up: spawn → its first frame (the map's colour bar unit ``sr⁻¹``) in a
 pseudo-terminal, as ``scripts/bench_app.py`` measures it, repeated.
 
-    python scripts/bench_startup.py [--runs 12] [--size 160x48] [--against REV]
+    python scripts/bench_startup.py [--runs 12] [--size 160x48] [--against REV] [--write-docs]
 
 ``--against REV`` starts git revision REV's viewer (``git archive``) too, the two trees one
 after the other in every round, so a slow spell of the machine falls on both.  The package's
 bytecode is written first (as an install or a first run writes it).  Prints the median and the
-minimum per tree; docs/benchmarks.md has them.
+minimum per tree; ``--write-docs`` also writes that table into docs/benchmarks.md
+(scripts/benchdoc.py: its own section, with the command, the machine and the date).
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ import tempfile
 
 from bench_app import ROOT, Term
 from bench_help import fresh_bytecode
+from benchdoc import command_line, machine, write_section
 from revtree import extract
 
 
@@ -35,7 +37,10 @@ def main() -> int:
     ap.add_argument("--runs", type=int, default=12)
     ap.add_argument("--size", default="160x48")
     ap.add_argument("--against", metavar="REV")
+    ap.add_argument("--write-docs", action="store_true",
+                    help="also write the table into docs/benchmarks.md (its own section)")
     a = ap.parse_args()
+    started = machine()
     w, h = (int(v) for v in a.size.split("x"))
     with tempfile.TemporaryDirectory() as tmp:
         trees = {"this tree": str(ROOT)}
@@ -48,9 +53,15 @@ def main() -> int:
         for _ in range(a.runs):
             for name, tree in trees.items():
                 times[name].append(first_frame(tree, w, h))
-    print(f"start-up to the first frame, {w}×{h}, {a.runs} runs each")
-    for name, t in times.items():
-        print(f"  {name}: median {1e3 * statistics.median(t):.0f} ms, min {1e3 * min(t):.0f} ms")
+    lines = [f"start-up to the first frame, {w}×{h}, {a.runs} runs each:", "",
+             "| tree | median ms | min ms |", "|---|---|---|"]
+    lines += [f"| {name} | {1e3 * statistics.median(t):.0f} | {1e3 * min(t):.0f} |"
+              for name, t in times.items()]
+    print("\n".join(lines))
+    if a.write_docs:
+        doc = write_section("bench_startup", "\n".join(lines), command_line(),
+                            machine_line=started)
+        print(f"written into {doc}")
     return 0
 
 

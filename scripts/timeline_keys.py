@@ -3,9 +3,7 @@
     python scripts/timeline_keys.py [--model phong] [--key right] [--keys 40] [--size 160x48]
                                     [--load N]
 
-``--key right,-`` sends the keys in turn (→, −, →, …): each key then differs from the one
-before, so the frame the viewer prepared ahead for a repeat of the last key is not the one
-asked for (docs/benchmarks.md).
+``--key right,-`` sends the keys in turn (→, −, →, …).
 
 The viewer runs in a pty as a user sees it (truecolor); inside it, a few of its methods and
 Textual's are wrapped to note a timestamp (``time.perf_counter``, the same monotonic clock in
@@ -16,18 +14,15 @@ the keys, the first two left out as warm-up):
 * ``key``: the key event reaches the app; ``update>``: the coalesced state update runs;
 * ``compute>`` / ``compute<``: the worker's ``compute_frame`` calls, from the first's start
   (maps, sections, peak) to the last's end (the albedo); ``fast<``: the first call's end (the
-  frame without its albedo); ``ready>``: that part reaches the event loop (``frame_ready``);
-* ``show>`` / ``show<``: ``show_frame`` draws every pane, the panels and the status line
-  (and, where the viewer's screen paints at once, paints them: ``show<`` then follows
-  ``paint<``);
-* ``drawn``: the frame is drawn and the viewer's screen starts its paint (``paint_now``;
-  absent from trees without it, where Textual paints a round of idle events later);
+  frame without its albedo); ``ready>``: the worker's result reaches the event loop
+  (``on_frame_computed``; absent when the frame is computed on the loop);
+* ``show>`` / ``show<``: ``show_frame`` draws every pane, the panels and the status line;
 * ``paint>`` / ``paint<``: the screen's compositor turns the dirty regions into output
   (``Screen._compositor_refresh``: Textual's compositor, or the viewer's screen's);
 * ``flush``: Textual's writer thread flushes it; ``read``: the last byte reaches the driver.
 
-Then the steps between some of them, timed key by key (``drawn → paint``: from the frame
-drawn to the compositor's start, from ``show<`` where the tree has no ``drawn``), and the
+Then the steps between some of them, timed key by key (``show → paint``: from the frame
+drawn to the compositor's start), and the
 viewer's CPU time per key over the keys (``/proc/PID/task/*/schedstat``): all its threads,
 and its main thread (the event loop) alone: what a loaded machine inflates far less than the
 times above.
@@ -50,7 +45,7 @@ import termios
 import time
 
 KEYS = {"right": b"\x1b[C", "left": b"\x1b[D", "+": b"+", "-": b"-", "m": b"m"}
-PHASES = ("key", "update>", "compute>", "fast<", "ready>", "compute<", "show>", "drawn", "show<",
+PHASES = ("key", "update>", "compute>", "fast<", "ready>", "compute<", "show>", "show<",
           "paint>", "paint<", "flush", "read")
 
 
@@ -83,21 +78,9 @@ def child(out: str, argv: list[str]) -> None:
 
     wrap(viewer.BrdfApp, "_update", "update")
     wrap(frames.FrameDelivery, "show_frame", "show")
-    wrap(frames.FrameDelivery, "frame_ready", "ready")
+    wrap(frames.FrameDelivery, "on_frame_computed", "ready")
     wrap(screen.Screen, "_compositor_refresh", "paint")
     wrap(scene, "compute_frame", "compute")
-    try:
-        from tuibrdf.app import paint
-    except ImportError:  # a tree before the viewer's own screen
-        pass
-    else:
-        now = paint.ViewerScreen.paint_now
-
-        def paint_now(self):
-            marks.append((clock(), "drawn"))
-            return now(self)
-
-        paint.ViewerScreen.paint_now = paint_now
 
     dispatch = pump.MessagePump._dispatch_message
 
@@ -218,10 +201,9 @@ def table(sends: list[float], marks: list, reads: list[float]) -> str:
     return "\n".join(lines)
 
 
-#: the steps between the phases, each timed key by key: (name, from, to); "a|b" is the first of
-#: a and b present (a tree that paints at once marks ``drawn``, one that does not ``show<``)
+#: the steps between the phases, each timed key by key: (name, from, to)
 STEPS = (("key → update", "key", "update>"), ("update → worker", "update>", "compute>"),
-         ("albedo → show", "compute<", "show>"), ("drawn → paint", "drawn|show<", "paint>"),
+         ("albedo → show", "compute<", "show>"), ("show → paint", "show<", "paint>"),
          ("paint", "paint>", "paint<"), ("paint → flush", "paint<", "flush"))
 
 
@@ -232,12 +214,11 @@ def steps(sends: list[float], marks: list) -> str:
         end = sends[i + 1] if i + 1 < len(sends) else s + 0.15
         seen = [(t, tag) for t, tag in marks if s <= t < end]
 
-        def at(tags: str, last: bool = False, seen=seen) -> float | None:
-            for tag in tags.split("|"):
-                ts = [t for t, got in seen if got == tag]
-                if ts:
-                    return ts[-1] if last else ts[0]
-            return None
+        def at(tag: str, last: bool = False, seen=seen) -> float | None:
+            ts = [t for t, got in seen if got == tag]
+            if not ts:
+                return None
+            return ts[-1] if last else ts[0]
 
         for name, a, b in STEPS:
             t0, t1 = at(a, last=a == "compute<"), at(b)

@@ -242,11 +242,11 @@ async def test_a_crash_in_the_frame_worker_stops_the_app(monkeypatch, inline_s):
 
 async def test_a_fast_frame_is_computed_on_the_event_loop_a_slow_one_in_the_worker(
         monkeypatch):
-    # a frame whose kind took less than INLINE_S lately is computed where the key is handled
-    # (no thread to start and wait for); the first of a kind, a slow kind and a new albedo
-    # curve go to the worker.  The times the viewer notes are a clock of the test's: real
-    # time (every frame far below the INLINE_S set here, however busy the machine) plus
-    # twice INLINE_S for each frame the test makes slow
+    # a frame of registered models is computed where the key is handled (no thread to start
+    # and wait for) unless a frame of its kind took INLINE_S of CPU time or more lately; then,
+    # and for a new albedo curve, the worker.  The CPU times the viewer notes are a clock of
+    # the test's: the thread's CPU time (every frame far below the INLINE_S set here, however
+    # busy the machine) plus twice INLINE_S for each frame the test makes slow
     import threading
     import time
     import types
@@ -255,10 +255,9 @@ async def test_a_fast_frame_is_computed_on_the_event_loop_a_slow_one_in_the_work
     from tuibrdf.core.views import frame as scene
 
     monkeypatch.setattr(frames, "INLINE_S", 5.0)
-    monkeypatch.setattr(frames, "PREDICTED", frozenset())  # no frame computed ahead of a key
     extra = [0.0]
     monkeypatch.setattr(frames, "time", types.SimpleNamespace(
-        perf_counter=lambda: time.perf_counter() + extra[0], monotonic=time.monotonic))
+        thread_time=lambda: time.thread_time() + extra[0]))
     scene.clear_caches()
     where: list[tuple[float, bool, bool]] = []  # (θi, curve, on the event loop)
     real = scene.compute_frame
@@ -280,20 +279,17 @@ async def test_a_fast_frame_is_computed_on_the_event_loop_a_slow_one_in_the_work
                                   and app.frame.complete)
 
         await frame_of(30.0)
-        assert where and not any(loop for _, _, loop in where)  # the first: the worker
-        theta = 30.0
-        for _ in range(frames.INLINE_KEEP + 1):  # the first of a kind is the slowest (cold)
-            theta += 1.0
-            await pilot.press("right")
-            await frame_of(theta)
-        assert [loop for t, _, loop in where if t == theta] == [True]
-        slow_from[0] = theta + 1.0  # from here: twice INLINE_S
-        await pilot.press("right")  # known fast: on the loop, and now known slow
-        await frame_of(theta + 1.0)
-        assert [loop for t, _, loop in where if t == theta + 1.0] == [True]
+        assert where and all(loop for _, _, loop in where)  # the first of a kind too
         await pilot.press("right")
-        await frame_of(theta + 2.0)
-        assert not any(loop for t, _, loop in where if t == theta + 2.0)
+        await frame_of(31.0)
+        assert [loop for t, _, loop in where if t == 31.0] == [True]
+        slow_from[0] = 32.0  # from here: twice INLINE_S
+        await pilot.press("right")  # not known slow: on the loop, and now known slow
+        await frame_of(32.0)
+        assert [loop for t, _, loop in where if t == 32.0] == [True]
+        await pilot.press("right")
+        await frame_of(33.0)
+        assert where and not any(loop for t, _, loop in where if t == 33.0)
         app.state.view = "albedo"  # the albedo curve, never computed: the worker
         app._changed("", relayout=True)
         assert await wait_for(pilot, lambda: app.frame.request.curve and app.frame.complete)
@@ -528,151 +524,87 @@ async def test_a_parameter_key_repaints_one_row_of_the_panel(monkeypatch):
         assert panel.outer_size.height == 3 + 2
 
 
-# ---------------------------------------------------------------- the garbage of each key
-async def test_garbage_is_collected_after_each_frame_and_fully_when_idle(monkeypatch):
-    # the young generations after each shown frame's paint, a full collection once frames
-    # stop, and the automatic collector's young threshold raised after start-up
-    import gc
-
-    from tuibrdf.app import app as app_module
-    from tuibrdf.app import frames
-    calls = []
-    collect = gc.collect
-    monkeypatch.setattr(gc, "collect", lambda *a: (calls.append(a), collect(*a))[1])
-    monkeypatch.setattr(app_module, "FREEZE_S", 0.05)
-    monkeypatch.setattr(app_module, "GC_IDLE_S", 0.5)
-    monkeypatch.setattr(frames, "GC_IDLE_S", 0.5)
-    monkeypatch.setattr(frames, "PREDICTED", frozenset())  # (its own collection: below)
-    threshold = gc.get_threshold()
-    gc.set_threshold(700, *threshold[1:])  # Python's default (an earlier viewer raised it)
-    try:
-        app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))
-        async with app.run_test(size=(120, 36)) as pilot:
-            # start-up settled: the last request's frame shown (the layout settles in steps)
-            assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete
-                                  and app.frame.request == app.request
-                                  and not (app._worker and app._worker.is_running))
-            assert await wait_for(pilot, lambda: gc.get_threshold()[0] == frames.GC_YOUNG)
-            assert frames.GC_YOUNG > 700
-            await pilot.pause(0.1)  # the collections of start-up's frames
-            calls.clear()
-            shown = app.frames
-            for theta in (31.0, 32.0, 33.0):
-                await pilot.press("right")
-                assert await wait_for(pilot, lambda t=theta: app.frame.request.theta_i == t
-                                      and app.frame.complete)
-                # its collection, GC_AFTER_S after the frame
-                assert await wait_for(pilot, lambda: calls.count((1,)) == app.frames - shown)
-            assert app.frames - shown >= 3
-            assert () not in calls  # no full collection while frames come
-            await pilot.pause(1.6)
-            assert calls.count(()) == 1  # idle: one full collection, not one per interval
-            # a newer frame on its way: no collection, unless the garbage has grown
-            calls.clear()
-            app.request = dataclasses.replace(app.request, theta_i=34.0)
-            app._collect_young()
-            assert calls == []
-            junk = [[i] for i in range(frames.GC_YOUNG // 2 + 100)]  # tracked: gen 0 count grows
-            app._collect_young()
-            assert calls == [(1,)]
-            del junk
-    finally:
-        gc.set_threshold(*threshold)
-
-
-def _prefetch_log(monkeypatch):
-    """compute_frame wrapped: the log of (model names, θi, on the event loop) per call."""
+async def test_a_model_files_frames_are_never_computed_on_the_event_loop(monkeypatch, tmp_path):
+    # a model read from a user's file (a .brdf here; a .py model or a .bsdf the same way) runs
+    # the user's kernel: every one of its frames is computed in the worker, however quick
+    # (INLINE_S: ten seconds), so the keys, q among them, never wait for it on the event loop.
+    # A registered model's quick frames are computed on the loop (the control)
+    import shutil
     import threading
+    from pathlib import Path
 
     from tuibrdf.app import frames
 
-    monkeypatch.setattr(frames, "PREFETCH_S", 0.01)
+    monkeypatch.setattr(frames, "INLINE_S", 10.0)
+    path = tmp_path / "mine.brdf"
+    shutil.copy(Path(__file__).parent / "data" / "brdf" / "lambert.brdf", path)
     scene.clear_caches()
-    log: list[tuple[tuple[str, ...], float, bool]] = []
+    where: list[tuple[str, bool]] = []  # (model, on the event loop)
     real = scene.compute_frame
 
     def compute(req, **kw):
-        log.append((tuple(m.name for m in req.materials), req.theta_i,
-                    threading.current_thread() is threading.main_thread()))
+        on_loop = threading.current_thread() is threading.main_thread()
+        where.extend((m.name, on_loop) for m in req.materials)
         return real(req, **kw)
 
     monkeypatch.setattr(scene, "compute_frame", compute)
-    return log
+    for model in (str(path), "lambert"):
+        where.clear()
+        app = BrdfApp(ViewerState(sides=[Side.of(model)], theta_i=30.0))
+        async with app.run_test(size=(120, 36)) as pilot:
+            for theta in (31.0, 32.0, 33.0, 34.0):
+                await pilot.press("right")
+                assert await wait_for(pilot, lambda t=theta, a=app: a.frame is not None
+                                      and a.frame.request.theta_i == t and a.frame.complete)
+        assert {name for name, _ in where} == {model}
+        assert any(loop for _, loop in where) == (model == "lambert"), where
 
 
-def _after_in_table(name: str, step: int) -> str:
-    names = list(MODELS)  # the registered models in their order (merl: no file, skipped)
-    names.remove("merl")
-    return names[(names.index(name) + step) % len(names)]
-
-
-@pytest.mark.parametrize("step,key", [(1, "m"), (-1, "M")])
-async def test_a_model_key_prefetches_the_frame_the_same_key_shows_next(monkeypatch, step,
-                                                                         key):
-    # after m (M), the frame of the model after (before) it is computed in the worker while
-    # the viewer is idle; the next m (M) then shows that very result, computed nowhere else
-    log = _prefetch_log(monkeypatch)
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))
-    first, second = _after_in_table("phong", step), _after_in_table("phong", 2 * step)
-    async with app.run_test(size=(120, 36)) as pilot:
-        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-        await pilot.press(key)
-        assert await pilot_wait_for(pilot, lambda: app.frame.complete
-                                    and app.frame.request.materials[0].name == first)
-        ahead = dataclasses.replace(app.request,
-                                    materials=(Side.of(second).material,))
-        assert await pilot_wait_for(pilot, lambda: (f := scene.cached_frame(ahead)) is not None
-                                    and f.complete)
-        prefetched = scene.cached_frame(ahead)
-        where = [loop for names, _, loop in log if names == (second,)]
-        assert where and not any(where)  # in the worker
-        calls = len(log)
-        await pilot.press(key)
-        assert await pilot_wait_for(pilot, lambda: app.frame.request == ahead)
-        assert app.frame is prefetched
-        assert [names for names, _, _ in log[calls:]
-                if names == (second,)] == []  # nothing computed again for it
-
-
-async def test_in_compare_mode_the_prefetch_changes_only_the_active_side(monkeypatch):
-    # side B active: the frame computed ahead keeps side A's material, and is the one shown
-    _prefetch_log(monkeypatch)
-    app = BrdfApp(ViewerState(sides=[Side.of("phong"), Side.of("ggx")], active=1,
-                              theta_i=30.0))
-    first, second = _after_in_table("ggx", 1), _after_in_table("ggx", 2)
-    async with app.run_test(size=(160, 48)) as pilot:
-        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-        await pilot.press("m")
-        assert await pilot_wait_for(pilot, lambda: app.frame.complete and [
-            m.name for m in app.frame.request.materials] == ["phong", first])
-        ahead = dataclasses.replace(app.request, materials=(
-            app.request.materials[0], Side.of(second).material))
-        assert await pilot_wait_for(pilot, lambda: (f := scene.cached_frame(ahead)) is not None
-                                    and f.complete)
-        prefetched = scene.cached_frame(ahead)
-        assert await pilot_wait_for(pilot, lambda: app._drawn_ahead)  # some drawn while idle
-        await pilot.press("m")
-        assert await pilot_wait_for(pilot, lambda: app.frame.request == ahead)
-        assert app.frame is prefetched
-        from tuibrdf.app.text import visible_panes
-
-        for pane in visible_panes(app.state):  # what was drawn ahead, and what was kept
-            assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane
-
-
-def _drawn_ahead_log(monkeypatch) -> list[bool]:
-    """Picture.show wrapped: per call, whether its rows came drawn ahead."""
+async def test_a_pane_is_drawn_again_only_when_what_it_shows_changed(monkeypatch):
+    # the section's azimuth (a) changes the sections' pictures, not the map's; the same frame
+    # shown again draws nothing
     from tuibrdf.app import widgets
 
-    given: list[bool] = []
+    drawn: list[str] = []
     show = widgets.Picture.show
 
-    def spy(self, renderable, key=None, lines=None):
-        given.append(lines is not None)
-        return show(self, renderable, key, lines)
+    def spy(self, renderable, key=None):
+        drawn.append(self.pane)
+        return show(self, renderable, key)
 
     monkeypatch.setattr(widgets.Picture, "show", spy)
-    return given
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0), sync=True)
+    async with app.run_test(size=(160, 48)) as pilot:
+        await pilot.pause()
+        drawn.clear()
+        await pilot.press("right")  # θi: every picture
+        assert {"map-a", "incidence", "perpendicular"} <= set(drawn)
+        drawn.clear()
+        await pilot.press("a")
+        assert app.frame.request.section_azimuth == app.state.section_azimuth
+        assert drawn and "map-a" not in drawn
+        drawn.clear()
+        app.refresh_frame()
+        await pilot.pause()
+        assert drawn == []
+
+
+async def test_the_objects_of_start_up_are_frozen_out_of_the_collector(monkeypatch):
+    # FREEZE_S after start-up the viewer calls gc.freeze(): later collections do not scan
+    # Textual, numpy and the models again
+    import gc
+
+    from tuibrdf.app import app as app_module
+
+    monkeypatch.setattr(app_module, "FREEZE_S", 0.05)
+    gc.unfreeze()
+    try:
+        app = BrdfApp(ViewerState(sides=[Side.of("phong")]))
+        async with app.run_test(size=(100, 30)) as pilot:
+            assert gc.get_freeze_count() == 0
+            assert await wait_for(pilot, lambda: gc.get_freeze_count() > 0)
+    finally:
+        gc.unfreeze()
 
 
 def _fresh_rows(app, pane: str) -> list[list[tuple[str, object]]]:
@@ -700,353 +632,16 @@ def _cells(rows) -> list[list[tuple[str, object]]]:
     return [[(ch, style) for text, style in row for ch in text] for row in rows]
 
 
-@pytest.mark.parametrize("between", [[], ["l"], ["k"]])
-async def test_pictures_drawn_ahead_are_the_pictures_the_key_would_draw(monkeypatch, between):
-    # after a model key, the next model's pictures are drawn while idle (frames._draw_ahead)
-    # and shown by the next m: cell for cell what drawing them then gives; a look changed in
-    # between (log scale, colour map) has them drawn ahead again, in that look
-    from tuibrdf.app.text import visible_panes
-
-    _prefetch_log(monkeypatch)
-    given = _drawn_ahead_log(monkeypatch)
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=35.0))
-    names = [_after_in_table("phong", j) for j in (1, 2, 3)]
-    async with app.run_test(size=(160, 48)) as pilot:
-        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-        for j, name in enumerate(names):
-            await pilot.press("m")
-            assert await pilot_wait_for(pilot, lambda name=name: app.frame.complete and
-                                        app.frame.request.materials[0].name == name)
-            if j == 0:  # the first m: nothing ahead yet; then wait for the next one's
-                assert await pilot_wait_for(pilot, lambda: len(app._drawn_ahead) == len(
-                    visible_panes(app.state)))
-                for key in between:
-                    shown = app.frames
-                    await pilot.press(key)  # its frame clears what was drawn ahead
-                    assert await pilot_wait_for(pilot, lambda s=shown: app.frames > s and len(
-                        app._drawn_ahead) == len(visible_panes(app.state)))
-                given.clear()
-                continue
-            panes_now = visible_panes(app.state)
-            for pane in panes_now:
-                assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane
-            if j == 1:
-                assert given and all(given)
-            n = len(panes_now)
-            assert await pilot_wait_for(pilot, lambda n=n: len(app._drawn_ahead) == n)
-            given.clear()
-
-
-async def test_other_keys_and_refused_keys_prefetch_nothing(monkeypatch):
-    # keys that are not stepped again and again (log scale, colour map, the section's
-    # azimuth) and a key refused at a bound (θi already 90°) compute no frame but their own
-    import threading
-
-    from tuibrdf.app import frames
-
-    _prefetch_log(monkeypatch)
-    asked: list[tuple[float, float, bool]] = []  # (θi, ψ, in the worker)
-    real = scene.compute_frame
-
-    def compute(req, **kw):
-        asked.append((req.theta_i, req.section_azimuth,
-                      threading.current_thread() is not threading.main_thread()))
-        return real(req, **kw)
-
-    monkeypatch.setattr(scene, "compute_frame", compute)
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=90.0))
-    async with app.run_test(size=(120, 36)) as pilot:
-        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-        for key in ("l", "k", "a", "right"):  # (→ at 90°: refused)
-            asked.clear()
-            await pilot.press(key)
-            assert await pilot_wait_for(pilot, lambda: app.frame.request == app.request
-                                        and app.frame.complete)
-            await pilot.pause(10 * frames.PREFETCH_S)
-            wanted = (app.request.theta_i, app.request.section_azimuth)
-            assert {(t, psi) for t, psi, _ in asked} <= {wanted}, key
-            assert app._ahead is None or app._ahead.theta_i == 90.0 and (
-                app._ahead.section_azimuth == app.request.section_azimuth)
-
-
-@pytest.mark.parametrize("key,method,args", [("right", "step_theta", (1,)),
-                                             ("left", "step_theta", (-1,)),
-                                             ("greater_than_sign", "step_phi_i", (15,)),
-                                             ("minus", "step_param", (-1,))])
-async def test_a_theta_or_parameter_key_prefetches_the_frame_the_same_key_shows_next(
-        monkeypatch, key, method, args):
-    # → (←, −) again: its frame is the very result computed ahead in the worker, computed
-    # nowhere else, and its pictures were drawn ahead
-    log = _prefetch_log(monkeypatch)
-    given = _drawn_ahead_log(monkeypatch)
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
-    async with app.run_test(size=(120, 36)) as pilot:
-        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-        await pilot.press(key)
-        assert await pilot_wait_for(pilot, lambda: app.frame.complete
-                                    and app.frame.request == app.request)
-        state = app.state.fork()  # where the same key goes: the state's own transition
-        assert getattr(state, method)(*args) is None
-        ahead = app.frame_request(state)
-        assert ahead != app.request
-        assert await pilot_wait_for(pilot, lambda: (f := scene.cached_frame(ahead)) is not None
-                                    and f.complete and app._drawn_ahead)
-        prefetched = scene.cached_frame(ahead)
-        calls, given[:] = len(log), []
-        await pilot.press(key)
-        assert await pilot_wait_for(pilot, lambda: app.frame.request == ahead)
-        assert app.frame is prefetched
-        assert all(not on_loop for _, _, on_loop in log[calls:])  # nothing on the loop
-        assert given and all(given)  # every picture drawn ahead
-
-
-async def test_the_key_a_prefetch_is_for_waits_for_it_rather_than_computing_again(
-        monkeypatch):
-    # m pressed while the worker still computes that frame: the frame comes from that one
-    # computation (the worker is neither cancelled nor joined by a second)
-    import threading
-
-    log = _prefetch_log(monkeypatch)
-    traced = scene.compute_frame
-    started, release = threading.Event(), threading.Event()
-    ahead_name = _after_in_table("blinn-phong", 1)
-
-    def held(req, **kw):
-        if req.materials[0].name == ahead_name and not release.is_set():
-            started.set()
-            release.wait(10.0)
-        return traced(req, **kw)
-
-    monkeypatch.setattr(scene, "compute_frame", held)
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))
-    async with app.run_test(size=(120, 36)) as pilot:
-        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-        await pilot.press("m")  # → blinn-phong; then the prefetch of the next one starts
-        assert await pilot_wait_for(pilot, started.is_set)
-        ahead = dataclasses.replace(app.request, materials=(Side.of(ahead_name).material,))
-        app._costs[app._kind(ahead)] = [0.0]  # a kind known fast: the loop would compute it
-        await pilot.press("m")  # the very frame being computed
-        await pilot.pause(0.05)
-        release.set()
-        assert await pilot_wait_for(pilot, lambda: app.frame.complete
-                                    and app.frame.request.materials[0].name == ahead_name)
-        fresh = [c for c in log if c[0] == (ahead_name,)]
-        assert len(fresh) <= 2 and not any(loop for _, _, loop in fresh)  # fast part, albedo
-
-
-async def test_the_garbage_of_a_frame_drawn_ahead_is_collected_once_it_is_drawn(monkeypatch):
-    # the frame prepared ahead leaves its garbage (rows, segments) between two keys: it is
-    # collected when its last picture is drawn, not by the automatic collector in the next key
-    import gc
-
-    from tuibrdf.app import frames
-
-    monkeypatch.setattr(frames, "PREFETCH_S", 0.05)
-    monkeypatch.setattr(frames, "GC_AFTER_S", 0.001)  # the key's own, well before
-    marks: list[str] = []
-    collect = gc.collect
-    monkeypatch.setattr(gc, "collect", lambda *a: (marks.append(f"collect{a}"), collect(*a))[1])
-    draw_ahead = frames.FrameDelivery._draw_ahead
-
-    def spy(self, res, todo):
-        marks.append(f"ahead {len(todo)}")
-        return draw_ahead(self, res, todo)
-
-    monkeypatch.setattr(frames.FrameDelivery, "_draw_ahead", spy)
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))
-    async with app.run_test(size=(120, 36)) as pilot:
-        assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-        await pilot.pause(0.2)
-        marks.clear()
-        await pilot.press("right")
-        assert await wait_for(pilot, lambda: "ahead 1" in marks
-                              and "collect(1,)" in marks[marks.index("ahead 1"):])
-
-
-async def test_a_slow_kind_of_frame_is_not_prepared_ahead(monkeypatch):
-    # frames of a kind that took PREFETCH_MAX_S or more lately (measured data, a slow model
-    # file) are not computed ahead of a θi key: the worker would hold the next key up.  The
-    # viewer's clock is the test's: real time plus twice PREFETCH_MAX_S per frame computed
-    import time
-    import types
-
-    from tuibrdf.app import frames
-
-    _prefetch_log(monkeypatch)
-    extra = [0.0]
-    monkeypatch.setattr(frames, "time", types.SimpleNamespace(
-        perf_counter=lambda: time.perf_counter() + extra[0], monotonic=time.monotonic))
-    asked: list[float] = []
-    real = scene.compute_frame
-
-    def slow(req, **kw):
-        asked.append(req.theta_i)
-        extra[0] += 2 * frames.PREFETCH_MAX_S
-        return real(req, **kw)
-
-    monkeypatch.setattr(scene, "compute_frame", slow)
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
-    async with app.run_test(size=(120, 36)) as pilot:
-        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-        for theta in (41.0, 42.0):
-            await pilot.press("right")
-            assert await pilot_wait_for(pilot, lambda t=theta: app.frame.complete
-                                        and app.frame.request.theta_i == t)
-            await pilot.pause(10 * frames.PREFETCH_S)
-        assert set(asked) == {40.0, 41.0, 42.0}  # none of 43°
-
-
-async def test_pictures_drawn_ahead_for_another_widget_size_are_drawn_again(monkeypatch):
-    # a map's key names its pixel grid, not its widget's size: rows drawn ahead for a widget
-    # of another size (resized meanwhile) are not shown, the picture is drawn afresh
-    from textual.geometry import Size
-
-    _prefetch_log(monkeypatch)
-    given = _drawn_ahead_log(monkeypatch)
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
-    async with app.run_test(size=(120, 36)) as pilot:
-        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-        await pilot.press("right")
-        assert await pilot_wait_for(pilot, lambda: app.frame.request.theta_i == 41.0
-                                    and len(app._drawn_ahead) >= 3)
-        for key, (part, lines, _size) in list(app._drawn_ahead.items()):
-            app._drawn_ahead[key] = part, lines, Size(7, 3)  # as if drawn before a resize
-        given.clear()
-        await pilot.press("right")
-        assert await pilot_wait_for(pilot, lambda: app.frame.request.theta_i == 42.0)
-        assert given and not any(given)
-        from tuibrdf.app.text import visible_panes
-
-        for pane in visible_panes(app.state):
-            assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane
-
-
-async def test_a_key_then_the_key_back_shows_the_pictures_shown_before(monkeypatch):
-    # → then ←: the frame of ← is the one shown before → (the core's cache) and so are its
-    # pictures (frames._draw keeps what a frame replaces): none drawn again, each cell for
-    # cell what drawing it gives.  Nothing is prepared ahead here (PREFETCH_S: an hour)
-    from tuibrdf.app import frames
-    from tuibrdf.app.text import visible_panes
-
-    log = _prefetch_log(monkeypatch)
-    monkeypatch.setattr(frames, "PREFETCH_S", 3600.0)
-    given = _drawn_ahead_log(monkeypatch)
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
-    async with app.run_test(size=(120, 36)) as pilot:
-        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-        await pilot.pause(0.2)  # (the layout settled)
-        assert await pilot_wait_for(pilot, lambda: app.frame.request == app.request)
-        first = app.frame
-        await pilot.press("right")
-        assert await pilot_wait_for(pilot, lambda: app.frame.complete
-                                    and app.frame.request.theta_i == 41.0)
-        assert not any(given)  # (nothing was drawn ahead)
-        calls, given[:] = len(log), []
-        await pilot.press("left")
-        assert await pilot_wait_for(pilot, lambda: app.frame.request.theta_i == 40.0)
-        assert app.frame.request == first.request and len(log) == calls  # (cached)
-        assert len(given) == len(visible_panes(app.state)) and all(given)
-        for pane in visible_panes(app.state):
-            assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane
-        given.clear()  # and → again: the pictures ← replaced
-        await pilot.press("right")
-        assert await pilot_wait_for(pilot, lambda: app.frame.request.theta_i == 41.0)
-        assert given and all(given)
-        for pane in visible_panes(app.state):
-            assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane
-
-
-async def test_the_two_latest_different_keys_are_both_prepared_ahead(monkeypatch):
-    # θi →, then a parameter's −: the frames of − again and of → again are both computed in
-    # the worker and drawn while idle; → then shows its prepared frame, drawn ahead, cell for
-    # cell what drawing it gives
-    from tuibrdf.app.text import visible_panes
-
-    log = _prefetch_log(monkeypatch)
-    given = _drawn_ahead_log(monkeypatch)
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
-    async with app.run_test(size=(120, 36)) as pilot:
-        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-        for key in ("right", "minus"):
-            await pilot.press(key)
-            assert await pilot_wait_for(pilot, lambda: app.frame.complete
-                                        and app.frame.request == app.request)
-        wanted = []
-        for method, args in (("step_param", (-1,)), ("step_theta", (1,))):
-            state = app.state.fork()
-            assert getattr(state, method)(*args) is None
-            wanted.append(app.frame_request(state))
-        assert len(set(wanted)) == 2 and app.request not in wanted
-        n = len(visible_panes(app.state))
-        assert await pilot_wait_for(pilot, lambda: all(
-            (f := scene.cached_frame(r)) is not None and f.complete for r in wanted)
-            and app._ahead == wanted[1] and len(app._drawn_ahead) >= n + 1)
-        prefetched = scene.cached_frame(wanted[1])
-        assert not any(on_loop for names, theta, on_loop in log if theta == 42.0)
-        calls, given[:] = len(log), []
-        await pilot.press("right")
-        assert await pilot_wait_for(pilot, lambda: app.frame.request == wanted[1])
-        assert app.frame is prefetched and all(not loop for _, _, loop in log[calls:])
-        assert given and all(given)
-        for pane in visible_panes(app.state):
-            assert _cells(_shown_rows(app, pane)) == _cells(_fresh_rows(app, pane)), pane
-
-
-async def test_a_worker_whose_frame_is_complete_is_not_computing():
-    # a thread worker reads as running a moment after it handed over its last result; the
-    # prefetch of the next transition does not wait for it (frames._computing): a worker is
-    # computing only while its request's complete frame is not in the cache
-    import types
-
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
-    async with app.run_test(size=(120, 36)) as pilot:
-        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-        done = app.frame.request
-        assert scene.cached_frame(done).complete
-        app._worker = types.SimpleNamespace(is_running=True)
-        app._worker_for = done
-        assert not app._computing()
-        app._worker_for = dataclasses.replace(done, theta_i=12.5)  # not computed
-        assert app._computing()
-        app._worker = types.SimpleNamespace(is_running=False)
-        assert not app._computing()
-        app._worker = None
-
-
-async def test_a_key_pressed_again_has_only_its_own_frame_prepared(monkeypatch):
-    # →, then m twice: the user steps through the models, and only the next model's frame
-    # is prepared ahead, not → again's (after → then m alone, both are: the test above)
-    from tuibrdf.app.text import visible_panes
-
-    log = _prefetch_log(monkeypatch)
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=40.0))
-    async with app.run_test(size=(120, 36)) as pilot:
-        assert await pilot_wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
-        for key in ("right", "m", "m"):
-            await pilot.press(key)
-            assert await pilot_wait_for(pilot, lambda: app.frame.complete
-                                        and app.frame.request == app.request)
-        model = app.request.materials[0].name
-        ahead = dataclasses.replace(app.request, materials=(
-            Side.of(_after_in_table(model, 1)).material,))
-        n = len(visible_panes(app.state))
-        assert await pilot_wait_for(pilot, lambda: (f := scene.cached_frame(ahead)) is not None
-                                    and f.complete and len(app._drawn_ahead) >= n)
-        await pilot.pause(0.3)
-        assert not [c for c in log if c[:2] == ((model,), 41.0 + 1)]  # → again: not prepared
-        assert [c for c in log if c[:2] == ((_after_in_table(model, 1),), 41.0)]
-
-
 @pytest.mark.parametrize("seed", [3, 8])
 async def test_after_any_keys_every_picture_is_what_drawing_it_gives(monkeypatch, seed):
-    # a seeded walk over the keys the viewer prepares ahead, their opposites and keys that
-    # change the look, the panes or the side, with pauses of random length (the frames ahead
-    # caught at every stage: computing, half drawn, done): once each key's frame is complete,
-    # every visible picture is cell for cell what drawing it from that frame gives, whether
-    # it was drawn ahead, kept from the frame before or drawn at the key
+    # a seeded walk over the keys a user presses again and again, their opposites and keys
+    # that change the look, the panes or the side, with pauses of random length (a frame
+    # caught on its way: computing, its fast part shown, done): once each key's frame is
+    # complete, every visible picture is cell for cell what drawing it from that frame gives,
+    # whether it was kept from the frame before (nothing it shows changed) or drawn at the key
     from tuibrdf.app.text import visible_panes
 
-    _prefetch_log(monkeypatch)
+    scene.clear_caches()
     rng = random.Random(seed)
     pool = ["right", "left", "right", "left", "plus", "minus", "plus", "minus", "m", "M",
             "greater_than_sign", "less_than_sign", "l", "k", "a", "up", "down", "c", "tab",

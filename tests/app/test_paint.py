@@ -1,5 +1,5 @@
-"""The viewer's own way to the terminal (tuibrdf/app/paint.py, ``Rows.render_lines``, the
-hand-offs in tuibrdf/app/frames.py): the same cells as Textual's own way, fewer steps.
+"""The viewer's own way to the terminal (tuibrdf/app/paint.py, ``Rows.render_lines``) and what
+a slow frame shows meanwhile (tuibrdf/app/frames.py): the same cells as Textual's own way.
 
 The references are Textual's: its compositor's partial update and its styles cache's lines,
 run on the same screen state; the cells the terminal shows are compared through a small
@@ -8,7 +8,6 @@ terminal model written here (cursor moves, SGR, text).  No timings.
 
 from __future__ import annotations
 
-import dataclasses
 import re
 import threading
 import unicodedata
@@ -20,12 +19,11 @@ from rich.segment import Segment
 from rich.style import Style
 from textual._compositor import Compositor
 from textual.geometry import Region
-from textual.screen import Screen
 from textual.strip import Strip
 from textual.widget import Widget
 
 from tests.pilot import wait_for
-from tuibrdf.app import frames, paint
+from tuibrdf.app import frames, textual_internals
 from tuibrdf.app.app import BrdfApp
 from tuibrdf.app.paint import ViewerCompositor, _cells
 from tuibrdf.app.widgets import Rows
@@ -130,7 +128,7 @@ async def test_every_paint_shows_the_cells_textuals_own_paint_shows(monkeypatch,
     # keys through every view, compare mode (bordered pictures: Textual's own lines), the
     # help screen over the viewer and back; after each partial paint the terminal fed the
     # viewer's bytes and the one fed Textual's own update for the same regions agree
-    assert paint.SUPPORTED and paint.PAINT_NOW  # the Textual this runs with (8.2)
+    assert textual_internals.PARTIAL_PAINT  # the Textual this runs with (8.2)
     twin = Twin(monkeypatch, *size)
     app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
     twin.console = app.console
@@ -201,34 +199,6 @@ def test_a_span_starts_where_it_starts_unless_inside_a_wide_character():
     assert "漢" in _cells(strip, 3, 5, ColorSystem.TRUECOLOR)[1]  # never split into spaces
 
 
-async def test_a_frame_is_painted_before_show_frame_returns(monkeypatch):
-    # the paint runs within show_frame (no round of idle events first); with a layout
-    # pending the screen leaves it to Textual, which paints it after the layout
-    paints = []
-    real = Screen._compositor_refresh
-    monkeypatch.setattr(Screen, "_compositor_refresh",
-                        lambda screen: (paints.append(screen), real(screen))[1])
-    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
-    async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.pause(0.3)
-        for theta, layout in ((31.0, False), (32.0, True)):
-            req = app.frame_request()
-            res = scene.compute_frame(dataclasses.replace(req, theta_i=theta))
-            app.state.theta_i, app.request = theta, res.request
-            if layout:
-                app.query_one("#legend").refresh(layout=True)
-            before = len(paints)
-            app.show_frame(res)
-            status = app.query_one("#status")
-            if not layout:
-                assert len(paints) == before + 1 and not status._repaint_required
-            else:
-                assert len(paints) == before and status._repaint_required
-                await pilot.pause(0.1)
-                assert len(paints) > before and not status._repaint_required
-            assert f"θi {theta:g}°" in str(status.render())
-
-
 def held_compute(monkeypatch, slow_only: bool):
     """``scene.compute_frame`` held by an event for θi = 31° (its albedo part only, or the
     whole frame), in the frame worker (every frame goes there: none on the event loop)."""
@@ -265,7 +235,7 @@ async def test_a_slow_frame_lets_the_status_line_go_ahead(monkeypatch):
 
 async def test_pictures_stop_waiting_for_a_slow_albedo(monkeypatch):
     # the albedo of θi 31° is held: the pictures (maps, sections, peak) are shown without
-    # it after HOLD_S, then with it when it comes
+    # it, then with it when it comes
     scene.clear_caches()
     release = held_compute(monkeypatch, slow_only=True)
     app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
@@ -277,17 +247,3 @@ async def test_pictures_stop_waiting_for_a_slow_albedo(monkeypatch):
         release.set()
         assert await wait_for(pilot, lambda: app.frame.complete
                               and app.frame.request.theta_i == 31.0)
-
-
-async def test_a_bug_in_a_frame_timer_ends_the_viewer_with_status_1():
-    def boom() -> None:
-        raise RuntimeError("boom from a frame timer")
-
-    app = BrdfApp(ViewerState())
-    with pytest.raises(RuntimeError, match="boom from a frame timer"):
-        async with app.run_test(size=(100, 30)) as pilot:
-            await pilot.pause(0.3)
-            app._after(0.0, boom)
-            for _ in range(20):
-                await pilot.pause(0.05)
-    assert app.return_code == 1

@@ -18,12 +18,13 @@ from textual.widgets import Footer, Static
 from textual.worker import Worker
 
 from tuibrdf.app import keys
-from tuibrdf.app.frames import GC_IDLE_S, GC_YOUNG, PREDICT_KEEP, FrameDelivery
+from tuibrdf.app.frames import FrameDelivery
 from tuibrdf.app.layout import CSS, arrange
 from tuibrdf.app.loading import MeasuredData
 from tuibrdf.app.paint import ViewerScreen
-from tuibrdf.app.screens import HelpScreen, SafeCommandPalette, SaveScreen, ValueScreen
+from tuibrdf.app.screens import HelpScreen, SaveScreen, ValueScreen
 from tuibrdf.app.text import PANES
+from tuibrdf.app.textual_internals import SafeCommandPalette
 from tuibrdf.app.widgets import ParamPanel, Picture, QuietStatic, StatusLine
 from tuibrdf.core.conventions import fmt_number
 from tuibrdf.core.directions import from_degrees
@@ -60,13 +61,6 @@ def _list_presets() -> list[str]:
         return []
 
 
-def _freeze() -> None:
-    """Start-up is over: what exists now is kept out of every later collection, and the
-    young generation is left to the collection after each frame (:data:`GC_YOUNG`)."""
-    gc.freeze()
-    gc.set_threshold(GC_YOUNG, *gc.get_threshold()[1:])
-
-
 def _read_preset(name: str):
     """``(θi, sides)`` of a saved preset, or the message saying why it cannot be read."""
     try:
@@ -97,28 +91,12 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self._loaded = ""  # the saved preset `P` loaded last
         self._worker: Worker | None = None  # the frame worker started last, and its request
         self._worker_for: FrameRequest | None = None
-        #: recent computing times of each kind of frame (frames.FrameDelivery._compute_here)
+        #: recent computing times of each kind of frame (frames.FrameDelivery._quick)
         self._costs: dict[tuple, list[float]] = {}
         self._changes = 0  # changes so far; only the last one queued updates the screen
         self._relayout = False  # a change since the last update may show other panes
-        #: the latest different transitions of the keys since the last other change, the
-        #: latest first (frames.PREDICT_KEEP): (method, args); those in frames.PREDICTED are
-        #: prepared ahead
-        self._repeats: tuple[tuple[str, tuple], ...] = ()
-        self._again = False  # the last key's transition was the one before it again
-        self._ahead: FrameRequest | None = None  # the frame computed ahead (frames.prefetch)
-        #: what to prepare once its pictures are drawn: (the request shown, transitions)
-        self._ahead_then: tuple[FrameRequest | None, tuple] = (None, ())
-        #: its pictures drawn while idle: key of the pane's picture → (renderable, rows, the
-        #: widget's size they were drawn for)
-        self._drawn_ahead: dict[tuple, tuple] = {}
-        #: the pictures the last frame replaced, the same way (a key then its opposite)
-        self._drawn_before: dict[tuple, tuple] = {}
         self._preset_names: list[str] = []  # the saved presets, for the command palette
         self._widgets: dict[str, object] = {}  # id → widget (BrdfApp.one)
-        self._collected_at: float | None = None  # the last collection after a frame
-        self._event_loop = None  # the running loop and the app's context (capture_loop)
-        self._loop_context = None
 
     # -- layout ------------------------------------------------------------------------------
     def get_default_screen(self) -> ViewerScreen:
@@ -146,9 +124,7 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self.set_interval(FILE_POLL_S, self._check_files)
         self.background(_list_presets, self._listed)
         if not self.sync:
-            self.capture_loop()
-            self.set_timer(FREEZE_S, _freeze)
-            self.set_interval(GC_IDLE_S, self.collect_idle)
+            self.set_timer(FREEZE_S, gc.freeze)
 
     def on_resize(self, event) -> None:
         self._changed(self.message, relayout=True)
@@ -190,29 +166,17 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         return w
 
     # -- one frame ---------------------------------------------------------------------------
-    def _changed(self, message: str | None = None, relayout: bool = False,
-                 at_once: bool = False, repeat: tuple[str, tuple] | None = None) -> None:
+    def _changed(self, message: str | None = None, relayout: bool = False) -> None:
         """After any change: the screen follows once the events already queued are handled
-        (a burst of keys costs one update, for the last state).  ``at_once`` (a key): with
-        no event queued, the update runs now rather than as a message behind an empty queue
-        (≈ 0.2 ms a key, docs/benchmarks.md).  ``repeat``: the key's transition, which the same key
-        would make again (:meth:`~tuibrdf.app.frames.FrameDelivery.prefetch`); a change
-        without one forgets the keys before it."""
+        (a burst of keys costs one update, for the last state)."""
         self.message = message or ""
-        self._again = bool(self._repeats) and self._repeats[0] == repeat
-        self._repeats = () if repeat is None else (
-            repeat, *[r for r in self._repeats if r != repeat])[:PREDICT_KEEP]
         self._relayout = self._relayout or relayout
         self._changes += 1
-        queue = getattr(self, "_message_queue", None)
-        if at_once and queue is not None and queue.empty():
-            self._update(self._changes)
-        else:
-            self.call_later(self._update, self._changes)
+        self.call_later(self._update, self._changes)
 
     def _update(self, change: int) -> None:
-        """The frame at once when computed before, else from the worker (the panels and the
-        status line go with it, so one key costs one paint)."""
+        """The layout if the change asked for it, then the frame (:meth:`refresh_frame`: the
+        panels and the status line go with it, so one key costs one paint)."""
         if change != self._changes:
             return  # a newer change is queued behind this one
         try:
@@ -259,8 +223,7 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
     def action_state(self, method: str, args: tuple = ()) -> None:
         """A :class:`ViewerState` transition named in the key table."""
         message = getattr(self.state, method)(*args)
-        self._changed(message, relayout=method in keys.RELAYOUT, at_once=True,
-                      repeat=(method, args) if message is None else None)
+        self._changed(message, relayout=method in keys.RELAYOUT)
 
     def action_help(self) -> None:
         self.push_screen(HelpScreen())

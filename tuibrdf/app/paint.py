@@ -1,6 +1,5 @@
 """The viewer's screen: Textual's partial update doing only the work whose result reaches the
-terminal, each change written from its first cell, and the paint done as soon as a frame is
-drawn.
+terminal, each change written from its first cell.
 
 Textual 8's compositor repaints the dirty regions of a frame like this
 (``Compositor.render_partial_update``): every visible widget whose clip overlaps the bounding
@@ -16,34 +15,30 @@ from the map's left edge.
 :class:`ViewerCompositor` fills only the pieces that overlap a span, front to back, so a widget
 renders only when one of its pieces is written and no widget in front has filled it;
 :class:`SpansUpdate` writes each span from its first cell.  The cells on the terminal are the
-same as with Textual's own update after every paint (tests/app/test_paint.py replays both into a
-terminal model); the bytes are fewer.  :meth:`ViewerScreen.paint_now` runs the screen's paint
-right after a frame is drawn instead of a round of idle events later.  The Textual internals
-this relies on are checked once (:data:`SUPPORTED`, :data:`PAINT_NOW`); without them the
-screen is Textual's, unchanged.
+same as with Textual's own update after every paint (tests/test_paint.py replays both into a
+terminal model); the bytes are fewer and the paint cheaper (θi steps at 160×48: ≈ 0.72× the
+characters, ≈ 0.26× the paint's CPU time; ``python scripts/bench_paint.py``).  The Textual internals
+this relies on are reached through :mod:`.textual_internals`; without them
+(:data:`~.textual_internals.PARTIAL_PAINT` false) the screen is Textual's, unchanged.
 """
 
 from __future__ import annotations
 
 from rich.cells import cell_len
 from rich.color import ColorSystem
-from rich.console import Console
+from rich.console import COLOR_SYSTEMS, Console
 from rich.segment import Segment
-from textual._compositor import ChopsUpdate, Compositor
 from textual.geometry import Region
 from textual.screen import Screen
 from textual.strip import Strip
 
-
-def _supported() -> bool:
-    """Textual's compositor has what :class:`ViewerCompositor` uses (Textual 8.2)."""
-    probe = Compositor()
-    return all(hasattr(probe, name) for name in
-               ("_dirty_regions", "_regions_to_spans", "cuts", "visible_widgets",
-                "render_partial_update", "size")) and hasattr(ChopsUpdate, "render_segments")
-
-
-SUPPORTED = _supported()
+from tuibrdf.app.textual_internals import (
+    ChopsUpdate,
+    Compositor,
+    install_compositor,
+    regions_to_spans,
+    take_dirty_regions,
+)
 
 
 def _cells(strip: Strip, start: int, stop: int, system: ColorSystem) -> tuple[int, str]:
@@ -80,7 +75,8 @@ class SpansUpdate(ChopsUpdate):
     re-sent the row from the map's left edge; the cells before the span did not change."""
 
     def render_segments(self, console: Console) -> str:
-        system = console._color_system or ColorSystem.TRUECOLOR  # as Strip.render
+        # the colour system Strip.render uses (Rich's name for it, back to the enum)
+        system = COLOR_SYSTEMS.get(console.color_system) or ColorSystem.TRUECOLOR
         sequences: list[str] = []
         append = sequences.append
         chops, chop_ends = self.chops, self.chop_ends
@@ -105,12 +101,11 @@ class ViewerCompositor(Compositor):
     """Textual's compositor; its partial update renders and divides only what is written."""
 
     def render_partial_update(self) -> ChopsUpdate | None:
-        regions = self._dirty_regions.copy()
-        self._dirty_regions.clear()
+        regions = take_dirty_regions(self)
         if not regions:
             return None
         height = self.size.height
-        spans = [span for span in self._regions_to_spans(regions) if 0 <= span[0] < height]
+        spans = [span for span in regions_to_spans(self, regions) if 0 <= span[0] < height]
         if not spans:
             return None
         cuts = self.cuts
@@ -156,51 +151,10 @@ class ViewerCompositor(Compositor):
         return SpansUpdate(chops, spans, [row[1:] for row in cuts])
 
 
-#: the screen's update-timer tick that :meth:`ViewerScreen.paint_now` runs (Textual 8.2)
-PAINT_NOW = SUPPORTED and callable(getattr(Screen, "_on_timer_update", None))
-
-
 class ViewerScreen(Screen):
-    """The viewer's main screen: :class:`ViewerCompositor` when Textual has what it uses,
-    and :meth:`paint_now`."""
+    """The viewer's main screen, painted by :class:`ViewerCompositor` when Textual has what it
+    uses."""
 
     def __init__(self, *args, **kw) -> None:
         super().__init__(*args, **kw)
-        if SUPPORTED:
-            self._compositor = ViewerCompositor()
-
-    def paint_now(self) -> bool:
-        """Paint the widgets waiting for a repaint now, as the screen's update timer would
-        on its next tick, when a repaint is all that waits (no layout, scroll, style or
-        recompose pending anywhere on the screen, no message in its queue).  Otherwise, or
-        without what it needs from Textual (:data:`PAINT_NOW`), Textual paints as always.
-
-        Textual's own way from ``Widget.refresh`` to the terminal takes a round of the event
-        loop per widget (each sees it is idle and posts ``Update`` to the screen), one for the
-        screen (idle: it resumes its update timer) and one for the timer's task: ≈ 1 ms a
-        key after the frame is drawn (docs/benchmarks.md).  Returns whether it painted."""
-        app = self.app
-        try:
-            if not (PAINT_NOW and self.is_current and not app._batch_count
-                    and not app.is_inline and self in self._compositor
-                    and self._message_queue.empty() and not self._repaint_required
-                    and not (self._layout_required or self._scroll_required
-                             or self._recompose_required)):
-                return False
-            dirty = []
-            for widget in self.walk_children(with_self=False):
-                if (widget._layout_required or widget._scroll_required
-                        or widget._recompose_required or widget._refresh_styles_required):
-                    return False
-                if widget._repaint_required and widget.display and not widget._closing:
-                    # (as Widget._check_refresh posts it)
-                    dirty.append(widget)
-        except AttributeError:  # not the Textual this was written for: Textual paints
-            return False
-        if not dirty:
-            return False
-        for widget in dirty:  # each one's Update, as Screen._on_update takes it
-            widget._repaint_required = False
-            self._dirty_widgets.add(widget)
-        self._on_timer_update()
-        return True
+        install_compositor(self, ViewerCompositor())

@@ -1,11 +1,9 @@
-"""The viewer's modal screens (help, save, typed value) and a command palette that
-survives early keys."""
+"""The viewer's modal screens: help, save, typed value."""
 
 from __future__ import annotations
 
 from textual.app import ComposeResult
 from textual.binding import Binding
-from textual.command import CommandPalette
 from textual.containers import Vertical, VerticalScroll
 from textual.screen import ModalScreen
 from textual.widgets import Input, OptionList, Static
@@ -139,15 +137,3 @@ class ValueScreen(ModalScreen[str | None]):
     def action_cancel(self) -> None:
         if self.is_current:
             self.dismiss(None)
-
-
-class SafeCommandPalette(CommandPalette):
-    """Textual 8.2's palette raises ``KeyError`` when PageUp/PageDown (or Home/End) reach its
-    option list before the list has been laid out (ctrl+p then PageUp in one burst): its line
-    index is still empty.  Such a key is dropped; once laid out, the list works as usual."""
-
-    def _action_command_list(self, action: str) -> None:
-        try:
-            super()._action_command_list(action)
-        except (KeyError, IndexError):
-            pass

@@ -13,12 +13,13 @@ from rich.style import Style
 from rich.text import Text
 from textual.css.scalar import Unit
 from textual.filter import ANSIToTruecolor
-from textual.geometry import Region, Size
+from textual.geometry import Region
 from textual.strip import Strip
 from textual.style import Style as TextualStyle
 from textual.widget import Widget
 from textual.widgets import Static
 
+from tuibrdf.app.textual_internals import styles_key
 from tuibrdf.core.conventions import fmt_number
 from tuibrdf.render.lines import BLANK, fit_row, pane_lines, render_rows
 from tuibrdf.render.rowdiff import ChangedRow
@@ -95,7 +96,7 @@ class Rows(Widget):
 
     def _styles_key(self) -> tuple:
         """What the widget's look depends on: the styles of the widget and its ancestors."""
-        return tuple(node.styles._cache_key for node in self.ancestors_with_self)
+        return styles_key(self)
 
     #: (the styles' keys of the widget and its ancestors, the side padding or None, its
     #: style): :meth:`_sides`, computed again when any of those styles changed
@@ -129,8 +130,7 @@ class Rows(Widget):
         sides, pad = self._sides()
         hover = self.hover_style
         if (sides is None or self.get_line_filters()
-                or (self.auto_links and hover._link_id and hover._meta
-                    and "@click" in hover.meta)):
+                or (self.auto_links and hover.link_id and "@click" in hover.meta)):
             return super().render_lines(crop)
         (left, right), outer, strips = sides, self.outer_size, self._strips
         width = outer.width - left - right
@@ -172,21 +172,12 @@ class Picture(Rows):
         #: the renderable shown: the next one takes the rows they share from it
         self._shown: RenderableType | None = None
 
-    def show(self, renderable: RenderableType, key: object = None,
-             lines: list[list[Segment]] | None = None) -> None:
-        """Show ``renderable`` (``lines``: its rows at this size, drawn already)."""
+    def show(self, renderable: RenderableType, key: object = None) -> None:
+        """Show ``renderable``, drawn from ``key`` (None: from nothing the app names)."""
         w, h = self.size.width, self.size.height
         self.shown_for = key
         like, self._shown = self._shown, renderable
-        if lines is None:
-            lines = pane_lines(renderable, self.app.console, w, h, like)
-        self._set(lines, w, h)
-
-    def drawn(self) -> tuple[object, RenderableType, list[list[Segment]], Size] | None:
-        """What is shown, when it was drawn from a key: ``(key, renderable, rows, size)``."""
-        if self.shown_for is None:
-            return None
-        return self.shown_for, self._shown, self._lines, self.size
+        self._set(pane_lines(renderable, self.app.console, w, h, like), w, h)
 
     def on_resize(self, event) -> None:
         self.shown_for = None

@@ -42,8 +42,6 @@ method                what it does
 
 from __future__ import annotations
 
-import copy
-import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -215,17 +213,6 @@ class ViewerState:
     probe: tuple[float, float] | None = None
     #: values last used for each model, so cycling away and back keeps them
     memory: dict[str, dict[str, Value]] = field(default_factory=dict)
-
-    def fork(self) -> ViewerState:
-        """An independent copy, for a transition tried ahead (the viewer's prefetch): what a
-        transition changes in place (the sides and their cursors, the lists, the memory) is
-        copied; the materials are immutable and shared."""
-        before = self.before_preset
-        return dataclasses.replace(
-            self, sides=[copy.copy(s) for s in self.sides], files=list(self.files),
-            memory={k: dict(v) for k, v in self.memory.items()},
-            before_preset=None if before is None else ([copy.copy(s) for s in before[0]],
-                                                       before[1]))
 
     # -- reading -------------------------------------------------------------------------
     @property

@@ -1,6 +1,6 @@
 """MERL measured BRDFs (Matusik, Pfister, Brand, McMillan 2003): reader and lookup.
 
-This is the core's only file I/O.  SPEC §6 fixes the format, which is that of MERL's own
+SPEC §6 fixes the format, which is that of MERL's own
 ``BRDFRead.cpp``:
 
 * a header of 3 little-endian int32: ``(90, 90, 180)`` = (θh bins, θd bins, φd bins);

@@ -1,0 +1,163 @@
+"""Every private name of Textual the viewer relies on, behind small functions: the rest of
+``tuibrdf/app`` uses Textual's public API only (tests/test_textual_internals.py checks both).
+
+Checked against Textual 8.2.8.  tests/test_textual_internals.py fails, naming the internal, when
+one of them is missing or its signature changed (:func:`checks`).  At run time the viewer then
+does without it where it can: Textual's own compositor (:data:`PARTIAL_PAINT` false), no wait
+for a busy writer (:func:`writer_backlog` answers 0), styles read afresh every time
+(:func:`styles_key`).
+
+===============================================  ==================================================
+internal (Textual 8.2.8)                         what the viewer does with it
+===============================================  ==================================================
+``textual._compositor.Compositor``               subclassed by ``paint.ViewerCompositor``
+``Compositor.render_partial_update()``           which overrides it (the partial repaint)
+``Compositor.cuts``                              read by it: each line's widget edges
+``Compositor.visible_widgets``                   read by it: each widget's region and clip
+``Compositor.size``                              read by it: the screen's size
+``Compositor._dirty_regions``                    :func:`take_dirty_regions`: what to repaint
+``Compositor._regions_to_spans(regions)``        :func:`regions_to_spans`: those as spans
+``ChopsUpdate(chops, spans, chop_ends)``         ``textual._compositor.ChopsUpdate``, made and
+                                                 subclassed by ``paint.SpansUpdate``, which
+``ChopsUpdate.render_segments(console)``         overrides it (each span from its first cell)
+``Screen._compositor``                           :func:`install_compositor`: the viewer's
+``Styles._cache_key``                            :func:`styles_key`: changes when a style does
+``App._driver``                                  :func:`writer_backlog`: the writes Textual's
+``LinuxDriver._writer_thread``                   output thread still has queued
+``WriterThread._queue``                          (``app._driver._writer_thread._queue``)
+``CommandPalette._action_command_list(action)``  :class:`SafeCommandPalette` overrides it
+===============================================  ==================================================
+"""
+
+from __future__ import annotations
+
+import asyncio
+import inspect
+import io
+from collections.abc import Iterable
+
+from textual._compositor import ChopsUpdate, Compositor
+from textual.command import CommandPalette
+from textual.css.styles import RenderStyles
+from textual.geometry import Region
+from textual.screen import Screen
+from textual.widget import Widget
+
+__all__ = ["ChopsUpdate", "Compositor", "PARTIAL_PAINT", "SafeCommandPalette",
+           "checks", "install_compositor", "regions_to_spans", "styles_key",
+           "take_dirty_regions", "writer_backlog"]
+
+
+def _params(owner, name: str) -> list[str] | None:
+    """The parameters of ``owner.name``; None when it is not there or not callable."""
+    method = getattr(owner, name, None)
+    if not callable(method):
+        return None
+    return list(inspect.signature(method).parameters)
+
+
+def _compositor_checks() -> dict[str, bool]:
+    probe = Compositor()
+    return {
+        "Compositor._dirty_regions": isinstance(getattr(probe, "_dirty_regions", None), set),
+        "Compositor._regions_to_spans(regions)":
+            _params(probe, "_regions_to_spans") == ["regions"],
+        "Compositor.render_partial_update()": _params(probe, "render_partial_update") == [],
+        "Compositor.cuts": isinstance(getattr(Compositor, "cuts", None), property),
+        "Compositor.visible_widgets":
+            isinstance(getattr(Compositor, "visible_widgets", None), property),
+        "Compositor.size": hasattr(probe, "size"),
+        "ChopsUpdate(chops, spans, chop_ends)":
+            _params(ChopsUpdate, "__init__") == ["self", "chops", "spans", "chop_ends"],
+        "ChopsUpdate.render_segments(console)":
+            _params(ChopsUpdate, "render_segments") == ["self", "console"],
+    }
+
+
+def _other_checks() -> dict[str, bool]:
+    from textual.app import App
+    from textual.drivers._writer_thread import WriterThread
+    from textual.drivers.linux_driver import LinuxDriver
+
+    async def driver_attributes() -> dict:  # (a driver is made in a running loop)
+        return vars(LinuxDriver(app))
+
+    app = App()
+    writer = WriterThread(io.StringIO())  # (not started)
+    loop = asyncio.new_event_loop()
+    try:
+        driver = loop.run_until_complete(driver_attributes())
+    finally:
+        loop.close()
+    return {
+        "Screen._compositor": isinstance(getattr(Screen(), "_compositor", None), Compositor),
+        "Styles._cache_key": isinstance(getattr(RenderStyles, "_cache_key", None), property),
+        "App._driver": "_driver" in vars(app),
+        "LinuxDriver._writer_thread": "_writer_thread" in driver,
+        "WriterThread._queue": callable(getattr(getattr(writer, "_queue", None), "qsize", None)),
+        "CommandPalette._action_command_list(action)":
+            _params(CommandPalette, "_action_command_list") == ["self", "action"],
+    }
+
+
+def checks() -> dict[str, bool]:
+    """Each internal listed above → whether it is there as in Textual 8.2.8 (the attribute,
+    its kind, the parameters of a method)."""
+    return {**_compositor_checks(), **_other_checks()}
+
+
+#: the viewer's compositor can replace the screen's (paint.py); else Textual's paints
+PARTIAL_PAINT = all(_compositor_checks().values())
+
+_STYLES_KEY = isinstance(getattr(RenderStyles, "_cache_key", None), property)
+
+
+def take_dirty_regions(compositor: Compositor) -> set[Region]:
+    """The regions marked for repaint since the last paint; none are marked afterwards (as
+    Textual's ``render_partial_update`` takes them)."""
+    regions = compositor._dirty_regions.copy()
+    compositor._dirty_regions.clear()
+    return regions
+
+
+def regions_to_spans(compositor: Compositor,
+                     regions: Iterable[Region]) -> Iterable[tuple[int, int, int]]:
+    """``regions`` as non-overlapping horizontal spans ``(y, x1, x2)``, Textual's way."""
+    return compositor._regions_to_spans(regions)
+
+
+def install_compositor(screen: Screen, compositor: Compositor) -> bool:
+    """``compositor`` paints ``screen`` (before it is mounted); whether it could."""
+    if not (PARTIAL_PAINT and isinstance(getattr(screen, "_compositor", None), Compositor)):
+        return False
+    screen._compositor = compositor
+    return True
+
+
+def styles_key(widget: Widget) -> tuple:
+    """A key that changes when a style of ``widget`` or of an ancestor changes (a new object
+    every call without Textual's ``_cache_key``: nothing derived from styles is then kept)."""
+    if not _STYLES_KEY:
+        return (object(),)
+    return tuple(node.styles._cache_key for node in widget.ancestors_with_self)
+
+
+def writer_backlog(app) -> int:
+    """How many writes Textual's output thread still has queued for the terminal (0 when not
+    known: no driver yet, a headless one, or another Textual)."""
+    try:
+        return app._driver._writer_thread._queue.qsize()
+    except AttributeError:
+        return 0
+
+
+class SafeCommandPalette(CommandPalette):
+    """Textual 8.2's palette raises ``KeyError`` when PageUp/PageDown (or Home/End) reach its
+    option list before the list has been laid out (ctrl+p then PageUp in one burst): its line
+    index is still empty.  Such a key is dropped; once laid out, the list works as usual."""
+
+    def _action_command_list(self, action: str) -> None:
+        try:
+            super()._action_command_list(action)
+        except (KeyError, IndexError):
+            pass
