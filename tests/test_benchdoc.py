@@ -4,9 +4,9 @@ replacing only that section."""
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+from tests import ROOT
+
 sys.path.insert(0, str(ROOT / "scripts"))
 
 from benchdoc import command_line, write_section  # noqa: E402

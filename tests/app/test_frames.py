@@ -17,6 +17,7 @@ import pytest
 from rich.console import Console
 from textual import events
 
+from tests import DATA_DIR
 from tests.pilot import wait_for as pilot_wait_for
 from tuibrdf.app import keys
 from tuibrdf.app.app import BrdfApp
@@ -531,13 +532,12 @@ async def test_a_model_files_frames_are_never_computed_on_the_event_loop(monkeyp
     # A registered model's quick frames are computed on the loop (the control)
     import shutil
     import threading
-    from pathlib import Path
 
     from tuibrdf.app import frames
 
     monkeypatch.setattr(frames, "INLINE_S", 10.0)
     path = tmp_path / "mine.brdf"
-    shutil.copy(Path(__file__).parent / "data" / "brdf" / "lambert.brdf", path)
+    shutil.copy(DATA_DIR / "brdf" / "lambert.brdf", path)
     scene.clear_caches()
     where: list[tuple[str, bool]] = []  # (model, on the event loop)
     real = scene.compute_frame

@@ -16,9 +16,10 @@ from textual.screen import Screen
 from textual.widget import Widget
 from textual.widgets import Static
 
+from tests import ROOT
 from tuibrdf.app import textual_internals
 
-APP = Path(__file__).resolve().parent.parent / "tuibrdf" / "app"
+APP = ROOT / "tuibrdf" / "app"
 CHECKS = textual_internals.checks()
 
 
