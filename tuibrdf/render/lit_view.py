@@ -21,6 +21,7 @@ from rich.console import Group
 
 from ..core.lit import DEFAULT_EXPOSURE, DEFAULT_FOV_DEG, DEFAULT_GAMMA, lit_plane, lit_sphere
 from ..core.lit import tone_map as tone_map_core
+from ..core.numerics import snapped_rint
 from ..core.params import Model
 from .colormap import fmt_value
 from .halfblock import HalfBlockImage
@@ -79,9 +80,9 @@ def lit_view(
 
 def quantise_rgb(img: np.ndarray, levels: int = LEVELS) -> np.ndarray:
     """8-bit colours rounded to the nearest of ``levels`` evenly spaced values (0 and 255
-    kept)."""
+    kept); each rounding decided on the snapped value (core.numerics.snap)."""
     step = 255.0 / (levels - 1)  # levels ≥ 2
-    return np.rint(np.rint(img / step) * step).astype(np.uint8)
+    return snapped_rint(snapped_rint(img / step) * step).astype(np.uint8)
 
 
 def lit_picture(kind: str, name: str, theta_i_deg: float, rad: np.ndarray, mask: np.ndarray,
