@@ -14,6 +14,9 @@ from tuibrdf.app.state import Side, ViewerState
 from tuibrdf.app.text import visible_panes
 from tuibrdf.core.models import MODELS
 
+#: drives the Textual viewer: not in CI's numeric leg (pyproject.toml's markers, .ci/run)
+pytestmark = pytest.mark.app
+
 
 @pytest.fixture(autouse=True)
 def config_home(tmp_path, monkeypatch):

@@ -26,6 +26,9 @@ from tuibrdf.core.conventions import fmt_value
 from tuibrdf.core.models import MODELS
 from tuibrdf.core.quadrature import albedo
 
+#: drives the Textual viewer: not in CI's numeric leg (pyproject.toml's markers, .ci/run)
+pytestmark = pytest.mark.app
+
 
 @pytest.fixture(autouse=True)
 def config_home(tmp_path, monkeypatch):

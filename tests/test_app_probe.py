@@ -20,6 +20,9 @@ import tuibrdf
 from tuibrdf.app.app import BrdfApp
 from tuibrdf.app.state import PROBE_STEP, Side, ViewerState
 
+#: drives the Textual viewer: not in CI's numeric leg (pyproject.toml's markers, .ci/run)
+pytestmark = pytest.mark.app
+
 
 def make(model, theta=30.0, **params):
     return BrdfApp(ViewerState(sides=[Side.of(model, params)], theta_i=theta), sync=True)

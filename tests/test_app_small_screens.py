@@ -19,6 +19,9 @@ from tuibrdf.app.app import BrdfApp
 from tuibrdf.app.state import Side, ViewerState
 from tuibrdf.core.models import MODELS
 
+#: drives the Textual viewer: not in CI's numeric leg (pyproject.toml's markers, .ci/run)
+pytestmark = pytest.mark.app
+
 DISNEY = str(Path(__file__).parent / "data" / "brdf" / "disney.brdf")
 SECTION_ROWS = 6  # a section's title and 5 rows of braille
 

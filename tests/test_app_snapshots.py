@@ -9,6 +9,9 @@ import pytest
 from tuibrdf.app.app import BrdfApp
 from tuibrdf.app.state import Side, ViewerState
 
+#: drives the Textual viewer: not in CI's numeric leg (pyproject.toml's markers, .ci/run)
+pytestmark = pytest.mark.app
+
 
 @pytest.fixture(autouse=True)
 def config_home(tmp_path, monkeypatch):

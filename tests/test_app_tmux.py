@@ -14,7 +14,9 @@ from pathlib import Path
 
 import pytest
 
-pytestmark = pytest.mark.skipif(shutil.which("tmux") is None, reason="tmux not installed")
+#: drives the Textual viewer (app: not in CI's numeric leg, pyproject.toml's markers, .ci/run)
+pytestmark = [pytest.mark.app,
+              pytest.mark.skipif(shutil.which("tmux") is None, reason="tmux not installed")]
 ROOT = Path(__file__).resolve().parents[1]
 
 

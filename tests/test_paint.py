@@ -32,6 +32,9 @@ from tuibrdf.app.state import Side, ViewerState
 from tuibrdf.app.widgets import Rows
 from tuibrdf.core import scene
 
+#: drives the Textual viewer: not in CI's numeric leg (pyproject.toml's markers, .ci/run)
+pytestmark = pytest.mark.app
+
 
 @pytest.fixture(autouse=True)
 def config_home(tmp_path, monkeypatch):
