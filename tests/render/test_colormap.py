@@ -72,10 +72,14 @@ def test_unknown_cmap():
 
 
 def test_quantisation_edges():
-    # level k holds [k/L, (k+1)/L); t = 1 falls in the top level; NaN → transparent
+    # level k holds [k/L, (k+1)/L) of t·L snapped to 2⁻³⁰ (core.numerics.snap): 1e-8 below a
+    # boundary (3.2e-7 of a level) is below it, 1e-13 below (3.2e-12 of a level, a few
+    # ulps: the last bits of a CPU's exp or pow) is on it; t = 1 falls in the top level;
+    # NaN → transparent
     L = 32
-    t = np.array([0.0, 1 / L - 1e-12, 1 / L, 0.5, 1 - 1e-12, 1.0, np.nan])
-    assert quantise(t, L).tolist() == [0, 0, 1, 16, 31, 31, TRANSPARENT]
+    t = np.array([0.0, 1 / L - 1e-8, 1 / L - 1e-13, 1 / L, 1 / L + 1e-13, 0.5, 1 - 1e-8,
+                  1.0, np.nan])
+    assert quantise(t, L).tolist() == [0, 0, 1, 1, 1, 16, 31, 31, TRANSPARENT]
 
 
 def test_linear_scale_zero_to_max():

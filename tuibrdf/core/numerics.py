@@ -62,3 +62,49 @@ SHADER_ERRSTATE = {"divide": "ignore", "over": "ignore", "invalid": "ignore", "u
 def shader_errstate() -> np.errstate:
     """Context manager applying :data:`SHADER_ERRSTATE` (translated user shaders only)."""
     return np.errstate(**SHADER_ERRSTATE)
+
+
+#: Pictures decide things by comparing numbers with thresholds: the dot or pixel a point falls
+#: in, the pixel centres a triangle's box holds, a colour level, the nearer of two fragments.
+#: The numbers come from sin, exp, pow, matmul …, which numpy computes in SIMD or scalar loops
+#: that differ by CPU and numpy version in the last bits, and a picture's geometry puts many of
+#: them exactly on a threshold (x = 0 in a symmetric window is a dot boundary, a horizon row a
+#: half-integer).  So every such decision is taken on :func:`snap`'s value, in the decision's
+#: own unit (a dot, a pixel, a level): within 2⁻³¹ ≈ 4.7e-10 of a multiple of this, a number
+#: becomes that multiple exactly, so one that is on a threshold in exact arithmetic is on it
+#: whatever its last bits, and the tie goes one fixed way.  Any other number moves by at most
+#: 4.7e-10 of a unit: nothing drawn shows it.
+SNAP = 2.0**-30
+_SNAP_ABOVE = 2.0**22  # from here on every float is a multiple of SNAP already (ulp ≥ 2⁻³⁰)
+
+
+def snap(v) -> np.ndarray:
+    """``v`` rounded to the nearest multiple of :data:`SNAP` (ties to even), as a float array.
+
+    Exact: scaling by a power of two and rounding to an integer below 2⁵² round nothing else.
+    Magnitudes ≥ 2²² (multiples of SNAP already), ±inf and NaN come back as they are, with no
+    floating-point warning."""
+    v = np.asarray(v, dtype=float)
+    small = np.abs(v) < _SNAP_ABOVE  # False for NaN
+    return np.where(small, np.rint(np.where(small, v, 0.0) * (1.0 / SNAP)) * SNAP, v)
+
+
+def snapped_floor(v) -> np.ndarray:
+    """``⌊v⌋`` decided on :func:`snap`'s value (a float array)."""
+    return np.floor(snap(v))
+
+
+def snapped_ceil(v) -> np.ndarray:
+    """``⌈v⌉`` decided on :func:`snap`'s value (a float array)."""
+    return np.ceil(snap(v))
+
+
+def snapped_rint(v) -> np.ndarray:
+    """The nearest integer, halves to even (``np.rint``), decided on :func:`snap`'s value."""
+    return np.rint(snap(v))
+
+
+def snapped_round_half_up(v) -> np.ndarray:
+    """The nearest integer, halves up (``⌊v + ½⌋``: the cell ``[c − ½, c + ½)`` holding ``v``),
+    decided on :func:`snap`'s value."""
+    return np.floor(snap(v) + 0.5)

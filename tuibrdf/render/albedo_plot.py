@@ -12,11 +12,13 @@ the channel choice asks for; in compare mode each side has its own marker.
 
 from __future__ import annotations
 
+import math
 import threading
 
 import numpy as np
 from rich.text import Text
 
+from tuibrdf.core.numerics import snap
 from tuibrdf.render.curves import curve_color
 
 #: plotext keeps its figure in module-global state: every build runs under this lock
@@ -59,13 +61,22 @@ def albedo_plot(
         for j, (label, a, *style) in enumerate(curves):
             marker = style[0] if style else "braille"
             col = style[1] if len(style) > 1 else curve_color(label, j)
-            a = np.asarray(a, dtype=float)
+            a = on_axis_grid(a, top)
             plt.plot(thetas.tolist(), a.tolist(), marker=marker, color=col,
                      label=label if len(curves) > 1 else None)
             if theta_i_deg is not None:  # the point a(θi) on the curve
-                plt.scatter([float(theta_i_deg)], [float(np.interp(theta_i_deg, thetas, a))],
-                            marker="o", color=col)
+                at = float(on_axis_grid(np.interp(theta_i_deg, thetas, a), top))
+                plt.scatter([float(theta_i_deg)], [at], marker="o", color=col)
         return finish_plot(color)
+
+
+def on_axis_grid(v, top: float) -> np.ndarray:
+    """``v`` snapped (core.numerics.snap) in units of ``top``'s power of two: plotext decides
+    each point's dot by its own rounding, so what it is given is made the same on every
+    machine (the albedo's last bits depend on the CPU's exp and pow), and a value on a dot
+    boundary in exact arithmetic stays on it.  Exact: powers of two."""
+    unit = math.ldexp(1.0, math.frexp(top)[1])  # top < unit ≤ 2·top (top > 0)
+    return snap(np.asarray(v, dtype=float) / unit) * unit
 
 
 #: the smallest axis end: an albedo below it (1e-322 from a subnormal parameter) is drawn on

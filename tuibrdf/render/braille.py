@@ -36,6 +36,7 @@ from rich.measure import Measurement
 from rich.segment import Segment
 from rich.style import Style
 
+from tuibrdf.core.numerics import snap, snapped_ceil
 from tuibrdf.render.rowdiff import kept_rows, mark_changed
 
 BRAILLE_BASE = 0x2800
@@ -134,13 +135,18 @@ class BrailleCanvas:
 
     # -- drawing -------------------------------------------------------------------------------
     def _set(self, cols: np.ndarray, rows: np.ndarray, layer: int) -> None:
-        # the canvas covers dot coordinates [−½, dot_w − ½] × [−½, dot_h − ½], both ends
-        # included: a point on the limits (f = 0 on a y axis from 0, θ = 90° on one to 90°)
-        # is drawn in the edge dot, not dropped (rint of dot_w − ½ is dot_w, one past it)
+        # dot c covers [c − ½, c + ½): the nearest dot, halves up, decided on the snapped
+        # coordinate (core.numerics.snap): many points sit on a dot boundary by construction
+        # (x = 0 is one in the symmetric polar window, the horizon line's samples are), and a
+        # last-ulp difference in sin or exp must not move them.  The canvas covers dot
+        # coordinates [−½, dot_w − ½] × [−½, dot_h − ½], both ends included: a point on the
+        # limits (f = 0 on a y axis from 0, θ = 90° on one to 90°) is drawn in the edge dot,
+        # not dropped (dot_w − ½ rounds up to dot_w, one past it)
+        cols, rows = snap(cols), snap(rows)
         ok = ((cols >= -0.5) & (cols <= self.dot_w - 0.5)
               & (rows >= -0.5) & (rows <= self.dot_h - 0.5))
-        c = np.minimum(np.rint(cols[ok]).astype(np.int64), self.dot_w - 1)
-        r = np.minimum(np.rint(rows[ok]).astype(np.int64), self.dot_h - 1)
+        c = np.minimum(np.floor(cols[ok] + 0.5).astype(np.int64), self.dot_w - 1)
+        r = np.minimum(np.floor(rows[ok] + 0.5).astype(np.int64), self.dot_h - 1)
         self.owner[r, c] = layer
 
     def polyline(self, x: np.ndarray, y: np.ndarray, layer: int) -> None:
@@ -169,8 +175,11 @@ class BrailleCanvas:
             x0, y0 = x0 + t0 * dx, y0 + t0 * dy
             dx, dy = (t1 - t0) * dx, (t1 - t0) * dy
             x0, y0, dx, dy = (np.where(inside, a, 0.0) for a in (x0, y0, dx, dy))
-        # each segment sampled at ≤ 1 dot steps along its major axis; at least one sample
-        steps = np.maximum(np.ceil(np.maximum(np.abs(dx), np.abs(dy))), 1.0)
+        # each segment sampled at ≤ 1 dot steps along its major axis; at least one sample (the
+        # count decided on the snapped length: a segment a whole number of dots long, as the
+        # horizon line is, gets the same samples whatever the last bits, and with them the
+        # same phase of the dot pattern along the rest of the path)
+        steps = np.maximum(snapped_ceil(np.maximum(np.abs(dx), np.abs(dy))), 1.0)
         n = steps.astype(np.int64)
         total = int(n.sum())
         seg = np.repeat(np.arange(n.size), n)
@@ -199,7 +208,7 @@ class BrailleCanvas:
         :meth:`polyline` draws it (several arcs in one call, separated by NaN)."""
         (x0, x1) = self.xlim
         r_dots = abs(r) * self.dot_w / (x1 - x0)  # x1 > x0
-        n = int(np.clip(np.ceil(np.radians(abs(t1_deg - t0_deg)) * r_dots), 8, 20000))
+        n = int(np.clip(snapped_ceil(np.radians(abs(t1_deg - t0_deg)) * r_dots), 8, 20000))
         t = np.radians(np.linspace(t0_deg, t1_deg, n + 1))
         return cx + r * np.sin(t), cy + r * np.cos(t)
 

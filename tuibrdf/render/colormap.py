@@ -37,6 +37,7 @@ from rich.text import Text
 
 from tuibrdf.core.conventions import fmt_value, luminance
 from tuibrdf.core.display import DISPLAY
+from tuibrdf.core.numerics import snapped_floor, snapped_rint
 from tuibrdf.render import CMAPS
 from tuibrdf.render.halfblock import TRANSPARENT, HalfBlockImage
 
@@ -195,7 +196,7 @@ def sample(name: str, t: np.ndarray) -> np.ndarray:
 
 @lru_cache(maxsize=64)
 def _palette(name: str, levels: int) -> np.ndarray:
-    pal = np.rint(sample(name, np.linspace(0.0, 1.0, levels)) * 255.0).astype(np.uint8)
+    pal = snapped_rint(sample(name, np.linspace(0.0, 1.0, levels)) * 255.0).astype(np.uint8)
     pal.setflags(write=False)
     return pal
 
@@ -251,10 +252,13 @@ class Scale:
 
 
 def quantise(t: np.ndarray, levels: int = DEFAULT_LEVELS) -> np.ndarray:
-    """Level index ``⌊t·L⌋`` clipped to ``[0, L−1]``; NaN → ``TRANSPARENT`` (−1)."""
+    """Level index ``⌊t·L⌋`` clipped to ``[0, L−1]``; NaN → ``TRANSPARENT`` (−1).  The floor is
+    taken on the snapped ``t·L`` (core.numerics.snap): a value on a level boundary in exact
+    arithmetic (a colour bar's evenly spaced t, a ratio of two values computed alike) keeps its
+    level whatever the last bits of its computation."""
     t = np.asarray(t, dtype=float)
     nan = np.isnan(t)
-    k = np.floor(np.where(nan, 0.0, t) * levels).astype(np.int64)
+    k = snapped_floor(np.where(nan, 0.0, t) * levels).astype(np.int64)
     k = np.clip(k, 0, levels - 1)
     return np.where(nan, TRANSPARENT, k)
 
@@ -300,7 +304,7 @@ def colorize(
             index = np.full(nan.shape, TRANSPARENT, dtype=np.int64)
             index[~nan] = inverse
             ch = np.stack([codes // (levels * levels), (codes // levels) % levels, codes % levels])
-            pal = np.rint(ch.T * (255.0 / (levels - 1))).astype(np.uint8).reshape(-1, 3)
+            pal = snapped_rint(ch.T * (255.0 / (levels - 1))).astype(np.uint8).reshape(-1, 3)
             return Colored(index, pal, scale)
     scale = scale or Scale.for_values(v, log, decades)
     return Colored(quantise(scale.normalise(v), levels), palette(cmap, levels), scale)

@@ -45,6 +45,7 @@ from rich.style import Style
 
 from tuibrdf.core.conventions import REC709  # here applied to 8-bit values: a luma
 from tuibrdf.core.lru import LRU
+from tuibrdf.core.numerics import snapped_rint
 from tuibrdf.render.rowdiff import kept_rows, mark_changed
 
 ColorSystem = Literal["truecolor", "256", "none"]
@@ -362,7 +363,9 @@ class HalfBlockImage:
             below = np.vstack([rt[1:], np.zeros_like(rb[:1])])  # pixel below each bottom half
             outermost = (rt & (bottom >= 0) & ~rb & ~above) | (rb & (top >= 0) & ~rt & ~below)
             top, bottom = np.where(rt, bottom, top), np.where(rb, top, bottom)
-        level = np.rint((y[top] + y[bottom]) / 2 * (len(ASCII_RAMP) - 1)).astype(np.int64)
+        # the luma comes through a matrix product (the BLAS's order of operations): the ramp
+        # step is decided on the snapped value (core.numerics.snap)
+        level = snapped_rint((y[top] + y[bottom]) / 2 * (len(ASCII_RAMP) - 1)).astype(np.int64)
         if self.ring is not None:  # ring and ring, or ring and outside: the guide
             level[(top == self.ring) | (top < 0) & (bottom == self.ring)] = len(ASCII_RAMP)
             level[(rt | rb) & (top < 0) & (bottom < 0)] = len(ASCII_RAMP)

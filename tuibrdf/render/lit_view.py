@@ -20,6 +20,7 @@ from rich.console import Group
 
 from tuibrdf.core.conventions import fmt_value
 from tuibrdf.core.display import DISPLAY
+from tuibrdf.core.numerics import snapped_rint
 from tuibrdf.core.views.lit import DEFAULT_FOV_DEG
 from tuibrdf.core.views.lit import tone_map as tone_map_core
 from tuibrdf.render.halfblock import HalfBlockImage
@@ -33,9 +34,9 @@ SKY_RGB = (26, 32, 52)
 
 def quantise_rgb(img: np.ndarray, levels: int = LEVELS) -> np.ndarray:
     """8-bit colours rounded to the nearest of ``levels`` evenly spaced values (0 and 255
-    kept)."""
+    kept); each rounding decided on the snapped value (core.numerics.snap)."""
     step = 255.0 / (levels - 1)  # levels ≥ 2
-    return np.rint(np.rint(img / step) * step).astype(np.uint8)
+    return snapped_rint(snapped_rint(img / step) * step).astype(np.uint8)
 
 
 def lit_picture(kind: str, name: str, theta_i_deg: float, rad: np.ndarray, mask: np.ndarray,

@@ -29,6 +29,7 @@ from rich.text import Text
 
 from tuibrdf.core.conventions import decimals_for, fmt_value, luminance
 from tuibrdf.core.display import DISPLAY
+from tuibrdf.core.numerics import snapped_rint
 from tuibrdf.core.sphere.horizon import HORIZON_DEG, Horizon, PeakScale
 from tuibrdf.core.sphere.peak import Peak
 from tuibrdf.core.views.frame import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
@@ -265,7 +266,9 @@ def diff_pane(res: FrameResult, w: int, h: int, look: Look) -> Group:
     m = largest if largest > 0 else 1.0  # identical sides: all mid-grey, no division by zero
     t = np.clip(d / m * 0.5 + 0.5, 0.0, 1.0)
     levels = min(look.levels, 32)
-    idx = np.where(finite, np.rint(np.nan_to_num(t) * (levels - 1)), -1).astype(np.int64)
+    # identical sides give t = ½ exactly, a tie for an even number of levels: decided on the
+    # snapped value (core.numerics.snap), as every level of every picture
+    idx = np.where(finite, snapped_rint(np.nan_to_num(t) * (levels - 1)), -1).astype(np.int64)
     stops = np.array(DIVERGING, dtype=float)
     x = np.linspace(0, 1, levels)
     pal = np.stack([np.interp(x, [0, 0.5, 1], stops[:, c]) for c in range(3)], -1)
@@ -273,7 +276,7 @@ def diff_pane(res: FrameResult, w: int, h: int, look: Look) -> Group:
     if look.color == "none":  # no colour to tell the sign: characters that say it
         return Group(head, signed_text(np.where(finite, t - 0.5, np.nan)),
                      title([("+# A>B  -= B>A  . same", 0)], w))
-    img = HalfBlockImage(idx, np.rint(pal).astype(np.uint8), (), color_system=look.color)
+    img = HalfBlockImage(idx, snapped_rint(pal).astype(np.uint8), (), color_system=look.color)
     return Group(head, img, title([("red: A>B  blue: B>A", 0)], w))
 
 

@@ -12,7 +12,8 @@
   (over the samples), and these are rasterised (every pixel whose centre lies inside, depth
   interpolated), so the surface is closed at any pane size however far a lobe stretches it;
   the samples are also splatted, so a triangle thinner than a pixel still shows.
-- Z-buffer: the nearest fragment per pixel wins (ties broken by fragment order: deterministic).
+- Z-buffer: the nearest fragment per pixel wins (depths compared to 1e-9 of a pixel; ties
+  broken by fragment order: deterministic).
 - Shading: Lambert-like, ``0.2 + 0.8·|n·l|`` with ``n`` the triangle normal of the *deformed*
   surface and ``l`` a light over the camera's left shoulder, quantised through the colour map.
 - Log (``log=True``): the radius is the decade position ``1 + log10(f / max) / 3`` clipped at 0,
@@ -30,6 +31,7 @@ import numpy as np
 from tuibrdf.core.conventions import luminance
 from tuibrdf.core.directions import incident
 from tuibrdf.core.display import DISPLAY
+from tuibrdf.core.numerics import snap, snapped_ceil, snapped_floor
 from tuibrdf.core.views.frame import SOLID_SUBDIV, solid_samples
 from tuibrdf.render.colormap import LOG_DECADES, palette, quantise
 from tuibrdf.render.halfblock import TRANSPARENT
@@ -76,11 +78,13 @@ def rasterise(x: np.ndarray, y: np.ndarray, depth: np.ndarray, px_w: int, px_h: 
     centre lies inside a triangle or on its edges, all triangles at once (no Python loop)."""
     x0, x1, x2 = x.T
     y0, y1, y2 = y.T
-    # first and last pixel centres (c + 0.5) inside each triangle's bounding box, on screen
-    lo_x = np.maximum(np.ceil(np.minimum(np.minimum(x0, x1), x2) - 0.5), 0).astype(np.int64)
-    hi_x = np.minimum(np.floor(np.maximum(np.maximum(x0, x1), x2) - 0.5), px_w - 1)
-    lo_y = np.maximum(np.ceil(np.minimum(np.minimum(y0, y1), y2) - 0.5), 0).astype(np.int64)
-    hi_y = np.minimum(np.floor(np.maximum(np.maximum(y0, y1), y2) - 0.5), px_h - 1)
+    # first and last pixel centres (c + 0.5) inside each triangle's bounding box, on screen,
+    # decided on the snapped corners (core.numerics.snap): a corner on the axis of an odd
+    # width lies on a pixel centre, and the matrix product that projects it rounds by CPU
+    lo_x = np.maximum(snapped_ceil(np.minimum(np.minimum(x0, x1), x2) - 0.5), 0).astype(np.int64)
+    hi_x = np.minimum(snapped_floor(np.maximum(np.maximum(x0, x1), x2) - 0.5), px_w - 1)
+    lo_y = np.maximum(snapped_ceil(np.minimum(np.minimum(y0, y1), y2) - 0.5), 0).astype(np.int64)
+    hi_y = np.minimum(snapped_floor(np.maximum(np.maximum(y0, y1), y2) - 0.5), px_h - 1)
     nx = np.maximum(hi_x.astype(np.int64) - lo_x + 1, 0)
     ny = np.maximum(hi_y.astype(np.int64) - lo_y + 1, 0)
     count = nx * ny
@@ -174,8 +178,8 @@ def solid_image(
     se, ce = abs(np.sin(np.radians(elevation_deg))), np.cos(np.radians(elevation_deg))
     lo, hi = min(-se, 1.1 * ce) * scale_r, max(se, 1.1 * ce) * scale_r
     k = min(px_w / (2.3 * scale_r), px_h / (1.05 * (hi - lo)))
-    cols = np.floor(px_w / 2 + xyz[:, 0] * k).astype(np.int64)
-    rows = np.floor(px_h / 2 - (xyz[:, 1] - (lo + hi) / 2) * k).astype(np.int64)
+    cols = snapped_floor(px_w / 2 + xyz[:, 0] * k).astype(np.int64)
+    rows = snapped_floor(px_h / 2 - (xyz[:, 1] - (lo + hi) / 2) * k).astype(np.int64)
     ok = (cols >= 0) & (cols < px_w) & (rows >= 0) & (rows < px_h)
     # the small triangles over each face's samples, in pixel units (x right, y down)
     tris = _grid_triangles(len(corner_dirs), SOLID_SUBDIV)
@@ -185,7 +189,10 @@ def solid_image(
     pid = np.concatenate([t_pid, (rows * px_w + cols)[ok]])
     z = np.concatenate([t_z, xyz[ok, 2]])
     frag = np.concatenate([code[tris[t_id, 0]], code[ok]])  # a triangle shades as its face
-    order = np.lexsort((-z, pid))  # by pixel, nearest first
+    # by pixel, nearest first; depths compared snapped, in pixels (core.numerics.snap): two
+    # fragments of one point (a shared edge, a splat on its triangle) tie, and the tie goes
+    # to the first in fragment order, not to the last bits of the projection
+    order = np.lexsort((-snap(z * k), pid))
     first_pid, first = np.unique(pid[order], return_index=True)
     index = np.full(px_w * px_h, TRANSPARENT, dtype=np.int64)
     index[first_pid] = frag[order][first]

@@ -255,8 +255,9 @@ def _sgd_g1_plain(theta, lam, c_g, k, theta0):
 
 def _sgd_g1(theta, q: _Sgd):
     """G1 of polar angle(s) ``theta`` (grey, any shape) for the three channels of ``q``:
-    ``(3,) + theta.shape``; the same values as :func:`_sgd_g1_plain` (the same operations on
-    every element whose value is kept).
+    ``(3,) + theta.shape``; the values of :func:`_sgd_g1_plain` (the same operations on every
+    element whose value is kept, up to the last bits numpy's loops for exp, log and pow give
+    on a given CPU and layout; tests/test_fitted_fast.py bounds them).
 
     No logarithm per element: ``t`` is clipped to [0, t*·(1 + band)] before the power, which
     leaves t = 0 (θ ≤ θ0: x = 0, G1 = 1 as written) and every t below t*(1 + band) unchanged.

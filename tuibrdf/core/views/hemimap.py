@@ -38,6 +38,7 @@ import numpy as np
 from tuibrdf.core.conventions import luminance
 from tuibrdf.core.directions import mirror
 from tuibrdf.core.evaluate import evaluate_resolved, f_cos
+from tuibrdf.core.numerics import snapped_floor
 from tuibrdf.core.params import Model
 
 METHODS: tuple[str, ...] = ("exact", "mesh")
@@ -88,8 +89,10 @@ class MapGrid:
     def to_pixel(self, uv: np.ndarray) -> tuple[int, int]:
         """``(row, col)`` of the pixel containing Lambert point ``uv``."""
         k = self.diameter / 2.0 / SQRT2
-        col = int(np.floor(self.cx + uv[0] * k))
-        row = int(np.floor(self.cy - uv[1] * k))
+        # decided on the snapped coordinate (numerics.snap): a point on the horizon lies on a
+        # pixel boundary when the diameter is odd
+        col = int(snapped_floor(self.cx + uv[0] * k))
+        row = int(snapped_floor(self.cy - uv[1] * k))
         return min(max(row, 0), self.px_h - 1), min(max(col, 0), self.px_w - 1)
 
     def nearest_inside(self, uv: np.ndarray) -> tuple[int, int]:

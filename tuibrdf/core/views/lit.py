@@ -46,6 +46,7 @@ import numpy as np
 from tuibrdf.core.directions import sincos_deg
 from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.evaluate import evaluate_resolved
+from tuibrdf.core.numerics import snapped_rint
 from tuibrdf.core.params import Model
 
 #: irradiance on a surface facing the light: a white Lambert surface then has radiance 1
@@ -171,4 +172,5 @@ def tone_map(radiance: np.ndarray, exposure: float = DISPLAY.exposure.default,
     if not (np.isfinite(gamma) and gamma > 0):
         raise ValueError(f"gamma {gamma}: expected a finite value > 0")
     v = np.clip(np.asarray(radiance, dtype=float) * exposure, 0.0, 1.0)
-    return np.rint(255.0 * v ** (1.0 / gamma)).astype(np.uint8)  # gamma > 0 checked
+    # the rounding decided on the snapped value (numerics.snap): pow's last bits vary by CPU
+    return snapped_rint(255.0 * v ** (1.0 / gamma)).astype(np.uint8)  # gamma > 0 checked
