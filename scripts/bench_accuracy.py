@@ -266,12 +266,12 @@ def ablation_table(refs):
     """Each refinement choice undone (or a constant changed) in turn, on the analytic models'
     defaults (80 cases) and the hard cases (48): evaluations and kernel calls (the same on
     every machine), worst error and estimate, and the summed time (best of 3 each)."""
-    from tuibrdf.core.sphere import integrator as polar
+    from tuibrdf.core.sphere import integrator
     from tuibrdf.core.sphere.integrator import adaptive, geometry, horizon_cut, rules
 
     # a constant is read in the module that defines it (and albedo reads the ones the package
     # re-exports): a change is set in every module that binds the name
-    modules = (polar, adaptive, geometry, horizon_cut, rules)
+    modules = (integrator, adaptive, geometry, horizon_cut, rules)
 
     print("\nRefinement choices, one changed at a time: analytic models' defaults (80 cases) | "
           "hard cases (48)")

@@ -30,7 +30,7 @@ SEQUENCE = 31  # frames computed, whatever --frames is (so two runs differ only 
 
 async def run(model: str, kind: str, frames: int, size: tuple[int, int]) -> float:
     from tuibrdf.app.app import BrdfApp
-    from tuibrdf.core.views import frame as scene
+    from tuibrdf.core.views import frame as core_frame
     from tuibrdf.state.viewer import Side, ViewerState
 
     app = BrdfApp(ViewerState(sides=[Side.of(model)]), color="truecolor")
@@ -47,7 +47,7 @@ async def run(model: str, kind: str, frames: int, size: tuple[int, int]) -> floa
             else:
                 st.cycle_model(1)
             requests.append(app.frame_request())
-        results = [scene.compute_frame(r) for r in requests]
+        results = [core_frame.compute_frame(r) for r in requests]
         start = time.thread_time()
         for res in results[:frames]:
             app.request = res.request

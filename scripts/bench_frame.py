@@ -3,7 +3,7 @@ anything is drawn (issue 16).
 
 The request is the one the viewer makes at 160×48 on the map view: the 88×84-pixel Lambert
 map, both cross-sections, the peak and the albedo with its error estimate
-(``scene.compute_frame``).  Every model's defaults at θi = 30°, 60°, 85° and 89.9°; each
+(``core_frame.compute_frame``).  Every model's defaults at θi = 30°, 60°, 85° and 89.9°; each
 repetition asks for a θi never asked before (θi − k·0.001°, so no cache answers).  Process
 CPU time, median of ``--reps`` after a first round that warms imports, caches and the heap.
 ``--rev REV`` runs the same in a subprocess on git revision REV (``git archive``).  ``--idle S``
@@ -30,7 +30,7 @@ ROOT = Path(__file__).resolve().parent.parent
 THETAS = (30.0, 60.0, 85.0, 89.9)
 CHILD = r"""
 import json, statistics, sys, time
-from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views import frame as core_frame
 from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
 reps, idle = int(sys.argv[1]), float(sys.argv[3])
@@ -43,11 +43,11 @@ for rnd in range(2):  # the first round warms imports, caches and the heap; the 
         for th in json.loads(sys.argv[2]):
             ts = []
             for k in range(reps):
-                req = scene.FrameRequest((m,), th - 0.001 * (k + rnd * reps), map_px=(88, 84))
+                req = core_frame.FrameRequest((m,), th - 0.001 * (k + rnd * reps), map_px=(88, 84))
                 if idle and rnd:
                     time.sleep(idle)
                 t = time.process_time()
-                scene.compute_frame(req)
+                core_frame.compute_frame(req)
                 ts.append(time.process_time() - t)
             out[f"{name} {th:g}"] = statistics.median(ts)
 print(json.dumps(out))

@@ -28,7 +28,7 @@ async def run(model: str, frames: int, w: int, h: int, viewer: bool) -> tuple[li
     from tuibrdf.app import textual_internals
     from tuibrdf.app.app import BrdfApp
     from tuibrdf.app.widgets import Rows
-    from tuibrdf.core.views import frame as scene
+    from tuibrdf.core.views import frame as core_frame
     from tuibrdf.state.viewer import Side, ViewerState
 
     saved = Rows.render_lines, Screen._compositor_refresh, textual_internals.PARTIAL_PAINT
@@ -56,7 +56,7 @@ async def run(model: str, frames: int, w: int, h: int, viewer: bool) -> tuple[li
 
             app._display = display
             req = app.frame_request()
-            results = [scene.compute_frame(dataclasses.replace(req, theta_i=1 + 0.5 * i))
+            results = [core_frame.compute_frame(dataclasses.replace(req, theta_i=1 + 0.5 * i))
                        for i in range(frames)]
             cpu.clear()
             chars.clear()

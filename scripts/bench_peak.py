@@ -6,7 +6,7 @@ f·cos θr; compare with another version of the finder (by default the one on ``
 
     PYTHONPATH=$PWD python scripts/bench_peak.py [--reps 7] [--against main] [--quick]
 
-Then one viewer frame (``core.scene.compute_frame``, caches cleared: a 78×92-pixel
+Then one viewer frame (``core.core_frame.compute_frame``, caches cleared: a 78×92-pixel
 map, both sections, the section through the peak and the peak; not the albedo) for
 each built-in model's defaults at θi = 30°, with either finder, the two alternating frame by
 frame, and the median over the models of the new/old ratio of their median frames.
@@ -29,7 +29,7 @@ import tuibrdf.core.sphere.peak as new_peak
 from tuibrdf.core.directions import incident
 from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
-from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views import frame as core_frame
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -163,21 +163,21 @@ def main() -> None:
 
 def frame_s(name: str, finder) -> float:
     """Seconds of one frame (caches cleared) for ``name``'s defaults at 30° with ``finder``."""
-    req = scene.FrameRequest((Material(name, {}),), 30.0, map_px=(78, 92))
+    req = core_frame.FrameRequest((Material(name, {}),), 30.0, map_px=(78, 92))
     if takes_wi(finder):
-        scene.find_peaks = finder
+        core_frame.find_peaks = finder
     else:  # an older finder: given the request's θi
 
         def by_theta(model, values, wi, **kw):
             return finder(model, values, req.theta_i, **kw)
 
-        scene.find_peaks = by_theta
-    for cache in scene.CACHES:
+        core_frame.find_peaks = by_theta
+    for cache in core_frame.CACHES:
         cache.clear()
     t0 = time.perf_counter()
-    scene.compute_frame(req, slow=False)
+    core_frame.compute_frame(req, slow=False)
     dt = time.perf_counter() - t0
-    scene.find_peaks = new_peak.find_peaks
+    core_frame.find_peaks = new_peak.find_peaks
     return dt
 
 

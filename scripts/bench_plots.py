@@ -23,7 +23,7 @@ import time
 from rich.console import Console
 
 from tuibrdf.core.material import Material
-from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views import frame as core_frame
 from tuibrdf.render import panes, sections
 from tuibrdf.render.curves import channel_curves
 
@@ -74,9 +74,10 @@ def main() -> None:
 
 
 def bench_case(name: str, params: dict, ti: float, w: int, h: int, repeat: int) -> list[float]:
-    res = scene.compute_frame(scene.FrameRequest((Material(name, params),), ti), slow=False)
+    req = core_frame.FrameRequest((Material(name, params),), ti)
+    res = core_frame.compute_frame(req, slow=False)
     side = res.sides[0]
-    curves = [(lab, scene.SECTION_THETAS, v)
+    curves = [(lab, core_frame.SECTION_THETAS, v)
               for lab, v in channel_curves(name, side.sections["incidence"])]
     vmax = side.section_max
     look = panes.Look()

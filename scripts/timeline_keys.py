@@ -59,7 +59,7 @@ def child(out: str, argv: list[str]) -> None:
 
     from tuibrdf.app import app as viewer
     from tuibrdf.app import frames
-    from tuibrdf.core.views import frame as scene
+    from tuibrdf.core.views import frame as core_frame
 
     marks: list[tuple[float, str]] = []
     clock = time.perf_counter
@@ -80,7 +80,7 @@ def child(out: str, argv: list[str]) -> None:
     wrap(frames.FrameDelivery, "show_frame", "show")
     wrap(frames.FrameDelivery, "on_frame_computed", "ready")
     wrap(screen.Screen, "_compositor_refresh", "paint")
-    wrap(scene, "compute_frame", "compute")
+    wrap(core_frame, "compute_frame", "compute")
 
     dispatch = pump.MessagePump._dispatch_message
 

@@ -351,17 +351,17 @@ async def test_albedo_curve_is_computed_off_the_loop_then_drawn(monkeypatch):
     import threading
 
     from tuibrdf.core.material import Material
-    from tuibrdf.core.views import frame as scene
+    from tuibrdf.core.views import frame as core_frame
 
-    scene.clear_caches()
+    core_frame.clear_caches()
     release = threading.Event()
-    real = scene.albedo_curve_estimate_resolved
+    real = core_frame.albedo_curve_estimate_resolved
 
     def held(*args, **kw):
         release.wait(10.0)
         return real(*args, **kw)
 
-    monkeypatch.setattr(scene, "albedo_curve_estimate_resolved", held)
+    monkeypatch.setattr(core_frame, "albedo_curve_estimate_resolved", held)
 
     app = BrdfApp(ViewerState(sides=[Side.of("cook-torrance", {"m": 0.05, "kd": 0.1})]))
     async with app.run_test(size=(100, 30)) as pilot:
@@ -375,7 +375,7 @@ async def test_albedo_curve_is_computed_off_the_loop_then_drawn(monkeypatch):
         assert "computing" in shown()
         release.set()
         m = Material("cook-torrance", {"m": 0.05, "kd": 0.1})
-        assert await wait_for(pilot, lambda: scene._CURVES.peek((m, 180.0)) is not None,
+        assert await wait_for(pilot, lambda: core_frame._CURVES.peek((m, 180.0)) is not None,
                               seconds=10.0)  # (500 rounds of 0.02 s)
         drawn = lambda: "a(θi=30°) = " in shown() and "computing" not in shown()  # noqa: E731
         assert await wait_for(pilot, drawn, seconds=10.0)

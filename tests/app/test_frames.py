@@ -24,7 +24,7 @@ from tuibrdf.app.app import BrdfApp
 from tuibrdf.core.conventions import fmt_value
 from tuibrdf.core.registry import MODELS
 from tuibrdf.core.sphere.albedo import albedo
-from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views import frame as core_frame
 from tuibrdf.state.viewer import MAIN_VIEWS, Side, ViewerState
 
 
@@ -75,7 +75,7 @@ async def test_held_key_ends_on_the_final_states_albedo():
     # many → presses posted faster than the worker computes a frame (ggx at grazing angles
     # takes tens of ms): the status line must end on θi = 15° and its albedo, computed here
     # by the core quadrature
-    scene.clear_caches()
+    core_frame.clear_caches()
     app = BrdfApp(ViewerState(sides=[Side.of("ggx", {"alpha": 0.1})], theta_i=0.0))
     expected = fmt_value(albedo("ggx", {"alpha": 0.1}, 15.0))
     async with app.run_test(size=(100, 30)) as pilot:
@@ -117,7 +117,7 @@ async def test_keys_typed_together_act_in_the_order_typed():
 
 async def test_each_visible_pane_is_evaluated_once_per_frame(monkeypatch):
     # wrap both kernels; one θi step must evaluate each side's map and sections once
-    scene.clear_caches()
+    core_frame.clear_caches()
     calls = {}
     for name in ("phong", "cook-torrance"):
         m = MODELS[name]
@@ -128,7 +128,7 @@ async def test_each_visible_pane_is_evaluated_once_per_frame(monkeypatch):
             return _m.kernel(wi, wo, **kw)
 
         monkeypatch.setitem(MODELS, name, dataclasses.replace(m, kernel=kernel))
-    n_sections = 3 * len(scene.SECTION_THETAS)  # both planes + the section through the peak
+    n_sections = 3 * len(core_frame.SECTION_THETAS)  # both planes + the section through the peak
     app = BrdfApp(ViewerState(sides=[Side.of("phong")]), sync=True)
     async with app.run_test(size=(120, 36)) as pilot:
         for mode in ("single", "compare"):
@@ -208,10 +208,10 @@ async def test_a_crash_in_the_frame_worker_stops_the_app(monkeypatch, inline_s):
     # frame is computed there: frames.INLINE_S); bad data (ValueError) is a message in the
     # panes instead
     from tuibrdf.app import frames
-    from tuibrdf.core.views import frame as scene
+    from tuibrdf.core.views import frame as core_frame
 
     monkeypatch.setattr(frames, "INLINE_S", inline_s)
-    real = scene.compute_frame
+    real = core_frame.compute_frame
 
     def compute(req, **kw):
         if req.theta_i == 31.0:
@@ -220,7 +220,7 @@ async def test_a_crash_in_the_frame_worker_stops_the_app(monkeypatch, inline_s):
             raise ValueError("bad data from a test")
         return real(req, **kw)
 
-    monkeypatch.setattr(scene, "compute_frame", compute)
+    monkeypatch.setattr(core_frame, "compute_frame", compute)
     app = BrdfApp(ViewerState(theta_i=33.0))
     async with app.run_test(size=(100, 30)) as pilot:
         await pilot.pause(0.3)
@@ -253,15 +253,15 @@ async def test_a_fast_frame_is_computed_on_the_event_loop_a_slow_one_in_the_work
     import types
 
     from tuibrdf.app import frames
-    from tuibrdf.core.views import frame as scene
+    from tuibrdf.core.views import frame as core_frame
 
     monkeypatch.setattr(frames, "INLINE_S", 5.0)
     extra = [0.0]
     monkeypatch.setattr(frames, "time", types.SimpleNamespace(
         thread_time=lambda: time.thread_time() + extra[0]))
-    scene.clear_caches()
+    core_frame.clear_caches()
     where: list[tuple[float, bool, bool]] = []  # (θi, curve, on the event loop)
-    real = scene.compute_frame
+    real = core_frame.compute_frame
     slow_from = [90.0]
 
     def compute(req, **kw):
@@ -271,7 +271,7 @@ async def test_a_fast_frame_is_computed_on_the_event_loop_a_slow_one_in_the_work
             extra[0] += 2 * frames.INLINE_S
         return real(req, **kw)
 
-    monkeypatch.setattr(scene, "compute_frame", compute)
+    monkeypatch.setattr(core_frame, "compute_frame", compute)
     app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))
     async with app.run_test(size=(120, 36)) as pilot:
         async def frame_of(theta):
@@ -353,7 +353,7 @@ async def test_the_lit_plane_is_evaluated_once_per_frame_and_exposure_evaluates_
     # the new views draw from the frame too: one θi step on the lit plane in compare mode
     # evaluates each side's plane image once (its pixel count) and the sections once; the
     # exposure and gamma keys change only the drawing (no kernel call)
-    scene.clear_caches()
+    core_frame.clear_caches()
     calls = {}
     for name in ("phong", "cook-torrance"):
         m = MODELS[name]
@@ -364,7 +364,7 @@ async def test_the_lit_plane_is_evaluated_once_per_frame_and_exposure_evaluates_
             return _m.kernel(wi, wo, **kw)
 
         monkeypatch.setitem(MODELS, name, dataclasses.replace(m, kernel=kernel))
-    n_sections = (3 * len(scene.SECTION_THETAS),)
+    n_sections = (3 * len(core_frame.SECTION_THETAS),)
     app = BrdfApp(ViewerState(sides=[Side.of("phong")]), sync=True)
     async with app.run_test(size=(120, 36)) as pilot:
         await pilot.press("p", "p", "v", "v", "v", "v")  # the lit plane, side by side
@@ -538,16 +538,16 @@ async def test_a_model_files_frames_are_never_computed_on_the_event_loop(monkeyp
     monkeypatch.setattr(frames, "INLINE_S", 10.0)
     path = tmp_path / "mine.brdf"
     shutil.copy(DATA_DIR / "brdf" / "lambert.brdf", path)
-    scene.clear_caches()
+    core_frame.clear_caches()
     where: list[tuple[str, bool]] = []  # (model, on the event loop)
-    real = scene.compute_frame
+    real = core_frame.compute_frame
 
     def compute(req, **kw):
         on_loop = threading.current_thread() is threading.main_thread()
         where.extend((m.name, on_loop) for m in req.materials)
         return real(req, **kw)
 
-    monkeypatch.setattr(scene, "compute_frame", compute)
+    monkeypatch.setattr(core_frame, "compute_frame", compute)
     for model in (str(path), "lambert"):
         where.clear()
         app = BrdfApp(ViewerState(sides=[Side.of(model)], theta_i=30.0))
@@ -641,7 +641,7 @@ async def test_after_any_keys_every_picture_is_what_drawing_it_gives(monkeypatch
     # whether it was kept from the frame before (nothing it shows changed) or drawn at the key
     from tuibrdf.app.text import visible_panes
 
-    scene.clear_caches()
+    core_frame.clear_caches()
     rng = random.Random(seed)
     pool = ["right", "left", "right", "left", "plus", "minus", "plus", "minus", "m", "M",
             "greater_than_sign", "less_than_sign", "l", "k", "a", "up", "down", "c", "tab",

@@ -27,7 +27,7 @@ from tuibrdf.app import frames, textual_internals
 from tuibrdf.app.app import BrdfApp
 from tuibrdf.app.paint import ViewerCompositor, _cells
 from tuibrdf.app.widgets import Rows
-from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views import frame as core_frame
 from tuibrdf.state.viewer import Side, ViewerState
 
 
@@ -200,11 +200,11 @@ def test_a_span_starts_where_it_starts_unless_inside_a_wide_character():
 
 
 def held_compute(monkeypatch, slow_only: bool):
-    """``scene.compute_frame`` held by an event for θi = 31° (its albedo part only, or the
+    """``core_frame.compute_frame`` held by an event for θi = 31° (its albedo part only, or the
     whole frame), in the frame worker (every frame goes there: none on the event loop)."""
     monkeypatch.setattr(frames, "INLINE_S", 0.0)
     release = threading.Event()
-    real = scene.compute_frame
+    real = core_frame.compute_frame
 
     def compute(req, **kw):
         if req.theta_i == 31.0 and (not slow_only or kw.get("slow", True)) and \
@@ -212,14 +212,14 @@ def held_compute(monkeypatch, slow_only: bool):
             release.wait(10.0)
         return real(req, **kw)
 
-    monkeypatch.setattr(scene, "compute_frame", compute)
+    monkeypatch.setattr(core_frame, "compute_frame", compute)
     return release
 
 
 async def test_a_slow_frame_lets_the_status_line_go_ahead(monkeypatch):
     # the frame of θi 31° is held: after PENDING_S the status line shows θi 31° with its
     # numbers pending ("…") while the pictures still show θi 30°; then the frame arrives
-    scene.clear_caches()
+    core_frame.clear_caches()
     release = held_compute(monkeypatch, slow_only=False)
     app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
     async with app.run_test(size=(120, 36)) as pilot:
@@ -236,7 +236,7 @@ async def test_a_slow_frame_lets_the_status_line_go_ahead(monkeypatch):
 async def test_pictures_stop_waiting_for_a_slow_albedo(monkeypatch):
     # the albedo of θi 31° is held: the pictures (maps, sections, peak) are shown without
     # it, then with it when it comes
-    scene.clear_caches()
+    core_frame.clear_caches()
     release = held_compute(monkeypatch, slow_only=True)
     app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
     async with app.run_test(size=(120, 36)) as pilot:

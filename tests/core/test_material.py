@@ -15,7 +15,7 @@ from tuibrdf.core import registry
 from tuibrdf.core.formats import userfiles
 from tuibrdf.core.material import Material
 from tuibrdf.core.params import Model
-from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views import frame as core_frame
 
 
 def _file_model(tmp_path, text=None):
@@ -35,8 +35,8 @@ def _edit(path, text):
 
 def test_a_frame_of_a_file_model_looks_nothing_up(tmp_path, monkeypatch):
     mat = Material(str(_file_model(tmp_path)))
-    scene.clear_caches()
-    scene.compute_frame(scene.FrameRequest((mat,), 40.0, map_px=(40, 40)))
+    core_frame.clear_caches()
+    core_frame.compute_frame(core_frame.FrameRequest((mat,), 40.0, map_px=(40, 40)))
 
     def no_lookup(*a, **kw):
         raise AssertionError("a model lookup during a frame")
@@ -52,7 +52,7 @@ def test_a_frame_of_a_file_model_looks_nothing_up(tmp_path, monkeypatch):
         monkeypatch.setattr(mod, name, no_lookup)
     monkeypatch.setattr(os, "stat", counting_stat)
     # one θi step: every part recomputed at the new θi, none from the file
-    res = scene.compute_frame(scene.FrameRequest((mat,), 41.0, map_px=(40, 40)))
+    res = core_frame.compute_frame(core_frame.FrameRequest((mat,), 41.0, map_px=(40, 40)))
     monkeypatch.undo()
     assert stats == []
     assert res.sides[0].peak.value == pytest.approx(0.8 / math.pi, rel=1e-12)
@@ -67,14 +67,14 @@ def test_an_edited_file_does_not_change_a_material_until_refreshed(tmp_path):
     _edit(path, path.read_text().replace("return reflectance / PI;",
                                          "return 0.5 * reflectance / PI;"))
     assert mat.model is model  # the model the values were validated against
-    scene.clear_caches()
-    old = scene.compute_frame(scene.FrameRequest((mat,), 30.0), slow=False)
+    core_frame.clear_caches()
+    old = core_frame.compute_frame(core_frame.FrameRequest((mat,), 30.0), slow=False)
     assert old.sides[0].peak.value == pytest.approx(0.8 / math.pi, rel=1e-12)
     assert mat.with_values(reflectance=(0.4, 0.4, 0.4)).model is model
     new = mat.refreshed()  # what the viewer does when the file changed
     assert new is not mat and new != mat and new.model is not model
     assert new.values == mat.values
-    res = scene.compute_frame(scene.FrameRequest((new,), 30.0), slow=False)
+    res = core_frame.compute_frame(core_frame.FrameRequest((new,), 30.0), slow=False)
     assert res.sides[0].peak.value == pytest.approx(0.4 / math.pi, rel=1e-12)
 
 
@@ -86,9 +86,9 @@ def test_a_material_of_a_model_object_holds_that_model():
     mine, theirs = Material(own), Material("lambert")
     assert mine.model is own and theirs.model is lam
     assert mine != theirs  # so a frame of one is never the other's from the cache
-    scene.clear_caches()
-    a = scene.compute_frame(scene.FrameRequest((mine,), 30.0), slow=False)
-    b = scene.compute_frame(scene.FrameRequest((theirs,), 30.0), slow=False)
+    core_frame.clear_caches()
+    a = core_frame.compute_frame(core_frame.FrameRequest((mine,), 30.0), slow=False)
+    b = core_frame.compute_frame(core_frame.FrameRequest((theirs,), 30.0), slow=False)
     assert a.sides[0].peak.value == pytest.approx(2.0 * b.sides[0].peak.value, rel=1e-12)
 
 

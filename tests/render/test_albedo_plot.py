@@ -7,15 +7,15 @@ from rich.console import Console
 
 from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
-from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views import frame as core_frame
 from tuibrdf.render import panes
 from tuibrdf.render.views import render_view
 
 
 def albedo_curve(model, values):
-    """The frame's albedo curve (the one the pane draws), at :data:`scene.CURVE_THETAS`."""
-    req = scene.FrameRequest((Material(model, values),), 0.0, curve=True)
-    return scene.CURVE_THETAS, scene.compute_frame(req).sides[0].curve
+    """The frame's albedo curve (the one the pane draws), at :data:`core_frame.CURVE_THETAS`."""
+    req = core_frame.FrameRequest((Material(model, values),), 0.0, curve=True)
+    return core_frame.CURVE_THETAS, core_frame.compute_frame(req).sides[0].curve
 
 
 def albedo_view(model, values, theta_i, w, h, color):
@@ -49,9 +49,9 @@ def test_flag_when_above_one():
     # maximum; one within its error of 1 must not (quadrature.exceeds_one)
     from dataclasses import replace
 
-    res = scene.compute_frame(scene.FrameRequest((Material("lambert"),), 10, curve=True))
+    res = core_frame.compute_frame(core_frame.FrameRequest((Material("lambert"),), 10, curve=True))
     for top, err, flagged in ((1.2, 0.0, True), (1.0005, 1e-3, False), (1.0005, 1e-5, True)):
-        fake = np.linspace(0.9, top, len(scene.CURVE_THETAS))
+        fake = np.linspace(0.9, top, len(core_frame.CURVE_THETAS))
         side = replace(res.sides[0], curve=fake, curve_error=np.full_like(fake, err))
         out = text_of(panes.albedo_pane(replace(res, sides=(side,)), 70, 10,
                                         panes.Look(color="none")))

@@ -12,7 +12,7 @@ from rich.console import Console
 from tuibrdf.core.conventions import fmt_value
 from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
-from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views import frame as core_frame
 from tuibrdf.render import panes
 from tuibrdf.render.colormap import Scale, colorbar
 from tuibrdf.render.views import map_pixels, render_view
@@ -29,13 +29,13 @@ def lines(renderable, width=200) -> list[str]:
 @pytest.mark.parametrize("color", ["truecolor", "none"])
 def test_difference_map_title_gives_the_true_largest_difference(color):
     look = panes.Look(color=color)
-    same = scene.compute_frame(scene.FrameRequest(
+    same = core_frame.compute_frame(core_frame.FrameRequest(
         (Material("lambert"), Material("lambert")), 30.0, map_px=map_pixels(40, 12)))
     # identical sides differ by 0 everywhere (the scale's guard against 0/0 is not a value)
     assert "max |Δ| 0" in lines(panes.pane("diff", same, 0, 40, 12, look))[0]
     assert "max |Δ| 1" not in lines(panes.pane("diff", same, 0, 40, 12, look))[0]
     # Lambert kd = 0.8 vs 0.4: f = kd/π everywhere, so |Δ| = 0.4/π = 0.127 at every pixel
-    half = scene.compute_frame(scene.FrameRequest(
+    half = core_frame.compute_frame(core_frame.FrameRequest(
         (Material("lambert", {"kd": 0.8}), Material("lambert", {"kd": 0.4})), 30.0,
         map_px=map_pixels(40, 12)))
     assert f"max |Δ| {fmt_value(0.4 / np.pi)}" in lines(
@@ -73,7 +73,7 @@ def test_compare_map_at_80x24_shows_the_shared_top():
     # tops both bars; each map pane of the 80×24 compare grid is about 20 cells wide
     a = Material("phong", {"kd": 0.0, "ks": 0.08, "n": 70.0})
     b = Material("cook-torrance", {"kd": 0.0, "f0": 0.04, "m": 0.07})
-    res = scene.compute_frame(scene.FrameRequest((a, b), 60.0, map_px=map_pixels(18, 8)),
+    res = core_frame.compute_frame(core_frame.FrameRequest((a, b), 60.0, map_px=map_pixels(18, 8)),
                               slow=False)
     pb = fmt_value(res.sides[1].peak.value)
     for w in (14, 18, 20):
@@ -90,7 +90,7 @@ def test_section_titles_keep_the_section_max_whole(width, compare):
     # incidence title read "incidence  section max 0.11" for 0.113
     ct = Material("cook-torrance")
     mats = (ct, ct) if compare else (ct,)
-    res = scene.compute_frame(scene.FrameRequest(mats, 30.0), slow=False)
+    res = core_frame.compute_frame(core_frame.FrameRequest(mats, 30.0), slow=False)
     for plane, key in (("incidence", "incidence"), ("perpendicular", "peak")):
         head = lines(panes.pane(plane, res, 0, width, 12, panes.Look(color="none")), width)[0]
         assert len(head) <= width
@@ -138,7 +138,7 @@ def test_section_max_of_an_rgb_model_says_which_curve(channel, tag):
     # word of which curve, beside a "(red)" peak in the same direction.  A channel is named in
     # words: "(B)" would read as side B of compare mode
     mat = Material("gltf", {"base_color": (0.9, 0.5, 0.1), "metallic": 1.0, "roughness": 0.3})
-    res = scene.compute_frame(scene.FrameRequest((mat,), 45.0), slow=False)
+    res = core_frame.compute_frame(core_frame.FrameRequest((mat,), 45.0), slow=False)
     v = res.sides[0].sections["incidence"]
     # Rec.709 luminance weights (ITU-R BT.709), written here rather than taken from the code
     want = {"lum": v @ np.array([0.2126, 0.7152, 0.0722]), "G": v[:, 1], "B": v[:, 2]}[channel]
@@ -149,7 +149,7 @@ def test_section_max_of_an_rgb_model_says_which_curve(channel, tag):
     head = lines(panes.pane("incidence", res, 0, 120, 20, panes.Look(color="none")), 120)[0]
     assert f"section max {fmt_value(float(np.max(v)))}  " in head, head
     # a scalar model has no channels to name
-    ct = scene.compute_frame(scene.FrameRequest((Material("cook-torrance"),), 45.0),
+    ct = core_frame.compute_frame(core_frame.FrameRequest((Material("cook-torrance"),), 45.0),
                              slow=False)
     head = lines(panes.pane("incidence", ct, 0, 120, 20,
                             panes.Look(color="none", channel="lum")), 120)[0]
@@ -207,7 +207,7 @@ def test_b_means_side_b_and_the_blue_channel_says_blue():
 
     a = Material("gltf", {"base_color": (0.1, 0.2, 0.5), "roughness": 0.6})
     b = Material("gltf", {"base_color": (0.2, 0.3, 0.9), "roughness": 0.6})
-    res = scene.compute_frame(scene.FrameRequest((a, b), 30.0, map_px=map_pixels(40, 14),
+    res = core_frame.compute_frame(core_frame.FrameRequest((a, b), 30.0, map_px=map_pixels(40, 14),
                                                  solid=True, probe=(0.1, 0.05)), slow=False)
     look = panes.Look(cmap="grey", color="none")
     state = ViewerState(sides=[Side.of("gltf", dict(a.values)), Side.of("gltf", dict(b.values))],

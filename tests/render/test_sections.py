@@ -7,7 +7,7 @@ from rich.console import Console
 
 from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
-from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views import frame as core_frame
 from tuibrdf.core.views.frame import section_directions
 from tuibrdf.render.curves import channel_curves
 from tuibrdf.render.sections import angle_at, plot_window, polar_canvas, radius
@@ -15,8 +15,8 @@ from tuibrdf.render.sections import angle_at, plot_window, polar_canvas, radius
 
 def section_curves(model, values, theta_i, plane):
     """The frame's values along ``plane`` as curves, as the section pane draws them."""
-    res = scene.compute_frame(scene.FrameRequest((Material(model, values),), theta_i))
-    return [(label, scene.SECTION_THETAS, v)
+    res = core_frame.compute_frame(core_frame.FrameRequest((Material(model, values),), theta_i))
+    return [(label, core_frame.SECTION_THETAS, v)
             for label, v in channel_curves(model.name, res.sides[0].sections[plane])]
 
 

@@ -36,7 +36,7 @@ from tuibrdf.app.text import PANES, TERSE_FORMS, legend_text, status_text, visib
 from tuibrdf.app.textual_internals import writer_backlog
 from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
-from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views import frame as core_frame
 from tuibrdf.core.views.frame import FrameRequest, FrameResult
 from tuibrdf.render import EXTRA_VIEWS, MIN_HEIGHT, MIN_WIDTH, panes
 from tuibrdf.render.views import extra_pixels, map_pixels
@@ -152,11 +152,11 @@ class FrameDelivery:
         req = self.request = self.frame_request()
         if self.sync:
             try:
-                self.show_frame(scene.compute_frame(req))
+                self.show_frame(core_frame.compute_frame(req))
             except DRAW_ERRORS as e:
                 self._failed(req, e)
             return
-        done = scene.cached_frame(req)
+        done = core_frame.cached_frame(req)
         if done is not None and done.complete:
             self.show_frame(done)
             return
@@ -192,7 +192,7 @@ class FrameDelivery:
         """Whether ``req``'s frame is computed on the event loop: registered models only
         (:func:`built_in`), no new albedo curve, and no frame of its kind took
         :data:`INLINE_S` or more lately."""
-        if scene.needs_curve(req) or not all(built_in(m) for m in req.materials):
+        if core_frame.needs_curve(req) or not all(built_in(m) for m in req.materials):
             return False
         return max(self._costs.get(self._kind(req), ()), default=0.0) < INLINE_S
 
@@ -201,7 +201,7 @@ class FrameDelivery:
         cached, its time is then noted)."""
         start = time.thread_time()
         try:
-            res = scene.compute_frame(req)
+            res = core_frame.compute_frame(req)
         except DRAW_ERRORS as e:
             self._failed(req, e)
             return
@@ -226,13 +226,13 @@ class FrameDelivery:
 
         if worker.is_cancelled:
             return
-        fresh = scene.cached_frame(req) is None
+        fresh = core_frame.cached_frame(req) is None
         start = time.thread_time()
         try:
-            res = scene.compute_frame(req, slow=False)
+            res = core_frame.compute_frame(req, slow=False)
             post(res, time.thread_time() - start if res.complete and fresh else None)
             if not res.complete and not worker.is_cancelled:
-                res = scene.compute_frame(req, check=lambda: not worker.is_cancelled)
+                res = core_frame.compute_frame(req, check=lambda: not worker.is_cancelled)
                 if res is not None:
                     post(res, time.thread_time() - start if fresh else None)
         except DRAW_ERRORS as e:  # a data file that vanished or changed on disk

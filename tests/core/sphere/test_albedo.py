@@ -14,8 +14,7 @@ from tuibrdf.core.directions import from_degrees
 from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.params import Model
 from tuibrdf.core.registry import MODELS, get_model
-from tuibrdf.core.sphere import integrator as polar
-from tuibrdf.core.sphere import lobes
+from tuibrdf.core.sphere import integrator, lobes
 from tuibrdf.core.sphere.albedo import (
     DEFAULT_RTOL,
     AlbedoEstimate,
@@ -298,9 +297,9 @@ def test_tilted_half_frame_axis(theta):
 
     st, ct = sincos_deg(np.atleast_1d(theta))
     sp, cp = sincos_deg(np.atleast_1d(180.0))
-    c = polar.cases(st, ct, sp, cp)
-    tilted = polar.Cases(c.st, c.ct, c.u, c.v, 0.5 * np.arctan2(c.ct, c.st))
-    lam = polar.integrate(lambda wi, wo: np.full(len(wo), 0.8 / np.pi), "half", tilted,
+    c = integrator.cases(st, ct, sp, cp)
+    tilted = integrator.Cases(c.st, c.ct, c.u, c.v, 0.5 * np.arctan2(c.ct, c.st))
+    lam = integrator.integrate(lambda wi, wo: np.full(len(wo), 0.8 / np.pi), "half", tilted,
                           scale=0.2, rtol=1e-10)
     assert lam.value[0] == pytest.approx(0.8, rel=1e-9)
     m = get_model("ggx")
@@ -309,8 +308,8 @@ def test_tilted_half_frame_axis(theta):
     def f(wi, wo):
         return evaluate_resolved(m, v, wi, wo)
 
-    a = polar.integrate(f, "half", tilted, scale=0.3, rtol=1e-9)
-    b = polar.integrate(f, "half", c, scale=0.3, rtol=1e-9)
+    a = integrator.integrate(f, "half", tilted, scale=0.3, rtol=1e-9)
+    b = integrator.integrate(f, "half", c, scale=0.3, rtol=1e-9)
     assert abs(a.value[0] - b.value[0]) <= a.error[0] + b.error[0] + 1e-14
 
 

@@ -18,7 +18,7 @@ from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
 from tuibrdf.core.sphere.horizon import HORIZON_DEG, assess
 from tuibrdf.core.sphere.peak import f_or_f_cos, find_peaks
-from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views import frame as core_frame
 from tuibrdf.core.views.hemimap import geometry
 from tuibrdf.render import panes
 from tuibrdf.render.views import map_pixels
@@ -26,7 +26,7 @@ from tuibrdf.render.views import map_pixels
 
 def _frame(model, params, theta_i, px=(88, 84), solid=True):
     m = Material(model, params)
-    return scene.compute_frame(scene.FrameRequest((m,), theta_i, map_px=px, solid=solid),
+    return core_frame.compute_frame(core_frame.FrameRequest((m,), theta_i, map_px=px, solid=solid),
                                slow=False)
 
 
@@ -262,8 +262,8 @@ def test_a_channel_lobe_inside_sets_the_scale_beside_an_unbounded_one():
     sc = side.scale_for("color", "map")
     assert sc.kind == "unbounded" and sc.label == "R"
     assert sc.value > _brute_scale(side, "color", (40, 26))
-    t = scene.SECTION_THETAS
-    for plane in scene.PLANES:
+    t = core_frame.SECTION_THETAS
+    for plane in core_frame.PLANES:
         v = np.asarray(side.sections[plane])[np.abs(t) <= HORIZON_DEG]
         assert float(v.max()) <= sc.value * (1.0 + 1e-9)
     w = from_degrees(sc.theta_deg, sc.phi_deg)[None, :]
@@ -398,7 +398,7 @@ def test_scale_is_finite_positive_and_at_most_the_peak(case):
                 g = geometry(40, 26)
                 v, z = side.map[0][g.inside], g.dirs[:, 2]
             else:
-                dirs = scene.solid_samples()[0]
+                dirs = core_frame.solid_samples()[0]
                 v, z = side.solid[:len(dirs)], dirs[:, 2]
             if v.ndim == 2 and (view == "solid" or mode != "color"):
                 v = 0.2126 * v[:, 0] + 0.7152 * v[:, 1] + 0.0722 * v[:, 2]

@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from tuibrdf.core.sphere import integrator as polar
+from tuibrdf.core.sphere import integrator
 from tuibrdf.core.sphere.integrator import adaptive, rules
 
 
@@ -112,7 +112,7 @@ def test_cases_frame_vectors():
     # u = (cos φi, sin φi, 0) toward the light, v = N × u = (−sin φi, cos φi, 0)
     phi = np.array([0.0, 0.7, 2.0, math.pi])
     sp, cp = np.sin(phi), np.cos(phi)
-    c = polar.cases(sp, cp, sp, cp)
+    c = integrator.cases(sp, cp, sp, cp)
     for i in range(len(phi)):
         assert c.u[i].tolist() == [cp[i], sp[i], 0.0]
         assert c.v[i].tolist() == [-sp[i], cp[i], 0.0]

@@ -14,8 +14,7 @@ import tuibrdf
 from tuibrdf.core.directions import from_degrees
 from tuibrdf.core.registry import get_model
 from tuibrdf.core.sphere import albedo as q
-from tuibrdf.core.sphere import integrator as polar
-from tuibrdf.core.sphere import lobes
+from tuibrdf.core.sphere import integrator, lobes
 
 # ---------------------------------------------------------------------------------------------
 # an independent reference: tensor Gauss-Legendre over the half vector (θh, φh)
@@ -114,7 +113,7 @@ def _expected_far(theta_i, m):
     """The far-side breaks ψ − π/2 by the rule, written out: none unless the horizon at ψ = π,
     (π/2 − θi)/2 from the normal (half frame), is within m; else polar's own far grading
     (2 cot θi × 8^j below π/8) continued to π/2 in pieces of ratio ≤ 8, evenly in log, or,
-    where polar has none, 2 cot θi itself."""
+    where the integrator has none, 2 cot θi itself."""
     t = math.radians(theta_i)
     if (np.pi / 2 - t) / 2 >= m or theta_i == 0.0 or 2.0 / math.tan(t) >= np.pi / 2:
         return []
@@ -213,4 +212,5 @@ def test_far_breaks_are_targeted(params, theta):
 
 def test_polar_grading_constants_the_rule_assumes():
     # the formula above restates polar's far grading: from 2 cot θi by 8 below π/8
-    assert (polar.OUTER_START, polar.OUTER_GRADING, polar.OUTER_LIMIT) == (2.0, 8.0, np.pi / 8)
+    assert (integrator.OUTER_START, integrator.OUTER_GRADING, integrator.OUTER_LIMIT) == (
+        2.0, 8.0, np.pi / 8)

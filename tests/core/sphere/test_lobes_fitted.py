@@ -14,8 +14,7 @@ from tuibrdf.core.brdf.materials import material_names, table
 from tuibrdf.core.directions import sincos_deg
 from tuibrdf.core.registry import get_model
 from tuibrdf.core.sphere import albedo as q
-from tuibrdf.core.sphere import integrator as polar
-from tuibrdf.core.sphere import lobes
+from tuibrdf.core.sphere import integrator, lobes
 from tuibrdf.core.sphere.integrator import adaptive
 
 
@@ -141,7 +140,7 @@ def test_sgd_envelope_end_where_the_grading_has_none(material):
     (80.0, None), (89.9, None), (90.0, None), (0.0, None),
 ])
 def test_sgd_far_side_azimuth(theta_i, expected):
-    # π/2 + 2 cot θi on the far side where polar's grading toward π/2 (from 2 cot θi while
+    # π/2 + 2 cot θi on the far side where the integrator's grading toward π/2 (from 2 cot θi while
     # that is below π/8) is empty and 2 cot θi < π/4: θi in (68.5°, 78.9°)
     ti = math.radians(theta_i)
     got = lobes._sgd_azimuths(math.sin(ti), math.cos(ti))
@@ -159,7 +158,7 @@ def test_sgd_far_side_azimuth(theta_i, expected):
                                      89.9, 90.0])
 def test_abc_azimuths(theta_i):
     # the V-cavity kink curves meet where tan θi cos ψ = 1 and 1/√3 (written here); those
-    # within 2 cot θi of π/2, inside polar's first outer grading panel, are left out at the
+    # within 2 cot θi of π/2, inside the integrator's first outer grading panel, are left out at the
     # default rtol where that panel is narrower than π/16 (θi > 84.3°) and kept at 1e-13; at
     # 90° one end π/16 from π/2 instead
     st, ct = (float(x) for x in sincos_deg(theta_i))  # exact at 90° (cos θi = 0), as the rule's
@@ -240,16 +239,16 @@ def test_analytic_hints_do_not_depend_on_rtol(name):
 
 
 def test_outer_k7_panels():
-    # polar.integrate(outer_k7=w): outer panels narrower than w use K7/G3.  f = 1 + x² (normal
+    # integrator.integrate(outer_k7=w): outer panels narrower than w use K7/G3.  f = 1 + x² (normal
     # frame, any θi) integrates to π + π/4 (∫ sin²θ cos²φ cos θ dω = π ∫ sin³θ cos θ dθ = π/4):
     # within the estimate, with 7 outer nodes per panel instead of 15
     def f(wi, wo):
         return 1.0 + wo[:, 0] ** 2
 
-    c = polar.cases(np.array([0.5]), np.array([math.sqrt(0.75)]), np.array([0.0]),
+    c = integrator.cases(np.array([0.5]), np.array([math.sqrt(0.75)]), np.array([0.0]),
                     np.array([1.0]))
     ref = np.pi * 1.25
-    runs = {w: polar.integrate(f, "normal", c, scale=np.pi / 2, symmetric=True, outer_k7=w)
+    runs = {w: integrator.integrate(f, "normal", c, scale=np.pi / 2, symmetric=True, outer_k7=w)
             for w in (0.0, 10.0)}
     for r in runs.values():
         assert abs(r.value[0] - ref) <= r.error[0] + 1e-15

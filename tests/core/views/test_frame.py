@@ -22,7 +22,7 @@ from tuibrdf.core.evaluate import evaluate
 from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
 from tuibrdf.core.sphere.peak import find_peaks
-from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views import frame as core_frame
 from tuibrdf.core.views.hemimap import geometry
 from tuibrdf.render import panes
 from tuibrdf.render.views import map_pixels
@@ -108,20 +108,20 @@ def counting(monkeypatch, name: str) -> list[int]:
 
 
 def test_each_pane_is_evaluated_once_and_a_repeated_frame_is_free(monkeypatch):
-    scene.clear_caches()
+    core_frame.clear_caches()
     calls = counting(monkeypatch, "phong")
     mat = Material("phong", {"kd": 0.1, "ks": 0.5, "n": 40})
     px = map_pixels(60, 20)
-    req = scene.FrameRequest((mat,), 33.0, map_px=px, solid=True)
-    scene.compute_frame(req, slow=False)
+    req = core_frame.FrameRequest((mat,), 33.0, map_px=px, solid=True)
+    core_frame.compute_frame(req, slow=False)
     n_map = int(geometry(*px).inside.sum())
-    n_sections = 3 * len(scene.SECTION_THETAS)  # both planes and the peak section: one call
-    pts, _, tri = scene.solid_samples()
+    n_sections = 3 * len(core_frame.SECTION_THETAS)  # both planes and the peak section: one call
+    pts, _, tri = core_frame.solid_samples()
     n_solid = len(pts) + 3 * len(tri)
     assert calls.count(n_map) == 1 and calls.count(n_sections) == 1
     assert calls.count(n_solid) == 1
     calls.clear()
-    assert scene.compute_frame(req, slow=False) is scene.compute_frame(req, slow=False)
+    assert core_frame.compute_frame(req, slow=False) is core_frame.compute_frame(req, slow=False)
     assert calls == []  # cached by request
 
 
@@ -130,7 +130,7 @@ def test_the_request_makes_wi_once_and_every_part_takes_it(monkeypatch):
     # θi and the normalised φi), and no part of the frame turns θi into wi again
     import sys
 
-    req = scene.FrameRequest((Material("ggx"),), 41.0, phi_i=-30.0, map_px=(40, 30),
+    req = core_frame.FrameRequest((Material("ggx"),), 41.0, phi_i=-30.0, map_px=(40, 30),
                              solid=True, probe=(0.3, -0.2), extra="sphere", extra_px=(20, 16))
     assert req.phi_i == 330.0 and np.array_equal(req.wi, incident(41.0, 330.0))
     assert not req.wi.flags.writeable
@@ -142,8 +142,8 @@ def test_the_request_makes_wi_once_and_every_part_takes_it(monkeypatch):
     for name, mod in list(sys.modules.items()):
         if name.startswith("tuibrdf.") and getattr(mod, "incident", None) is incident:
             monkeypatch.setattr(mod, "incident", no_conversion)
-    scene.clear_caches()
-    side = scene.compute_frame(req, slow=False).sides[0]
+    core_frame.clear_caches()
+    side = core_frame.compute_frame(req, slow=False).sides[0]
     monkeypatch.undo()
     assert side.map is not None and side.solid is not None and side.extra is not None
     assert side.probe[0] == pytest.approx(float(evaluate("ggx", {}, incident(41.0, 330.0),
@@ -189,8 +189,8 @@ def numbers(res, view, look, w, h):
 def test_title_colour_bar_and_status_show_one_peak(model, params, theta_i, size, cmap):
     mat = Material(model, params)
     w, h = size
-    req = scene.FrameRequest((mat,), theta_i, map_px=map_pixels(w, h), solid=True)
-    res = scene.compute_frame(req)
+    req = core_frame.FrameRequest((mat,), theta_i, map_px=map_pixels(w, h), solid=True)
+    res = core_frame.compute_frame(req)
     look = panes.Look(color="none", cmap=cmap, levels=32)
     expected = fmt_value(panes.shown_scale(res.sides[0], "map", look).value)
     title, bar, status, albedo = numbers(res, "map", look, w, h)
@@ -212,7 +212,7 @@ def test_title_colour_bar_and_status_show_one_peak(model, params, theta_i, size,
 
 def test_rgb_screen_says_which_peak():
     mat = Material("ue4", {"base_color": (0.9, 0.2, 0.05)})
-    res = scene.compute_frame(scene.FrameRequest((mat,), 45.0, map_px=map_pixels(60, 20)))
+    res = core_frame.compute_frame(core_frame.FrameRequest((mat,), 45.0, map_px=map_pixels(60, 20)))
     grey = text(panes.stats_text(res, "map", panes.Look(cmap="grey")))
     lum = text(panes.stats_text(res, "map", panes.Look(cmap="viridis")))
     assert "(red)" in grey and "(Y)" in lum  # channels in colour: the red channel tops the bar
@@ -223,8 +223,8 @@ def test_compare_colour_bar_tops_at_the_larger_peak_and_says_whose():
     # 6.14; both maps now share the scale of the larger peak, and the bar says it is B's
     a = Material("phong", {"kd": 0.0, "ks": 0.08, "n": 70.0})
     b = Material("cook-torrance", {"kd": 0.0, "f0": 0.04, "m": 0.07})
-    req = scene.FrameRequest((a, b), 60.0, map_px=map_pixels(22, 9))
-    res = scene.compute_frame(req, slow=False)
+    req = core_frame.FrameRequest((a, b), 60.0, map_px=map_pixels(22, 9))
+    res = core_frame.compute_frame(req, slow=False)
     look = panes.Look(color="none", levels=32)
     pb = res.sides[1].peak.value
     assert pb > res.sides[0].peak.value
@@ -241,7 +241,7 @@ def test_energy_test_is_the_quadratures_one():
     from tuibrdf.core import conventions
 
     assert not hasattr(conventions, "ENERGY_TOL") and not hasattr(conventions, "exceeds_one")
-    res = scene.compute_frame(scene.FrameRequest((Material("lambert"),), 10, curve=True))
+    res = core_frame.compute_frame(core_frame.FrameRequest((Material("lambert"),), 10, curve=True))
     side = res.sides[0]
     # lambert kd = 0.8 (the default): ∫ kd/π cos θ dω = kd, and the error estimate is tiny
     assert side.albedo == pytest.approx(0.8, abs=1e-12) and 0 <= side.albedo_error < 1e-9
@@ -261,9 +261,9 @@ def test_sharp_conserving_lobe_is_never_flagged(theta_i):
     # Smith masking-shadowing ≤ 1 its albedo is at most 1 at every incidence (issue 18: the old
     # mesh quadrature gave 1.89 at 85° and 18.6 at 90°)
     m = Material("ggx", {"alpha": 0.001, "f0": 1.0, "kd": 0.0})
-    side = scene.compute_frame(scene.FrameRequest((m,), theta_i)).sides[0]
+    side = core_frame.compute_frame(core_frame.FrameRequest((m,), theta_i)).sides[0]
     assert side.albedo - side.albedo_error <= 1.0 and not side.albedo_exceeds_one()
-    line = panes.stats_text(scene.compute_frame(scene.FrameRequest((m,), theta_i)), "map",
+    line = panes.stats_text(core_frame.compute_frame(core_frame.FrameRequest((m,), theta_i)), "map",
                             panes.Look()).plain
     assert "NOT energy-conserving" not in line
 
@@ -273,7 +273,7 @@ def test_model_gaining_energy_is_flagged():
     # specular (f0 = 0.5, α = 0.2) adds a positive amount on top, so the truth is > 1
     m = Material("ggx", {"kd": 1.0, "f0": 0.5})
     for theta_i in (0.0, 60.0):
-        res = scene.compute_frame(scene.FrameRequest((m,), theta_i, curve=True))
+        res = core_frame.compute_frame(core_frame.FrameRequest((m,), theta_i, curve=True))
         side = res.sides[0]
         assert side.albedo_exceeds_one() and side.curve_exceeds_one()
         assert "NOT energy-conserving" in panes.stats_text(res, "map", panes.Look()).plain

@@ -20,7 +20,7 @@ from tuibrdf.core.directions import incident
 from tuibrdf.core.material import Material
 from tuibrdf.core.registry import get_model
 from tuibrdf.core.sphere.albedo import albedo_resolved
-from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views import frame as core_frame
 from tuibrdf.core.views.hemimap import geometry, map_values
 
 WARD = str(DATA_DIR / "brdf" / "ward.brdf")
@@ -68,14 +68,14 @@ def test_isotropic_albedo_does_not_depend_on_phi_i(name):
 
 def test_frame_follows_phi_i_peak_turns_value_stays():
     mat = Material("phong", {"kd": 0.0, "ks": 0.5, "n": 50})
-    base = scene.compute_frame(scene.FrameRequest((mat,), 40.0), slow=False)
-    turned = scene.compute_frame(scene.FrameRequest((mat,), 40.0, phi_i=90.0), slow=False)
+    base = core_frame.compute_frame(core_frame.FrameRequest((mat,), 40.0), slow=False)
+    turned = core_frame.compute_frame(core_frame.FrameRequest((mat,), 40.0, phi_i=90.0), slow=False)
     # the mirror direction of a light at φi = 90° is at φ = −90°; same value (isotropy)
     assert turned.sides[0].peak.value == pytest.approx(base.sides[0].peak.value, rel=1e-9)
     assert turned.sides[0].peak.phi_deg == pytest.approx(-90.0, abs=0.01)
     assert turned.sides[0].peak.theta_deg == pytest.approx(40.0, abs=0.01)
     # the sections through the normal turn with the light: the same curves
-    for plane in scene.PLANES:
+    for plane in core_frame.PLANES:
         assert turned.sides[0].sections[plane] == pytest.approx(
             base.sides[0].sections[plane], rel=1e-9, abs=1e-15)
 

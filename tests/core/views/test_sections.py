@@ -16,7 +16,7 @@ import pytest
 from tuibrdf.core.directions import from_degrees, incident
 from tuibrdf.core.evaluate import evaluate
 from tuibrdf.core.material import Material
-from tuibrdf.core.views import frame as scene
+from tuibrdf.core.views import frame as core_frame
 from tuibrdf.core.views.sections import PERPENDICULAR, great_circle
 
 SEED_CT = {"kd": 0.0, "f0": 0.04, "m": 0.07}
@@ -51,9 +51,9 @@ def in_plane_fwhm(theta_i: float) -> float:
 
 def frame_side(theta_i: float, name: str = "cook-torrance", params=None, **kw):
     """The frame's numbers of one material (what the viewer draws from)."""
-    req = scene.FrameRequest((Material(name, SEED_CT if params is None else params),),
+    req = core_frame.FrameRequest((Material(name, SEED_CT if params is None else params),),
                              theta_i, **kw)
-    return scene.compute_frame(req, slow=False).sides[0]
+    return core_frame.compute_frame(req, slow=False).sides[0]
 
 
 def across_fwhm(theta_i: float) -> tuple[float, float]:
@@ -135,7 +135,8 @@ def test_the_frames_section_goes_through_its_peak():
     # on (θi, 0) and is, every 1°, the great circle through that centre
     side = frame_side(35.0, "phong", {"kd": 0.0, "ks": 1.0, "n": 200})
     assert side.section_center == pytest.approx((35.0, 0.0), abs=1e-3)
-    w, _ = great_circle(from_degrees(*side.section_center), scene.SECTION_THETAS, PERPENDICULAR)
+    w, _ = great_circle(from_degrees(*side.section_center), core_frame.SECTION_THETAS,
+                        PERPENDICULAR)
     want = evaluate("phong", {"kd": 0.0, "ks": 1.0, "n": 200}, incident(35.0), w)
     np.testing.assert_allclose(side.sections["peak"], want, rtol=1e-12, atol=0)
     assert float(np.max(side.sections["peak"])) == pytest.approx(side.peak.value, rel=1e-12)
@@ -198,8 +199,8 @@ def test_the_frames_peak_section_with_cosine_and_rgb():
     for cosine in (False, True):
         side = frame_side(30.0, "gltf", {}, section_azimuth=0.0, cosine=cosine)
         got = side.sections["peak"]
-        assert got.shape == (len(scene.SECTION_THETAS), 3)
-        w, above = great_circle(from_degrees(*side.section_center), scene.SECTION_THETAS, 0.0)
+        assert got.shape == (len(core_frame.SECTION_THETAS), 3)
+        w, above = great_circle(from_degrees(*side.section_center), core_frame.SECTION_THETAS, 0.0)
         f = np.asarray(evaluate("gltf", {}, incident(30.0), w))
         want = f * np.maximum(w[:, 2], 0.0)[:, None] if cosine else f
         assert np.all(got[~above] == 0.0) and (~above).any() and np.all(got[above] > 0.0)

@@ -29,7 +29,7 @@ from tuibrdf.core.directions import check_phi_i, check_theta_i, incident, mirror
 from tuibrdf.core.evaluate import evaluate_resolved, f_cos
 from tuibrdf.core.params import Model
 from tuibrdf.core.registry import get_model
-from tuibrdf.core.sphere import integrator as polar
+from tuibrdf.core.sphere import integrator
 from tuibrdf.core.sphere.lobes import Lobe, lobe
 from tuibrdf.core.sphere.mesh import hemisphere, refine_adaptive
 
@@ -117,7 +117,7 @@ def albedo_rule(model: Model, values: Mapping[str, Any],
     def f(wi, wo):
         return evaluate_resolved(model, values, wi, wo)
 
-    return polar.integrate(kernel or f, hint.frame, polar.cases(st, ct, sp, cp),
+    return integrator.integrate(kernel or f, hint.frame, integrator.cases(st, ct, sp, cp),
                            scale=hint.scale, radial_breaks=hint.breaks,
                            symmetric=hint.symmetric, rtol=rtol, atol=ATOL,
                            max_evals=min(max_evals, hint.max_evals or max_evals),

@@ -24,7 +24,7 @@ from tuibrdf.core.brdf.materials import table
 from tuibrdf.core.brdf.microfacet import alpha_from_roughness
 from tuibrdf.core.params import Model
 from tuibrdf.core.registry import MODELS
-from tuibrdf.core.sphere import integrator as polar
+from tuibrdf.core.sphere import integrator
 
 #: Evaluation budget per incidence for measured data (~2 µs each: ~40 ms per albedo).
 MERL_MAX_EVALS = 20_000
@@ -46,12 +46,12 @@ class Lobe(NamedTuple):
     azimuths: Callable[[float, float], list[float]] | None = None
     #: ``(sin θi, cos θi, cos ψ, ρmax) → (eps, amp)``: the integrand's pole beyond the horizon,
     #: eps (radians of ρ, per outer node; inf: none) and its relative amplitude
-    #: (``polar.integrate``'s ``horizon``): the first round grades the last panels toward it
+    #: (``integrator.integrate``'s ``horizon``): the first round grades the last panels toward it
     horizon: Callable[..., np.ndarray] | None = None
     #: extra radial panel ends (radians, the same at every outer node; not kinks: no graded
     #: cuts toward them), e.g. where a lobe's envelope ends
     rings: tuple[float, ...] = ()
-    #: outer panels narrower than this (radians) use K7 (``polar.integrate(outer_k7=...)``)
+    #: outer panels narrower than this (radians) use K7 (``integrator.integrate(outer_k7=...)``)
     outer_k7: float = 0.0
 
 
@@ -90,12 +90,13 @@ def _mirror_kink(st, ct, cpsi, rmax):
 
 def _smith_ggx_horizon(alpha: float):
     """Height-correlated Smith GGX (ggx, gltf) at grazing incidence: where it sits on the
-    horizon and how strong its pole beyond the horizon is (``polar.integrate(horizon=...)``).
+    horizon and how strong its pole beyond the horizon is (``integrator.integrate(horizon=...)``).
 
     ``G2/(4 ci co)·co = co/(2 den)``, ``2 den = co Si + ci So`` with ``Si = √(ci² + α² si²)``,
     ``So = √(co² + α² so²)`` (expanding ``ggx_g2_over_cos``'s denominator), is 0 where
     ``co Si = −ci So``, i.e. ``tan θo = −tan θi``: ``cos θo ≈ −cos θi``, just below the
-    horizon.  In the half frame ``cos θo = R sin 2d`` (d = ρmax − ρ, module polar) with
+    horizon.  In the half frame ``cos θo = R sin 2d`` (d = ρmax − ρ, module integrator.geometry)
+    with
     ``R = hypot(sin θi cos ψ, cos θi)``, so the pole is ``cos θi/(2R)`` beyond the horizon:
     near it the specular integrand goes as ``d/(d + eps)``, a step of width eps that a panel
     of width ~1 rad cannot resolve at θi ≥ 85°.  Its amplitude relative to the node's inner
@@ -124,7 +125,8 @@ def _power_width(n: float) -> float:
     return min(np.pi / 2, 1.0 / math.sqrt(max(n, 0.4)))
 
 
-#: abc's hint leaves out the V-cavity azimuths inside polar's first outer grading panel only
+#: abc's hint leaves out the V-cavity azimuths inside the integrator's first outer grading panel
+#: only
 #: where that panel (2 cot θi wide) is narrower than this (θi > 84.3°; at 80.5–81°, 0.32 rad,
 #: the estimate fell below the error for 5 of the 100 materials: K15 − G7 over a panel that
 #: wide misses the inner integral's kinks; at 82–90° it held for all, scripts/bench_accuracy.py) ...
@@ -135,7 +137,7 @@ ABC_DROP_RTOL = 1e-8
 
 
 def _abc_azimuths(st: float, ct: float, drop: bool = True) -> list[float]:
-    """abc's outer panel ends: :func:`_vcavity_azimuths`, except (``drop``) where polar's
+    """abc's outer panel ends: :func:`_vcavity_azimuths`, except (``drop``) where the integrator's
     outer grading toward ψ = π/2 starts less than ABC_DROP_WIDTH from it (its first panel,
     2 cot θi wide, holds both meeting points, at cot θi and cot θi/√3 from π/2, whose two
     extra panels cost 30 outer nodes for an outer weight below 2 cot θi); and at θi = 90°,
@@ -144,13 +146,14 @@ def _abc_azimuths(st: float, ct: float, drop: bool = True) -> list[float]:
     At θi = 90° (cos θd = cos ψ sin ρ in the half frame) the inner integral follows the
     exact Fresnel factor F(cos θd) up to F(0) = 1 as ψ → π/2: it nearly doubles over the last
     ~0.3 rad, and one K15 panel over [0, π/2] missed it by 25 times its share (a second kernel
-    call for 30 of the 100 materials).  Below 90° polar's grading always has a light-side end
+    call for 30 of the 100 materials).  Below 90° the integrator's grading always has a light-side
+    end
     between π/64 and π/8 from π/2 (its coarsest: from 2 cot θi by 8 up to π/8); π/16 stands
     in for it at 90°."""
     if ct <= 0.0:
         return [np.pi / 2 - np.pi / 16]
     out = _vcavity_azimuths(st, ct)
-    grading = polar.outer_grading(st, ct)  # polar's outer grading, from π/2 − w
+    grading = integrator.outer_grading(st, ct)  # the integrator's outer grading, from π/2 − w
     if drop and grading and grading[0] < ABC_DROP_WIDTH:
         out = [a for a in out if np.pi / 2 - a > grading[0]]
     return out
@@ -179,27 +182,28 @@ def _cook_torrance_far(st: float, ct: float, m: float) -> list[float]:
     ρmax(π) = (π/2 − θi)/2; once it is below the lobe's width the horizon cuts the lobe and
     the inner integral falls about as a power of ρmax ∝ cot θi / sin w: a scale-free tail
     with its singularity ~cot θi from π/2 (in the complex plane), which needs outer panels
-    graded geometrically in w, as polar's grading does from 2 cot θi by OUTER_GRADING, but
+    graded geometrically in w, as the integrator's grading does from 2 cot θi by OUTER_GRADING, but
     only up to OUTER_LIMIT.  Its last far panel [π/2 + w, π] is up to 32 times wider than w
     (4.5 at 80°, 9 at 85°, 30 at 88.5°), and its |K15 − G7| was 4.7 times its share at 85°
     (the defaults, m = 0.2), 12 times at 75° where the grading is empty (θi < 78.9°: one
     panel [π/2, π]).  Here, where ρmax(π) < CT_FAR_LOBE·m, the far side is graded on to π:
-    from polar's last break (or from 2 cot θi itself where polar has none, as sgd's hint
+    from the integrator's last break (or from 2 cot θi itself where the integrator has none, as
+    sgd's hint
     does) with pieces of ratio at most OUTER_GRADING, evenly in log w."""
     # st > 0: at normal incidence there is no far side (and 2 cot θi is infinite)
     if not (ct > 0.0 and st > 0.0 and 0.5 * math.atan2(ct, st) < CT_FAR_LOBE * m):
         return []
-    grading = polar.outer_grading(st, ct)
+    grading = integrator.outer_grading(st, ct)
     out = []
     if grading:  # polar grades: its last break
         w = grading[-1]
-    elif (w := polar.OUTER_START * ct / st) < np.pi / 2:
+    elif (w := integrator.OUTER_START * ct / st) < np.pi / 2:
         # polar does not grade: its first break, on the far side only
         out.append(w)
     else:
         return []
     r = (np.pi / 2) / w  # > 1
-    n = math.ceil(math.log(r) / math.log(polar.OUTER_GRADING) - 1e-9) - 1  # pieces ≤ ratio
+    n = math.ceil(math.log(r) / math.log(integrator.OUTER_GRADING) - 1e-9) - 1  # pieces ≤ ratio
     return out + [w * r ** (j / (n + 1)) for j in range(1, n + 1)]
 
 
@@ -230,7 +234,7 @@ def _cook_torrance_lobe(v: Mapping[str, Any], rtol: float) -> Lobe:
 SGD_WIDTH = 1.5
 #: The end of sgd's envelope exp(−tan²θh/α): tan θh = 5√α (e^−25, below any tolerance) ...
 SGD_ENVELOPE_END = 5.0
-#: ... added as a panel end unless polar's grading has one where tan θh/√α is in this range
+#: ... added as a panel end unless the integrator's grading has one where tan θh/√α is in this range
 #: (the envelope at e^−6…e^−49: the lobe's end already falls on a panel end)
 SGD_ENVELOPE_COVERED = (2.5, 7.0)
 #: A G1 clamp θ* so close to the horizon that s·δ² (G1's slope at θ* times the square of its
@@ -278,7 +282,7 @@ def _sgd_shape(material: str) -> tuple[float, tuple[float, ...], tuple[float, ..
     # polar's radial grading (integrate): scale·FIRST_PANEL·GRADING^j below π/2, in units
     # of the narrowest envelope √α
     a0 = float(np.min(alpha))
-    grading = [math.tan(g) / math.sqrt(a0) for g in polar.radial_grading(scale, np.pi / 2)]
+    grading = [math.tan(g) / math.sqrt(a0) for g in integrator.radial_grading(scale, np.pi / 2)]
     lo_c, hi_c = SGD_ENVELOPE_COVERED
     rings = () if any(lo_c <= x <= hi_c for x in grading) else (
         math.atan(SGD_ENVELOPE_END * math.sqrt(a0)),)
@@ -308,15 +312,15 @@ def _sgd_azimuths(st: float, ct: float) -> list[float]:
     far side only, up to SGD_FAR_LIMIT (θi ≥ 68.5°)."""
     if not 0.0 < ct < 0.5 * st:
         return []
-    w = polar.OUTER_START * ct / st
-    return [np.pi / 2 + w] if polar.OUTER_LIMIT <= w < SGD_FAR_LIMIT else []
+    w = integrator.OUTER_START * ct / st
+    return [np.pi / 2 + w] if integrator.OUTER_LIMIT <= w < SGD_FAR_LIMIT else []
 
 
 def _sgd_lobe(v: Mapping[str, Any], rtol: float) -> Lobe:
     """sgd: the lobe's scale, envelope end and G1 kinks of :func:`_sgd_shape` (the clamps
     whose s·δ² is above SGD_CLAMP_SHARE·rtol), the far-side azimuth of
     :func:`_sgd_azimuths`.  A G1 kink at θo = θk is, in the half frame (cos θo = R cos(2ρ −
-    β), module polar), at 2ρ = β ± acos(cos θk / R): radial breaks."""
+    β), module integrator.geometry), at 2ρ = β ± acos(cos θk / R): radial breaks."""
     scale, rings, kinks, clamps = _sgd_shape(v["material"])
     kinks = sorted(set(kinks).union(a for a, e in clamps if e > SGD_CLAMP_SHARE * rtol))
 

@@ -1,6 +1,6 @@
 """Sections of the hemisphere of outgoing directions that do not go through the normal.
 
-The polar cross-sections of :mod:`tuibrdf.render.polar` lie in planes through the normal N; a
+The polar cross-sections of :mod:`tuibrdf.render.sections` lie in planes through the normal N; a
 glossy lobe sits far from N at large θi, so the "perpendicular" plane through N (φr = ±90°)
 misses it entirely (the seed's Cook-Torrance, kd = 0, f0 = 0.04, m = 0.07: 6.9e-30 sr⁻¹ there
 at θi = 60° against a peak of 6.14).  The seed's claim about the lobe's width *across* the
