@@ -46,6 +46,7 @@ import statistics
 import struct
 import subprocess
 import sys
+import tempfile
 import termios
 import time
 from pathlib import Path
@@ -247,8 +248,8 @@ def pct(xs: list[float], q: float) -> float:
     return xs[min(len(xs) - 1, round(q * (len(xs) - 1)))]
 
 
-def latency(w: int, h: int, color: str, reps: int) -> dict:
-    term = Term(w, h, color, ["phong", "--theta-i", "0"])
+def latency(w: int, h: int, color: str, reps: int, root: str | Path = ROOT) -> dict:
+    term = Term(w, h, color, ["phong", "--theta-i", "0"], root=root)
     out: dict = {}
     try:
         out["startup"] = term.until("sr⁻¹".encode()) - term.t0
@@ -284,9 +285,10 @@ def latency(w: int, h: int, color: str, reps: int) -> dict:
     return out
 
 
-def catch_up(w: int, h: int, color: str, rate: float = 1e6, hold_s: float = 2.0) -> float:
+def catch_up(w: int, h: int, color: str, rate: float = 1e6, hold_s: float = 2.0,
+             root: str | Path = ROOT) -> float:
     """Seconds the screen keeps changing after a held → is released, reader at ``rate`` B/s."""
-    term = Term(w, h, color, ["phong", "--theta-i", "0"])
+    term = Term(w, h, color, ["phong", "--theta-i", "0"], root=root)
     try:
         term.until("sr⁻¹".encode())
         term.drain()
@@ -313,11 +315,12 @@ def catch_up(w: int, h: int, color: str, rate: float = 1e6, hold_s: float = 2.0)
         term.close()
 
 
-def view_latency(w: int, h: int, color: str, reps: int, view: str) -> dict:
+def view_latency(w: int, h: int, color: str, reps: int, view: str,
+                 root: str | Path = ROOT) -> dict:
     """Key → frame and key → all panes on one of issue 13's views (phong kd=0.2 ks=0.5 n=20,
     θi = 30°): a parameter key (+/−, every pane changes) and the view's own key pair."""
     n_v, own = VIEW_KEYS[view]
-    term = Term(w, h, color, ["phong", "--theta-i", "30"])
+    term = Term(w, h, color, ["phong", "--theta-i", "30"], root=root)
     out: dict = {}
     try:
         term.until("sr⁻¹".encode())
@@ -344,14 +347,14 @@ def emit(lines: list[str], line: str) -> None:
     lines.append(line)
 
 
-def views_table(sizes, colors, reps: int, lines: list[str]) -> None:
+def views_table(sizes, colors, reps: int, lines: list[str], root: str | Path = ROOT) -> None:
     emit(lines, "| size | colours | view | param p50/p95 ms | param all panes p50/p95 ms "
          "| own key | own p50/p95 ms | own all panes p50/p95 ms |")
     emit(lines, "|---|---|---|---|---|---|---|---|")
     for w, h in sizes:
         for color in colors:
             for view in VIEW_KEYS:
-                r = view_latency(w, h, color, reps, view)
+                r = view_latency(w, h, color, reps, view, root)
                 cells = []
                 for k in ("param", "own"):
                     cells.append(f"{r[k][0] * 1e3:.0f} / {r[k][1] * 1e3:.0f}")
@@ -384,17 +387,26 @@ def main() -> int:
                     help="key → frame on each of issue 13's views instead")
     ap.add_argument("--load", type=int, default=0, metavar="N",
                     help="N other processes spinning on the CPU meanwhile (a shared machine)")
+    ap.add_argument("--against", metavar="REV",
+                    help="measure git revision REV's viewer instead of this tree's (git archive)")
     ap.add_argument("--write-docs", action="store_true",
                     help="also write the table into docs/benchmarks.md (its own section)")
     args = ap.parse_args()
     from benchdoc import command_line, machine, write_section
 
     started = machine()  # (the load average before the spinning processes start)
-    with loaded(args.load):
-        lines = run(args)
+    with tempfile.TemporaryDirectory() as tmp:
+        args.root = ROOT
+        if args.against:
+            from revtree import extract
+
+            args.root = extract(args.against, tmp)
+        with loaded(args.load):
+            lines = run(args)
     if args.write_docs:
         name = "bench_app" + ("-views" if args.views else "") + (
-            f"-load{args.load}" if args.load else "")
+            f"-load{args.load}" if args.load else "") + (
+            f"-at-{args.against}" if args.against else "")
         doc = write_section(name, "\n".join(lines), command_line(), machine_line=started)
         print(f"written into {doc}")
     return 0
@@ -406,7 +418,7 @@ def run(args: argparse.Namespace) -> list[str]:
     colors = args.colors.split(",")
     lines: list[str] = []
     if args.views:
-        views_table(sizes, colors, args.reps, lines)
+        views_table(sizes, colors, args.reps, lines, args.root)
         return lines
     kinds = ("param", "theta", "model", "mixed")
     emit(lines, "| size | colours | startup s | main view p50/p95 ms: param | θi | model | "
@@ -415,8 +427,8 @@ def run(args: argparse.Namespace) -> list[str]:
     emit(lines, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for w, h in sizes:
         for color in colors:
-            r = latency(w, h, color, args.reps)
-            cu = float("nan") if args.no_catch_up else catch_up(w, h, color)
+            r = latency(w, h, color, args.reps, args.root)
+            cu = float("nan") if args.no_catch_up else catch_up(w, h, color, root=args.root)
             ms = [f"{r[k][0] * 1e3:.0f} / {r[k][1] * 1e3:.0f}" for k in kinds]
             done = [f"{r[k][3] * 1e3:.0f} / {r[k][4] * 1e3:.0f}" for k in kinds]
             least = r["theta"][5]
