@@ -103,8 +103,3 @@ def snapped_rint(v) -> np.ndarray:
     """The nearest integer, halves to even (``np.rint``), decided on :func:`snap`'s value."""
     return np.rint(snap(v))
 
-
-def snapped_round_half_up(v) -> np.ndarray:
-    """The nearest integer, halves up (``⌊v + ½⌋``: the cell ``[c − ½, c + ½)`` holding ``v``),
-    decided on :func:`snap`'s value."""
-    return np.floor(snap(v) + 0.5)
