@@ -67,6 +67,26 @@ def test_unit_vectors_are_left_alone():
     np.testing.assert_allclose(as_directions(w, "w"), w, rtol=0, atol=4e-16)
 
 
+def test_unit_float64_vectors_pass_uncopied_and_others_are_normalised():
+    """The fast path: float64 unit vectors are the input itself (no copy); a vector a little
+    further from unit length than the tolerance (|w|² = 1 + 1e-12) is normalised, and a NaN
+    mixed into unit vectors is still refused."""
+    from tuibrdf.core.evaluate import as_directions
+
+    w = np.array([[0.0, 0.0, 1.0], [0.6, 0.0, 0.8], [0.0, -1.0, 0.0]])
+    assert as_directions(w, "w") is w
+    long = np.array([0.0, 0.0, 1.0 + 5e-13])  # |w|² = 1 + 1e-12 + …, far outside 8 ulps
+    assert as_directions(long, "w")[2] == 1.0  # divided by its own length: exactly 1
+    bad = w.copy()
+    bad[1, 0] = np.nan
+    with pytest.raises(ValueError, match=r"w\[1\] contains NaN"):
+        as_directions(bad, "w")
+    inf = w.copy()
+    inf[2, 1] = -np.inf
+    with pytest.raises(ValueError, match=r"w\[2\] contains NaN or inf"):
+        as_directions(inf, "w")
+
+
 @pytest.mark.parametrize("wi, words", [
     ([0, 0, 0], ["wi", "zero vector"]),
     ([[0, 0, 1], [0, 0, 0]], ["wi[1]", "zero vector"]),
@@ -159,10 +179,13 @@ def test_adversarial_directions_are_finite_and_non_negative(model):
 @pytest.mark.parametrize("model", ANALYTIC, ids=lambda m: m.name)
 def test_adversarial_through_evaluate_and_scaled(model):
     """The same pairs through ``evaluate`` (normalising), scaled by hostile lengths: ×1e300
-    loses no bit (the values agree), ×1e-300 flushes the tiny components to 0 (a different
-    direction, so only finite and ≥ 0 is asked)."""
+    loses no bit (the values agree with those of the same vectors ×2, which normalises them
+    the same way: a power of two scales exactly), ×1e-300 flushes the tiny components to 0 (a
+    different direction, so only finite and ≥ 0 is asked).  (Unscaled, the vectors within 8
+    ulps of unit length would pass unnormalised; at heights of 1e-300 over the horizon some
+    kernels' grazing guards tell such 2-ulp differences apart.)"""
     wi, wo = adversarial_pairs()
-    ref = np.asarray(evaluate(model, {}, wi, wo))
+    ref = np.asarray(evaluate(model, {}, wi * 2.0, wo * 2.0))
     big = np.asarray(evaluate(model, {}, wi * 1e300, wo * 1e300))
     np.testing.assert_allclose(big, ref, rtol=1e-9, atol=0, err_msg=model.name)
     small = np.asarray(evaluate(model, {}, wi * 1e-300, wo))

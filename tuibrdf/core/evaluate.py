@@ -11,6 +11,9 @@ Input contract of the directions (docs/design.md, "The API's input contract"):
   without overflow or underflow (the vector is divided by its largest component first), and a
   unit vector moves by at most a few ulps.  The zero vector has no direction:
   ``ValueError`` with its index;
+* float64 vectors that are already unit (``| |w|² − 1 | ≤`` :data:`UNIT_TOL`, a few ulps) pass
+  unchanged and uncopied: the check is one pass over the input, and normalising them would
+  move them by no more than that;
 * directions below the horizon (z < 0) are allowed and give 0 (the BRDF is defined on the
   upper hemisphere).
 
@@ -36,6 +39,13 @@ def _first(mask: np.ndarray) -> str:
     return str(tuple(int(i) for i in np.argwhere(mask)[0]))
 
 
+#: how far ``|w|²`` may be from 1 for ``w`` to count as a unit vector and pass unchanged: 8 ulps
+#: of 1 covers a normalised vector's own rounding (each of its three squares and two sums adds
+#: at most ½ ulp) and the rounding of the check's sum; unnormalised, such a vector differs from
+#: its normalised self by at most 4 ulps
+UNIT_TOL = 8 * 2.0**-52
+
+
 def as_directions(w: Any, name: str) -> np.ndarray:
     """``w`` as unit vectors of shape ``(..., 3)``, validated (see the module docstring)."""
     try:
@@ -44,21 +54,29 @@ def as_directions(w: Any, name: str) -> np.ndarray:
         raise ValueError(f"{name} must be an array of numbers of shape (..., 3)") from None
     if w.ndim == 0 or w.shape[-1] != 3:
         raise ValueError(f"{name} must have shape (..., 3), got {w.shape}")
-    finite = np.isfinite(w).all(axis=-1)
+    if w.size:
+        # the usual input, finite unit vectors, in one pass: |w|² then its range (a NaN makes
+        # min and max NaN, an inf makes max inf: both fail the test and take the checks below)
+        n2 = np.einsum("...i,...i->...", w, w)
+        if 1.0 - UNIT_TOL <= n2.min() and n2.max() <= 1.0 + UNIT_TOL:
+            return w
+    # |w| without overflow (1e200² = inf) or underflow (1e-310² = 0): scale by the largest
+    # component first, so the scaled vector has components in [-1, 1] and a length in [1, √3]
+    # (a subnormal vector keeps only the bits it has).  np.maximum propagates NaN and inf, so
+    # the largest component is also the finiteness check.
+    a = np.abs(w)
+    big = np.maximum(np.maximum(a[..., 0], a[..., 1]), a[..., 2])
+    finite = np.isfinite(big)
     if not finite.all():
         at = _first(~finite)
         raise ValueError(f"{name}{at and '[' + at[1:-1].rstrip(',') + ']'} contains NaN or inf")
-    # |w| without overflow (1e200² = inf) or underflow (1e-310² = 0): scale by the largest
-    # component first, so the scaled vector has components in [-1, 1] and a length in [1, √3]
-    # (a subnormal vector keeps only the bits it has)
-    big = np.max(np.abs(w), axis=-1)
     zero = big == 0.0
     if zero.any():
         at = _first(zero)
         raise ValueError(f"{name}{at and '[' + at[1:-1].rstrip(',') + ']'} is the zero vector: "
                          "a direction must be non-zero")
     s = w / big[..., None]  # no overflow: |s| ≤ 1; big > 0 checked above
-    n = np.sqrt(np.sum(s * s, axis=-1))  # in [1, √3]
+    n = np.sqrt(np.einsum("...i,...i->...", s, s))  # in [1, √3]
     return s / n[..., None]
 
 
