@@ -2,8 +2,9 @@
 
     PYTHONPATH=$PWD python scripts/bench_evaluate.py [--n 1000000] [--repeat 7] [--write-docs]
 
-For each model: the best of ``--repeat`` calls of ``tuibrdf.evaluate(model, {}, wi, wo)``
-(validating and, where needed, normalising the directions) and of the kernel behind it,
+For each model: the best of ``--repeat`` calls (taken in turns) of
+``tuibrdf.evaluate(model, {}, wi, wo)`` (validating and, where needed, normalising the
+directions) and of the kernel behind it,
 ``evaluate_resolved`` with the parameters resolved once; the ratio is the price of the checks.
 ``wi`` and ``wo`` are random unit vectors of the upper hemisphere (float64, C order), as a
 caller's own array usually is, and the same vectors ×2 (not unit: the normalising path).
@@ -31,8 +32,14 @@ def unit_vectors(rng: np.random.Generator, n: int) -> np.ndarray:
     return v / np.linalg.norm(v, axis=-1, keepdims=True)
 
 
-def best(fn, repeat: int) -> float:
-    return min(timeit.repeat(fn, number=1, repeat=repeat))
+def best(fns, repeat: int) -> list[float]:
+    """The best time of each of ``fns`` over ``repeat`` rounds, the calls taken in turns (so a
+    burst of load on a shared machine slows all of them, not one)."""
+    times = [[] for _ in fns]
+    for _ in range(repeat):
+        for t, fn in zip(times, fns, strict=True):
+            t.append(timeit.timeit(fn, number=1))
+    return [min(t) for t in times]
 
 
 def main() -> None:
@@ -49,9 +56,9 @@ def main() -> None:
     for name in MODELS:
         m = get_model(name)
         values = m.resolve({})
-        t_k = best(lambda: evaluate_resolved(m, values, wi, wo), a.repeat)  # noqa: B023
-        t_api = best(lambda: evaluate(name, {}, wi, wo), a.repeat)  # noqa: B023
-        t_2 = best(lambda: evaluate(name, {}, wi2, wo2), a.repeat)  # noqa: B023
+        t_k, t_api, t_2 = best([lambda: evaluate_resolved(m, values, wi, wo),  # noqa: B023
+                                lambda: evaluate(name, {}, wi, wo),  # noqa: B023
+                                lambda: evaluate(name, {}, wi2, wo2)], a.repeat)  # noqa: B023
         rows.append(f"| {name} | {t_k * 1e3:.1f} | {t_api * 1e3:.1f} | {t_api / t_k:.2f} | "
                     f"{t_2 * 1e3:.1f} | {t_2 / t_k:.2f} |")
         print(rows[-1], flush=True)
