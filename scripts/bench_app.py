@@ -19,6 +19,8 @@ timestamps the bytes the app writes back:
   the keys of each kind, per key: what a loaded machine inflates far less than latency.
 * **catch-up**: a key held 2 s (30 repeats/s) while the reader drains the pty at ~1 MB/s;
   the time from the last key until the output stops (idle ``IDLE_S``).
+* The pty answers Textual's synchronized-output query (DECRQM 2026) as terminals that have it
+  do, so the viewer writes each frame as it does for users of those terminals.
 * **startup**: spawn → the first frame containing the map's colour bar unit (``sr⁻¹``); and
   ``tuibrdf --help``.
 
@@ -56,6 +58,9 @@ GAP_S = 0.004
 FRAME_MIN = 3000
 IDLE_S = 0.25
 SETTLE_S = 0.15
+#: Textual asks whether the terminal has synchronized output (DECRQM mode 2026) at start-up;
+#: the reply "mode 2026 is set-able, currently reset" is what terminals that have it answer
+SYNC_QUERY, SYNC_REPLY = b"\x1b[?2026$p", b"\x1b[?2026;2$y"
 KEYS = {"right": b"\x1b[C", "left": b"\x1b[D", "plus": b"+", "minus": b"-", "m": b"m",
         "q": b"q", "v": b"v", "d": b"d", "D": b"D", "x": b"x", "X": b"X", "y": b"y", "Y": b"Y"}
 #: issue 13's views: how many ``v`` from the map reach each, and the view's own key pair
@@ -103,6 +108,8 @@ class Term:
         except OSError:
             return None
         t = time.perf_counter()
+        if SYNC_QUERY in data:  # answer as a terminal with synchronized output does: Textual
+            os.write(self.fd, SYNC_REPLY)  # then wraps each frame in BSU … ESU, as users see it
         self.sent_since_key = getattr(self, "sent_since_key", 0) + len(data)
         if self.screen is not None:  # fed to the emulator later: pyte costs ~1 ms per KB, and
             self.unfed.append(data)  # feeding here delayed the next read (and its time stamp)
