@@ -58,6 +58,14 @@ def server(tmp_path):
             assert proc.poll() is None, log.read_text(errors="replace")
             assert time.monotonic() < deadline, log.read_text(errors="replace")
             time.sleep(0.2)
+        while True:  # the line comes before the socket is bound (aiohttp's on_startup)
+            try:
+                socket.create_connection(("127.0.0.1", port), timeout=5).close()
+                break
+            except OSError:
+                assert proc.poll() is None, log.read_text(errors="replace")
+                assert time.monotonic() < deadline, log.read_text(errors="replace")
+                time.sleep(0.2)
         yield f"http://127.0.0.1:{port}/"
     finally:
         proc.terminate()  # textual-serve exits gracefully on SIGTERM

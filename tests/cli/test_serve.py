@@ -268,6 +268,21 @@ def test_a_non_loopback_host_is_warned_about(monkeypatch, capsys, tree, host, wa
     assert made.policy["data_dir"] is None and made.policy["allow_python"] is False
 
 
+def test_a_port_in_use_is_one_line(tmp_path):
+    pytest.importorskip("textual_serve")
+    import socket
+
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        out = subprocess.run([sys.executable, "-m", "tuibrdf", "serve", "--port", str(port)],
+                             capture_output=True, text=True, cwd=tmp_path, timeout=START_S)
+    assert out.returncode == 2
+    assert out.stderr.splitlines() == [f"tuibrdf: error: cannot listen on 127.0.0.1:{port}: "
+                                       "address already in use"]
+
+
 def test_bad_ports_and_data_dirs_are_one_line(capsys, tmp_path):
     for argv in (["serve", "--port", "0"], ["serve", "--port", "x"],
                  ["serve", "--data-dir", str(tmp_path / "none")]):

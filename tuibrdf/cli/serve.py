@@ -25,8 +25,6 @@ import sys
 from tuibrdf.cli.common import Parser, UsageError
 
 DEFAULT_PORT = 8000
-#: the line textual-serve's server prints when it listens (its on_startup): tests wait for it
-LISTENING = "Serving"
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -133,6 +131,7 @@ def run(args: argparse.Namespace) -> int:
     try:
         server.serve()
     except OSError as e:  # the port is taken, the address is not this machine's
-        raise UsageError(f"cannot listen on {args.host}:{args.port}: {e.strerror or e}") \
-            from None
+        # aiohttp's message repeats the address before the reason: the reason
+        why = str(e.strerror or e).rsplit(": ", 1)[-1]
+        raise UsageError(f"cannot listen on {args.host}:{args.port}: {why}") from None
     return 0
