@@ -288,3 +288,14 @@ def test_bad_ports_and_data_dirs_are_one_line(capsys, tmp_path):
                  ["serve", "--data-dir", str(tmp_path / "none")]):
         assert main(argv) == 2
         assert len(capsys.readouterr().err.splitlines()) == 1
+
+
+def test_the_other_model_files_are_allowed_and_cycled_to(tree, policy):
+    data, _ = tree
+    second = data / "second.brdf"
+    second.write_bytes((data / "ggx.brdf").read_bytes())
+    p = serve.policy_for(Parser_args([str(data / "ggx.brdf"), str(second), "-p", "alpha=0.5"]))
+    assert p.models == (str(second),)  # `m` reaches it (view adds it to ViewerState.files)
+    assert p.files == {os.path.realpath(data / "ggx.brdf"), os.path.realpath(second)}
+    policy(p)
+    assert Side(str(second)).material.label == "second.brdf"
