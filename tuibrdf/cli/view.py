@@ -8,7 +8,8 @@ opens through the model registry (:mod:`tuibrdf.core.formats.userfiles`).  ``--p
 saved preset (``s`` in the viewer saves one) or, when no file has that name, one of the seed's
 comparisons (``diffuse``, ``specular``).  Everything is validated before Textual is imported (a
 MERL file is read whole, as ``eval`` reads it), so bad input is one line on stderr and exit
-status 2; so is a missing terminal (stdin and stdout must both be one).  ``--color`` and
+status 2; so is a missing terminal (stdin and stdout must both be one; Textual's web driver,
+as ``tuibrdf serve`` runs the viewer, counts as one).  ``--color`` and
 ``NO_COLOR`` are handed to Textual through its environment variables (``TEXTUAL_COLOR_SYSTEM``,
 ``NO_COLOR``).
 
