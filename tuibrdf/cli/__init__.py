@@ -26,6 +26,7 @@ SUBCOMMANDS = [
     ("render", "render", "print a picture of the BRDF (deterministic, for docs and tests)"),
     ("fit", "fit", "fit an analytic model to a measured MERL file"),
     ("view", "view", "open the interactive viewer (the default with no arguments)"),
+    ("serve", "serve", "serve the viewer to a web browser (needs tuibrdf[web])"),
 ]
 
 

@@ -8,7 +8,8 @@ opens through the model registry (:mod:`tuibrdf.core.formats.userfiles`).  ``--p
 saved preset (``s`` in the viewer saves one) or, when no file has that name, one of the seed's
 comparisons (``diffuse``, ``specular``).  Everything is validated before Textual is imported (a
 MERL file is read whole, as ``eval`` reads it), so bad input is one line on stderr and exit
-status 2; so is a missing terminal (stdin and stdout must both be one).  ``--color`` and
+status 2; so is a missing terminal (stdin and stdout must both be one; Textual's web driver,
+as ``tuibrdf serve`` runs the viewer, counts as one).  ``--color`` and
 ``NO_COLOR`` are handed to Textual through its environment variables (``TEXTUAL_COLOR_SYSTEM``,
 ``NO_COLOR``).
 
@@ -179,12 +180,21 @@ def build_state(args: argparse.Namespace):
 def check_terminal(stdin=None, stdout=None) -> None:
     """The viewer needs a terminal on both ends; without one Textual would wait for keys that
     never come (``tuibrdf view < /dev/null``) or draw escape codes into a file."""
+    if web_driver():  # served (tuibrdf serve): the streams are textual-serve's pipes
+        return
     stdin = sys.stdin if stdin is None else stdin
     stdout = sys.stdout if stdout is None else stdout
     for what, stream in (("standard input", stdin), ("standard output", stdout)):
         if not isatty(stream):  # also a closed stream
             raise UsageError(f"view needs a terminal, and {what} is not one (for a picture "
                              "in a pipe or a file: tuibrdf render)")
+
+
+def web_driver() -> bool:
+    """Whether Textual will use its web driver (textual-serve sets ``TEXTUAL_DRIVER``, which
+    Textual's ``App.get_driver_class`` imports): it talks over pipes, not a terminal."""
+    module = os.environ.get("TEXTUAL_DRIVER", "").partition(":")[0]
+    return module == "textual.drivers.web_driver"
 
 
 def open_viewer(state, color: str | None) -> int:
@@ -197,7 +207,12 @@ def open_viewer(state, color: str | None) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
+    from tuibrdf.state import sandbox
+
+    policy = sandbox.install_from_environment()  # served: only the files serve allows
     state = build_state(args)
+    if policy is not None:  # the other model files named to serve: `m` cycles to them
+        state.files += [m for m in policy.models if m not in state.files]
     check_terminal()
     if args.color == "none":
         os.environ["NO_COLOR"] = "1"

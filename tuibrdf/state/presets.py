@@ -43,6 +43,7 @@ from typing import Any
 from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.formats.files import read_regular
 from tuibrdf.core.registry import get_model
+from tuibrdf.state import sandbox
 from tuibrdf.state.viewer import Side, ViewerState
 
 NAME_RE = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]{0,63}$")
@@ -273,6 +274,7 @@ def from_toml(text: str, where: str = "preset") -> tuple[float, list[Side]]:
         if not isinstance(params, dict):
             raise PresetError(f"{where}: params must be a table")
         try:
+            sandbox.check_name(entry["model"])  # served: before a model file is read
             model = get_model(entry["model"])
             for k, v in params.items():  # float() of a 400-digit integer overflows
                 if isinstance(v, int) and not isinstance(v, bool) and abs(v) > 1e300:

@@ -50,6 +50,7 @@ from tuibrdf.core.material import Material
 from tuibrdf.core.params import Model, Param, Value
 from tuibrdf.core.registry import MODELS
 from tuibrdf.render import CMAPS
+from tuibrdf.state import sandbox
 
 CHANNEL_NAMES = {"rgb": "R, G and B", "lum": "luminance (Rec.709)", "R": "red only",
                  "G": "green only", "B": "blue only"}
@@ -145,7 +146,11 @@ class Side:
 
     def __init__(self, model: str | Material, values: dict[str, Any] | None = None,
                  selected: int = 0) -> None:
-        self.material = model if isinstance(model, Material) else Material(model, values)
+        if not isinstance(model, Material):
+            sandbox.check_name(model)  # before the file is read (a .py runs when read)
+            model = Material(model, values)
+        sandbox.check_material(model)  # served (tuibrdf serve): only the files it allows
+        self.material = model
         if selected == 0:  # start on a row keys can step (not a data file's path)
             selected = next((i for i, r in enumerate(self.rows()) if r.param.kind != "path"),
                             0)
@@ -257,7 +262,9 @@ class ViewerState:
         """Validate the side's values with ``name = value``; apply them or return why not."""
         side = self.side
         try:
-            side.material = side.material.with_values(**{name: value})
+            new = side.material.with_values(**{name: value})
+            sandbox.check_material(new)  # a typed file path (served: only allowed files)
+            side.material = new
         except ValueError as e:
             return str(e)
         self.memory[side.model] = side.values
