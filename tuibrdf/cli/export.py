@@ -1,0 +1,203 @@
+"""``tuibrdf render … --format FMT [--output FILE] [--size PX] [--inline …]``: the picture or
+the numbers of a view as a file (see docs/guide.md, "Figures and numbers").
+
+==========  ==================================================================================
+``text``    the text picture (the default; plain in a file unless ``--color`` says otherwise)
+``ansi``    the text picture with colour escapes (truecolor unless ``--color 256``)
+``svg``     Rich's SVG export of the ANSI picture (no web font, fixed ids: the same bytes)
+``html``    Rich's HTML export of it (styles inline)
+``png``     the pixel picture of an image view (:mod:`tuibrdf.render.export.figure`)
+``npz``     the numbers of the map or the slice (:mod:`tuibrdf.core.views.tables`)
+``csv``     the numbers of a section, the albedo curve, the θh or θd curve
+``json``    the same as a list of objects
+==========  ==================================================================================
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Any
+
+from tuibrdf.cli.common import UsageError, choices_type, int_in, isatty
+
+FORMATS = ("text", "ansi", "svg", "html", "png", "csv", "npz", "json")
+INLINE = ("auto", "iterm", "kitty", "sixel", "off")
+IMAGE_VIEWS = ("map", "slice", "sphere", "plane", "solid")  # render.export.figure's
+NPZ_VIEWS = ("map", "slice")
+TABLE_VIEWS = ("incidence", "perpendicular", "albedo", "theta-h", "theta-d")
+BINARY = ("png", "npz")
+
+
+def add_args(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--format", type=choices_type("format", FORMATS), default="text",
+                        metavar="|".join(FORMATS),
+                        help="what to write (default text): png for the image views (map, "
+                             "slice, sphere, plane, solid), npz for map and slice, csv and "
+                             "json for the sections, albedo, theta-h and theta-d")
+    parser.add_argument("--output", "-o", default="-", metavar="FILE",
+                        help="where to write it (default -: standard output)")
+    parser.add_argument("--size", type=int_in("size", 32, 4096), default=512, metavar="PX",
+                        help="png and npz: pixels across (default 512)")
+    parser.add_argument("--inline", type=choices_type("inline mode", INLINE), default="off",
+                        metavar="|".join(INLINE),
+                        help="show the image view as a picture in the terminal: iterm "
+                             "(iTerm2, WezTerm, VS Code), kitty (kitty, Ghostty), sixel (foot, "
+                             "Windows Terminal 1.22+); auto when TERM/TERM_PROGRAM say which "
+                             "(over ssh only TERM arrives: name it); in tmux set "
+                             "allow-passthrough on (default off)")
+
+
+def wanted(args: argparse.Namespace) -> bool:
+    """Whether ``run`` has something to do (else the text picture goes to stdout as ever)."""
+    return args.format != "text" or args.output != "-" or args.inline != "off"
+
+
+def _check(args: argparse.Namespace) -> None:
+    fmt, view = args.format, args.view
+    if fmt == "png" and view not in IMAGE_VIEWS:
+        raise UsageError(f"--format png: the {view} view has no pixel picture; image views: "
+                         f"{', '.join(IMAGE_VIEWS)} (csv or json give its numbers)")
+    if fmt == "npz" and view not in NPZ_VIEWS:
+        raise UsageError(f"--format npz: for the {' and '.join(NPZ_VIEWS)} views; the "
+                         f"{view} view: " + ("csv or json" if view in TABLE_VIEWS else "png"))
+    if fmt in ("csv", "json") and view not in TABLE_VIEWS:
+        raise UsageError(f"--format {fmt}: for the views {', '.join(TABLE_VIEWS)}; the {view} "
+                         "view: " + ("npz" if view in NPZ_VIEWS else "png"))
+    if fmt in BINARY and args.output == "-" and isatty(sys.stdout):
+        raise UsageError(f"--format {fmt} is binary: give --output FILE (or --inline for a "
+                         "picture in the terminal)")
+
+
+def look(args: argparse.Namespace) -> dict[str, Any]:
+    """The keywords of :func:`tuibrdf.render.views.render_view` from the options."""
+    return dict(cmap=args.cmap, log=args.log, cosine=args.cosine and args.view != "albedo",
+                azimuth_deg=args.azimuth, elevation_deg=args.elevation,
+                section_azimuth_deg=args.section_azimuth, exposure=args.exposure,
+                gamma=args.gamma, theta_d_deg=args.theta_d, theta_h_deg=args.theta_h,
+                phi_d_deg=args.phi_d, sqrt_h=not args.linear_theta_h, phi_i_deg=args.phi_i)
+
+
+def table(view: str, model, values: dict, args: argparse.Namespace):
+    """The numbers of ``view`` (:mod:`tuibrdf.core.views.tables`)."""
+    from tuibrdf.core.views import tables
+    from tuibrdf.core.views.frame import LINE_SAMPLES
+
+    t, p = args.theta_i, args.phi_i
+    if view == "map":
+        return tables.map_table(model, values, t, p, args.size)
+    if view == "slice":
+        return tables.slice_table(model, values, args.phi_d, args.size, args.size // 2,
+                                  not args.linear_theta_h)
+    if view in ("incidence", "perpendicular"):
+        return tables.section_table(model, values, t, p, view, args.section_azimuth,
+                                    cosine=args.cosine)
+    if view == "albedo":
+        return tables.albedo_table(model, values, p)
+    fixed = args.theta_d if view == "theta-h" else args.theta_h
+    return tables.halfdiff_table(model, values, view, fixed, args.phi_d, LINE_SAMPLES)
+
+
+def svg_format() -> str:
+    """Rich's SVG template without its ``@font-face`` rules (they fetch Fira Code from a
+    CDN): the picture uses the reader's Fira Code if installed, else its monospace font."""
+    import re
+
+    from rich._export_format import CONSOLE_SVG_FORMAT
+
+    return re.sub(r"\s*@font-face \{\{.*?\}\}", "", CONSOLE_SVG_FORMAT, flags=re.S)
+
+
+def rich_export(ansi: str, width: int, fmt: str, title: str) -> str:
+    """``ansi`` (the picture with colour escapes) as SVG or HTML through a recording
+    console."""
+    from rich.console import Console
+    from rich.text import Text
+
+    con = Console(file=_Null(), record=True, width=width, color_system="truecolor",
+                  force_terminal=True, no_color=False, highlight=False, markup=False,
+                  emoji=False, legacy_windows=False, soft_wrap=False, force_jupyter=False,
+                  force_interactive=False, _environ={})
+    for line in ansi.rstrip("\n").split("\n"):
+        con.print(Text.from_ansi(line), no_wrap=True, overflow="ignore", crop=False)
+    if fmt == "svg":
+        return con.export_svg(title=title, code_format=svg_format(), unique_id="tuibrdf")
+    return con.export_html(inline_styles=True)
+
+
+class _Null:
+    def write(self, s: str) -> int:
+        return len(s)
+
+    def flush(self) -> None:
+        pass
+
+
+def _write(data: bytes | str, output: str) -> None:
+    if output == "-":
+        if isinstance(data, bytes):
+            sys.stdout.flush()
+            sys.stdout.buffer.write(data)
+            sys.stdout.buffer.flush()
+        else:
+            sys.stdout.write(data)
+        return
+    mode = "wb" if isinstance(data, bytes) else "w"
+    with open(output, mode, **({} if mode == "wb" else {"encoding": "utf-8",
+                                                        "newline": ""})) as f:
+        f.write(data)
+
+
+def run(args: argparse.Namespace, model, values: dict) -> int:
+    from tuibrdf.cli.render import color_system, picture
+
+    _check(args)
+    fmt, view = args.format, args.view
+    if args.inline != "off" and fmt == "text" and args.output == "-":
+        if _inline(args, model, values):
+            return 0
+    if fmt in ("text", "ansi"):
+        if fmt == "ansi":
+            color = args.color if args.color not in ("auto", "none") else "truecolor"
+        else:
+            color = color_system(args.color, stream=sys.stdout if args.output == "-" else None)
+            color = "none" if args.output != "-" and args.color == "auto" else color
+        _write(picture(model, values, args, color), args.output)
+    elif fmt in ("svg", "html"):
+        ansi = picture(model, values, args, "truecolor")
+        title = f"tuibrdf render {model.name} --view {view}"
+        _write(rich_export(ansi, args.width, fmt, title), args.output)
+    elif fmt == "png":
+        from tuibrdf.render.export.figure import figure
+
+        _write(figure(view, model, values, args.theta_i, args.size, **look(args)).png(),
+               args.output)
+    else:
+        from tuibrdf.render.export import numbers
+
+        tab = table(view, model, values, args)
+        data = {"npz": numbers.to_npz, "csv": numbers.to_csv, "json": numbers.to_json}[fmt](tab)
+        _write(data, args.output)
+    return 0
+
+
+def _inline(args: argparse.Namespace, model, values: dict) -> bool:
+    """Print the view inline when a protocol applies; False: the text picture instead."""
+    import os
+
+    from tuibrdf.render.export import inline
+
+    if args.view not in IMAGE_VIEWS:
+        return False
+    proto = args.inline
+    if proto == "auto":
+        proto = inline.detect() if isatty(sys.stdout) else None
+        if proto is None:
+            return False
+    from tuibrdf.render.export.figure import figure
+
+    fig = figure(args.view, model, values, args.theta_i, args.size, **look(args))
+    esc = inline.escape(proto, fig.png(), fig.index, fig.palette, tmux=bool(os.environ.get(
+        "TMUX")))
+    sys.stdout.write(esc)
+    return True
