@@ -79,58 +79,24 @@ def look(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def table(view: str, model, values: dict, args: argparse.Namespace):
-    """The numbers of ``view`` (:mod:`tuibrdf.core.views.tables`)."""
-    from tuibrdf.core.views import tables
-    from tuibrdf.core.views.frame import LINE_SAMPLES
+    """The numbers of ``view`` (:func:`tuibrdf.core.views.tables.for_view`)."""
+    from tuibrdf.core.views.tables import for_view
 
-    t, p = args.theta_i, args.phi_i
-    if view == "map":
-        return tables.map_table(model, values, t, p, args.size)
-    if view == "slice":
-        return tables.slice_table(model, values, args.phi_d, args.size, args.size // 2,
-                                  not args.linear_theta_h)
-    if view in ("incidence", "perpendicular"):
-        return tables.section_table(model, values, t, p, view, args.section_azimuth,
-                                    cosine=args.cosine)
-    if view == "albedo":
-        return tables.albedo_table(model, values, p)
-    fixed = args.theta_d if view == "theta-h" else args.theta_h
-    return tables.halfdiff_table(model, values, view, fixed, args.phi_d, LINE_SAMPLES)
-
-
-def svg_format() -> str:
-    """Rich's SVG template without its ``@font-face`` rules (they fetch Fira Code from a
-    CDN): the picture uses the reader's Fira Code if installed, else its monospace font."""
-    import re
-
-    from rich._export_format import CONSOLE_SVG_FORMAT
-
-    return re.sub(r"\s*@font-face \{\{.*?\}\}", "", CONSOLE_SVG_FORMAT, flags=re.S)
+    return for_view(view, model, values, args.theta_i, args.phi_i, size=args.size,
+                    section_azimuth=args.section_azimuth, theta_d=args.theta_d,
+                    theta_h=args.theta_h, phi_d=args.phi_d, sqrt_h=not args.linear_theta_h,
+                    cosine=args.cosine)
 
 
 def rich_export(ansi: str, width: int, fmt: str, title: str) -> str:
-    """``ansi`` (the picture with colour escapes) as SVG or HTML through a recording
-    console."""
-    from rich.console import Console
+    """``ansi`` (the picture with colour escapes) as SVG or HTML
+    (:func:`tuibrdf.render.export.terminal.export`)."""
     from rich.text import Text
 
-    con = Console(file=_Null(), record=True, width=width, color_system="truecolor",
-                  force_terminal=True, no_color=False, highlight=False, markup=False,
-                  emoji=False, legacy_windows=False, soft_wrap=False, force_jupyter=False,
-                  force_interactive=False, _environ={})
-    for line in ansi.rstrip("\n").split("\n"):
-        con.print(Text.from_ansi(line), no_wrap=True, overflow="ignore", crop=False)
-    if fmt == "svg":
-        return con.export_svg(title=title, code_format=svg_format(), unique_id="tuibrdf")
-    return con.export_html(inline_styles=True)
+    from tuibrdf.render.export.terminal import export
 
-
-class _Null:
-    def write(self, s: str) -> int:
-        return len(s)
-
-    def flush(self) -> None:
-        pass
+    lines = [Text.from_ansi(line) for line in ansi.rstrip("\n").split("\n")]
+    return export(lines, width, fmt, title)
 
 
 def _write(data: bytes | str, output: str) -> None:

@@ -187,3 +187,27 @@ def albedo_table(model: Model, values: dict[str, Any], phi_i: float,
         cols.update({f"error_{c}": err[:, k] for k, c in enumerate("rgb")})
         return Table("albedo", {"theta_i": t, **cols}, meta)
     return Table("albedo", {"theta_i": t, "albedo": a, "error": err}, meta)
+
+
+def for_view(view: str, model: Model, values: dict[str, Any], theta_i: float,
+             phi_i: float = 180.0, *, size: int = 512, section_azimuth: float = 90.0,
+             theta_d: float = 0.0, theta_h: float = 0.0, phi_d: float = 90.0,
+             sqrt_h: bool = True, cosine: bool = False) -> Table:
+    """The numbers of ``view`` (one of :data:`IMAGE_TABLES` or :data:`CURVE_TABLES`); the map
+    on a ``size × size`` grid, the slice ``size`` θh by ``size // 2`` θd samples."""
+    from tuibrdf.core.views.frame import LINE_SAMPLES
+
+    if view == "map":
+        return map_table(model, values, theta_i, phi_i, size)
+    if view == "slice":
+        return slice_table(model, values, phi_d, size, max(size // 2, 2), sqrt_h)
+    if view in ("incidence", "perpendicular"):
+        return section_table(model, values, theta_i, phi_i, view, section_azimuth,
+                             cosine=cosine)
+    if view == "albedo":
+        return albedo_table(model, values, phi_i)
+    if view in ("theta-h", "theta-d"):
+        fixed = theta_d if view == "theta-h" else theta_h
+        return halfdiff_table(model, values, view, fixed, phi_d, LINE_SAMPLES)
+    raise ValueError(f"view {view!r} has no table of numbers: the views with one are "
+                     f"{', '.join(IMAGE_TABLES + CURVE_TABLES)}")
