@@ -27,7 +27,7 @@ def test_repr_png_is_the_map_and_save_by_suffix(tmp_path):
     img = PIL.open(io.BytesIO(p._repr_png_()))
     assert img.size[0] == 64 and img.mode == "P"
     assert p.save(tmp_path / "a.png").read_bytes() == p._repr_png_()
-    z = np.load(p.save(tmp_path / "a.npz"))
+    z = np.load(io.BytesIO(p.save(tmp_path / "a.npz").read_bytes()))
     meta = json.loads(str(z["metadata"]))
     inside = ~np.isnan(z["f"])
     assert np.array_equal(tuibrdf.evaluate(meta["model"], meta["params"], z["wi"],
