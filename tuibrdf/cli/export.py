@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Callable
 from typing import Any
 
 from tuibrdf.cli.common import UsageError, choices_type, int_in, isatty
@@ -114,9 +115,10 @@ def _write(data: bytes | str, output: str) -> None:
         f.write(data)
 
 
-def run(args: argparse.Namespace, model, values: dict) -> int:
-    from tuibrdf.cli.render import color_system, picture
-
+def run(args: argparse.Namespace, model, values: dict, draw: Callable[[str], str],
+        color_system: Callable[..., str]) -> int:
+    """Write what ``args`` ask for; ``draw(color)`` is the text picture and ``color_system``
+    what ``--color`` means (both :mod:`tuibrdf.cli.render`'s)."""
     _check(args)
     fmt, view = args.format, args.view
     if args.inline != "off" and fmt == "text" and args.output == "-":
@@ -128,9 +130,9 @@ def run(args: argparse.Namespace, model, values: dict) -> int:
         else:
             color = color_system(args.color, stream=sys.stdout if args.output == "-" else None)
             color = "none" if args.output != "-" and args.color == "auto" else color
-        _write(picture(model, values, args, color), args.output)
+        _write(draw(color), args.output)
     elif fmt in ("svg", "html"):
-        ansi = picture(model, values, args, "truecolor")
+        ansi = draw("truecolor")
         title = f"tuibrdf render {model.name} --view {view}"
         _write(rich_export(ansi, args.width, fmt, title), args.output)
     elif fmt == "png":

@@ -162,7 +162,8 @@ def run(args: argparse.Namespace) -> int:
     from tuibrdf.cli import export
 
     if export.wanted(args):  # --format, --output, --inline (cli/export.py)
-        return export.run(args, model, values)
+        return export.run(args, model, values, lambda c: picture(model, values, args, c),
+                          color_system)
     color = color_system(args.color)
     if color != "none" and not can_encode(sys.stdout, "▀"):
         color = "none"  # no half blocks in this locale: the ASCII ramp of --color none
