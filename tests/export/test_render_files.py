@@ -198,3 +198,33 @@ def test_a_format_a_view_has_not_is_one_line_and_exit_2(tmp_path, capsys, argv):
     _, err = capsys.readouterr()
     assert rc == 2 and err.count("\n") == 1 and "format" in err
     assert not (tmp_path / "x").exists()
+
+
+def test_text_to_a_file_is_plain_and_ansi_has_colour(tmp_path):
+    text = run(tmp_path, "p.txt", "phong", "--width", "40", "--height", "12").decode()
+    assert "\x1b" not in text and "phong" in text
+    assert all(line == line.rstrip() for line in text.splitlines())
+    ansi = run(tmp_path, "p.ansi", "phong", "--width", "40", "--height", "12",
+               "--format", "ansi").decode()
+    assert "\x1b[38;2;" in ansi  # truecolor escapes
+    # the same picture (half blocks instead of the ASCII ramp) under the same title
+    import re
+
+    plain = re.sub(r"\x1b\[[0-9;]*m", "", ansi).splitlines()
+    assert len(plain) == len(text.splitlines()) == 12
+    assert "▀" in "".join(plain)
+
+
+def test_binary_to_a_terminal_is_refused(capsys, monkeypatch):
+    from tuibrdf.cli import export
+
+    monkeypatch.setattr(export, "isatty", lambda stream: True)
+    rc = main(["render", "phong", "--format", "png"])
+    out, err = capsys.readouterr()
+    assert rc == 2 and out == "" and "--output FILE" in err
+
+
+def test_png_to_stdout_when_piped(capsysbinary):
+    assert main(["render", "phong", "--format", "png", "--size", "40"]) == 0
+    out = capsysbinary.readouterr().out
+    assert out.startswith(b"\x89PNG\r\n\x1a\n") and PIL.open(io.BytesIO(out)).size[0] == 40

@@ -18,8 +18,9 @@ from collections.abc import Mapping
 import numpy as np
 
 SIGNATURE = b"\x89PNG\r\n\x1a\n"
-#: zlib's level: 9 is a few ms more for a 512² map and ≈ 10 % smaller; the bytes depend on it
-LEVEL = 9
+#: zlib's level (the bytes depend on it): for a 512² map 6 took 1 ms here against 29 ms for
+#: 9, which saves 11 % (9.1 → 8.1 KB; measured on a loaded machine)
+LEVEL = 6
 
 
 def chunk(kind: bytes, data: bytes) -> bytes:
