@@ -10,6 +10,7 @@ the numbers of a view as a file (see docs/guide.md, "Figures and numbers").
 ``npz``     the numbers of the map or the slice (:mod:`tuibrdf.core.views.tables`)
 ``csv``     the numbers of a section, the albedo curve, the θh or θd curve
 ``json``    the same as a list of objects
+``pdf``     a matplotlib figure of the map, a section or a curve (the ``[plot]`` extra)
 ==========  ==================================================================================
 """
 
@@ -22,12 +23,13 @@ from typing import Any
 
 from tuibrdf.cli.common import UsageError, choices_type, int_in, isatty
 
-FORMATS = ("text", "ansi", "svg", "html", "png", "csv", "npz", "json")
+FORMATS = ("text", "ansi", "svg", "html", "png", "csv", "npz", "json", "pdf")
 INLINE = ("auto", "iterm", "kitty", "sixel", "off")
 IMAGE_VIEWS = ("map", "slice", "sphere", "plane", "solid")  # render.export.figure's
 NPZ_VIEWS = ("map", "slice")
 TABLE_VIEWS = ("incidence", "perpendicular", "albedo", "theta-h", "theta-d")
-BINARY = ("png", "npz")
+BINARY = ("png", "npz", "pdf")
+PDF_VIEWS = ("map", *TABLE_VIEWS)  # render.export.plot's
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -35,7 +37,8 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         metavar="|".join(FORMATS),
                         help="what to write (default text): png for the image views (map, "
                              "slice, sphere, plane, solid), npz for map and slice, csv and "
-                             "json for the sections, albedo, theta-h and theta-d")
+                             "json for the sections, albedo, theta-h and theta-d; pdf (needs "
+                             "the [plot] extra, matplotlib) for the map and those")
     parser.add_argument("--output", "-o", default="-", metavar="FILE",
                         help="where to write it (default -: standard output)")
     parser.add_argument("--size", type=int_in("size", 32, 4096), default=512, metavar="PX",
@@ -65,6 +68,13 @@ def _check(args: argparse.Namespace) -> None:
     if fmt in ("csv", "json") and view not in TABLE_VIEWS:
         raise UsageError(f"--format {fmt}: for the views {', '.join(TABLE_VIEWS)}; the {view} "
                          "view: " + ("npz" if view in NPZ_VIEWS else "png"))
+    if fmt == "pdf":
+        if view not in PDF_VIEWS:
+            raise UsageError(f"--format pdf: for the views {', '.join(PDF_VIEWS)}")
+        from tuibrdf.render.export.plot import available
+
+        if not available():
+            raise UsageError("--format pdf needs matplotlib: pip install 'tuibrdf[plot]'")
     if fmt in BINARY and args.output == "-" and isatty(sys.stdout):
         raise UsageError(f"--format {fmt} is binary: give --output FILE (or --inline for a "
                          "picture in the terminal)")
@@ -139,6 +149,11 @@ def run(args: argparse.Namespace, model, values: dict, draw: Callable[[str], str
         from tuibrdf.render.export.figure import figure
 
         _write(figure(view, model, values, args.theta_i, args.size, **look(args)).png(),
+               args.output)
+    elif fmt == "pdf":
+        from tuibrdf.render.export.plot import pdf
+
+        _write(pdf(table(view, model, values, args), cmap=args.cmap, log=args.log),
                args.output)
     else:
         from tuibrdf.render.export import numbers

@@ -8,7 +8,8 @@
 
 ``save`` picks the format by the suffix: ``.png`` (image views), ``.svg``, ``.html``,
 ``.txt``, ``.ansi`` (the terminal picture, ``width × height`` cells), ``.npz`` (map, slice),
-``.csv``, ``.json`` (sections, albedo, θh, θd): the files of ``tuibrdf render --format``.
+``.csv``, ``.json`` (sections, albedo, θh, θd), ``.pdf`` (matplotlib, the ``[plot]`` extra):
+the files of ``tuibrdf render --format``.
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ from typing import Any
 from tuibrdf.render.export.figure import DEFAULT_SIZE, IMAGE_VIEWS
 
 SUFFIXES = {".png": "png", ".svg": "svg", ".html": "html", ".htm": "html", ".txt": "text",
-            ".ansi": "ansi", ".npz": "npz", ".csv": "csv", ".json": "json"}
+            ".ansi": "ansi", ".npz": "npz", ".csv": "csv", ".json": "json", ".pdf": "pdf"}
 #: render_view's look keywords that the numbers depend on too
 _TABLE_KEYS = {"section_azimuth_deg": "section_azimuth", "theta_d_deg": "theta_d",
                "theta_h_deg": "theta_h", "phi_d_deg": "phi_d", "sqrt_h": "sqrt_h",
@@ -85,6 +86,11 @@ class Picture:
             color = "none" if fmt == "text" else "truecolor"
             return export([self.renderable(color)], self.width, fmt,
                           f"tuibrdf {self.view} of {self.model.name}")
+        if fmt == "pdf":  # the [plot] extra (matplotlib)
+            from tuibrdf.render.export.plot import pdf
+
+            return pdf(self.table(), cmap=self.look.get("cmap", "grey"),
+                       log=bool(self.look.get("log", False)))
         from tuibrdf.render.export import numbers
 
         return {"npz": numbers.to_npz, "csv": numbers.to_csv,
