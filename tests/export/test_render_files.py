@@ -228,3 +228,14 @@ def test_png_to_stdout_when_piped(capsysbinary):
     assert main(["render", "phong", "--format", "png", "--size", "40"]) == 0
     out = capsysbinary.readouterr().out
     assert out.startswith(b"\x89PNG\r\n\x1a\n") and PIL.open(io.BytesIO(out)).size[0] == 40
+
+
+def test_the_size_limits_agree():
+    from tuibrdf.cli import export
+    from tuibrdf.render.export import figure
+
+    assert (export.MIN_SIZE, export.MAX_SIZE) == (figure.MIN_SIZE, figure.MAX_SIZE)
+    assert export.IMAGE_VIEWS == figure.IMAGE_VIEWS
+    from tuibrdf.render.export import plot
+
+    assert set(export.PDF_VIEWS) == set(plot.VIEWS)

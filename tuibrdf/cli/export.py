@@ -29,6 +29,7 @@ IMAGE_VIEWS = ("map", "slice", "sphere", "plane", "solid")  # render.export.figu
 NPZ_VIEWS = ("map", "slice")
 TABLE_VIEWS = ("incidence", "perpendicular", "albedo", "theta-h", "theta-d")
 BINARY = ("png", "npz", "pdf")
+MIN_SIZE, MAX_SIZE = 32, 2048  # render.export.figure's (not imported for --help)
 PDF_VIEWS = ("map", *TABLE_VIEWS)  # render.export.plot's
 
 
@@ -41,8 +42,10 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                              "the [plot] extra, matplotlib) for the map and those")
     parser.add_argument("--output", "-o", default="-", metavar="FILE",
                         help="where to write it (default -: standard output)")
-    parser.add_argument("--size", type=int_in("size", 32, 4096), default=512, metavar="PX",
-                        help="png and npz: pixels across (default 512)")
+    parser.add_argument("--size", type=int_in("size", MIN_SIZE, MAX_SIZE), default=512,
+                        metavar="PX",
+                        help=f"png and npz: pixels across (default 512, {MIN_SIZE} to "
+                             f"{MAX_SIZE})")
     parser.add_argument("--inline", type=choices_type("inline mode", INLINE), default="off",
                         metavar="|".join(INLINE),
                         help="show the image view as a picture in the terminal: iterm "

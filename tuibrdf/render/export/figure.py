@@ -33,7 +33,8 @@ from tuibrdf.render.text import INCIDENT_MARK, MIRROR_MARK
 IMAGE_VIEWS = ("map", "slice", "sphere", "plane", "solid")
 BACKGROUND = (255, 255, 255)
 DEFAULT_SIZE = 512
-MIN_SIZE, MAX_SIZE = 32, 4096
+#: a 2048² map is 4 M directions: ≈ 0.4 GB of arrays for its numbers (NPZ) at most
+MIN_SIZE, MAX_SIZE = 32, 2048
 #: colour levels of a picture: with the ring, the marks, the background and the bar's own
 #: levels merged in, a palette PNG (≤ 256 colours)
 LEVELS = 240
