@@ -18,10 +18,12 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable
-from typing import Any
 
-from tuibrdf.cli.common import UsageError, choices_type, int_in, isatty
+from tuibrdf.cli.common import TYPE_CHECKING, UsageError, choices_type, int_in, isatty
+
+if TYPE_CHECKING:  # typing is not imported for ``render --help``
+    from collections.abc import Callable
+    from typing import Any
 
 FORMATS = ("text", "ansi", "svg", "html", "png", "csv", "npz", "json", "pdf")
 INLINE = ("auto", "iterm", "kitty", "sixel", "off")

@@ -214,5 +214,6 @@ def run(args: argparse.Namespace) -> int:
     elif args.color != "auto":
         os.environ["TEXTUAL_COLOR_SYSTEM"] = "truecolor" if args.color == "truecolor" \
             else "256"
-    return open_viewer(state, None if args.color == "auto" else args.color,
-                       args.output_dir) or 0
+    # only when given: open_viewer(state, color) stays the call without it
+    kw = {} if args.output_dir is None else {"output_dir": args.output_dir}
+    return open_viewer(state, None if args.color == "auto" else args.color, **kw) or 0

@@ -8,7 +8,7 @@ same colour scale, colour map, horizon ring and palette as the terminal's; here 
 are taken as they are (:class:`~tuibrdf.render.halfblock.HalfBlockImage`'s ``index`` and
 ``palette``) and laid out with:
 
-- the marks drawn as pixels (map: a red ring around the mirror direction's pixel, a yellow
+- the marks drawn as pixels (map: a red ring around the mirror direction's pixel, a cyan
   one around the light's Lambert point; the rings leave the marked pixel itself as it is);
 - the colour bar (map, slice) below the picture, stretched to its width, 0 (or 3 decades
   below the top, in log) on the left to the top on the right;
