@@ -90,3 +90,25 @@ async def test_an_unwritable_directory_is_a_status_message(tmp_path):
         await pilot.pause()
         assert "figures not written" in status(app)
         assert app.is_running
+
+
+async def test_under_a_web_driver_the_files_go_to_the_browser(tmp_path, monkeypatch):
+    # tuibrdf serve: Textual's delivery (a download in the browser), nothing on the server's disk
+    monkeypatch.chdir(tmp_path)
+    sent: list[tuple[str, str]] = []
+    monkeypatch.setattr(BrdfApp, "is_web", property(lambda self: True))
+    monkeypatch.setattr(BrdfApp, "deliver_text", lambda self, f, **kw: sent.append(
+        ("text", kw["save_filename"])))
+    monkeypatch.setattr(BrdfApp, "deliver_binary", lambda self, f, **kw: sent.append(
+        ("binary", kw["save_filename"])))
+    app = make()
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("w")
+        await pilot.pause()
+        assert sorted(sent) == [("binary", "tuibrdf-map.npz"), ("binary", "tuibrdf-map.png"),
+                                ("text", "tuibrdf-screen.svg")]
+        sent.clear()
+        app.action_screenshot()  # the palette's Screenshot: Textual's own delivery of the SVG
+        await pilot.pause()
+        assert len(sent) == 1 and sent[0][0] == "text" and sent[0][1].endswith(".svg")
+    assert not any(tmp_path.iterdir())
