@@ -305,6 +305,7 @@ KEY_WHERE = {
     "next_preset": "any view",
     "save": "any view",
     "load_next": "any view",
+    "write_figures": "any view",
     "help": "any view",
     "quit": "any view",
 }

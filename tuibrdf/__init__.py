@@ -14,7 +14,7 @@ TYPE_CHECKING = False  # typing is not imported for ``tuibrdf --help`` (≈ 3 ms
 if TYPE_CHECKING:
     from typing import Any
 
-__all__ = ["MODELS", "evaluate", "get_model", "albedo"]
+__all__ = ["MODELS", "evaluate", "get_model", "albedo", "picture"]
 __version__ = "0.1.0"
 
 
@@ -29,6 +29,10 @@ def __getattr__(name: str) -> Any:
         from tuibrdf.core import registry as models
 
         return getattr(models, name)
+    if name in ("picture", "Picture"):  # Rich and the renderers: only when asked for
+        from tuibrdf.render.export import picture as pictures
+
+        return getattr(pictures, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 

@@ -18,6 +18,7 @@ from textual.widgets import Footer, Static
 from textual.worker import Worker
 
 from tuibrdf.app import keys
+from tuibrdf.app.figures import FigureWriter
 from tuibrdf.app.frames import FrameDelivery
 from tuibrdf.app.layout import CSS, arrange
 from tuibrdf.app.loading import MeasuredData
@@ -51,7 +52,8 @@ FILE_POLL_S = 1.0  # how often a model file's mtime is checked (an edit redraws)
 #: colour levels of the maps: 32 keeps a full 160×48 map update near 50 KiB (docs/benchmarks.md)
 LEVELS = 32
 #: the actions of the viewer itself (not of a modal screen)
-VIEWER_ACTIONS = frozenset({"state", "save", "load_next", "help", "type_value", "type_theta"})
+VIEWER_ACTIONS = frozenset({"state", "save", "load_next", "help", "type_value", "type_theta",
+                            "write_figures"})
 
 
 def _list_presets() -> list[str]:
@@ -69,7 +71,7 @@ def _read_preset(name: str):
         return str(e)
 
 
-class BrdfApp(FrameDelivery, MeasuredData, App):
+class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
     """``BrdfApp(state, color=None)``; ``color`` ∈ truecolor/256/none overrides detection.
     ``sync=True`` (tests) computes every frame on the event loop, deterministically."""
 

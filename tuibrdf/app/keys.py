@@ -101,6 +101,9 @@ KEYS: tuple[Key, ...] = (
     Key("s", "save", "save", "save θi and parameters as a preset (TOML file)"),
     Key("P", "load_next", "load preset",
         "load the next saved preset (also: tuibrdf view --preset NAME)"),
+    Key("w", "write_figures", "write",
+        "write the screen (SVG) and the main view (PNG, its numbers NPZ/CSV) into the current "
+        "directory (tuibrdf view --output-dir DIR)"),
     Key("question_mark", "help", "help", "this screen", "?", footer=True),
     Key("q", "quit", "quit", "quit", footer=True),
 )

@@ -85,6 +85,9 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     add_setting(parser, "--elevation", DISPLAY.elevation, "DEG",
                 "3D solid: view elevation in degrees")
     add_extra_args(parser)
+    from tuibrdf.cli import export
+
+    export.add_args(parser)
 
 
 def add_extra_args(parser: argparse.ArgumentParser) -> None:
@@ -156,6 +159,11 @@ def run(args: argparse.Namespace) -> int:
     from tuibrdf.cli.text import can_encode, to_stream
 
     model, values = resolve(args)
+    from tuibrdf.cli import export
+
+    if export.wanted(args):  # --format, --output, --inline (cli/export.py)
+        return export.run(args, model, values, lambda c: picture(model, values, args, c),
+                          color_system)
     color = color_system(args.color)
     if color != "none" and not can_encode(sys.stdout, "▀"):
         color = "none"  # no half blocks in this locale: the ASCII ramp of --color none

@@ -65,6 +65,9 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         metavar="|".join(FITS), help="with --material: which fit (default abc)")
     parser.add_argument("--compare-fit", action="store_true",
                         help="with --material: the ABC (A) and SGD (B) fits side by side")
+    parser.add_argument("--output-dir", metavar="DIR", default=None,
+                        help="where key w (and the palette's Screenshot) writes the screen "
+                             "and the main view (default: the current directory)")
     parser.add_argument("--compare-material", metavar="NAME",
                         help="with --material: a second material (B, same fit) side by side")
 
@@ -197,11 +200,15 @@ def web_driver() -> bool:
     return module == "textual.drivers.web_driver"
 
 
-def open_viewer(state, color: str | None) -> int:
+def open_viewer(state, color: str | None, output_dir: str | None = None) -> int:
     """Run the Textual app (the only place Textual is imported); its exit status."""
+    from pathlib import Path
+
     from tuibrdf.app.app import BrdfApp
 
     app = BrdfApp(state, color=color)
+    if output_dir is not None:
+        app.output_dir = Path(output_dir).absolute()  # a later cd does not move it
     app.run()  # a crash: Textual restores the terminal, prints the error, sets return_code 1
     return app.return_code or 0
 
@@ -213,10 +220,15 @@ def run(args: argparse.Namespace) -> int:
     state = build_state(args)
     if policy is not None:  # the other model files named to serve: `m` cycles to them
         state.files += [m for m in policy.models if m not in state.files]
+    if args.output_dir is not None and os.path.exists(args.output_dir) \
+            and not os.path.isdir(args.output_dir):
+        raise UsageError(f"--output-dir {args.output_dir}: not a directory")
     check_terminal()
     if args.color == "none":
         os.environ["NO_COLOR"] = "1"
     elif args.color != "auto":
         os.environ["TEXTUAL_COLOR_SYSTEM"] = "truecolor" if args.color == "truecolor" \
             else "256"
-    return open_viewer(state, None if args.color == "auto" else args.color) or 0
+    # only when given: open_viewer(state, color) stays the call without it
+    kw = {} if args.output_dir is None else {"output_dir": args.output_dir}
+    return open_viewer(state, None if args.color == "auto" else args.color, **kw) or 0
