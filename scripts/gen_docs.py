@@ -305,6 +305,7 @@ KEY_WHERE = {
     "next_preset": "any view",
     "save": "any view",
     "load_next": "any view",
+    "checks": "any view (the active side's model)",
     "help": "any view",
     "quit": "any view",
 }

@@ -101,6 +101,8 @@ KEYS: tuple[Key, ...] = (
     Key("s", "save", "save", "save θi and parameters as a preset (TOML file)"),
     Key("P", "load_next", "load preset",
         "load the next saved preset (also: tuibrdf view --preset NAME)"),
+    Key("F", "checks", "checks", "check the model: finite, positivity, reciprocity (with its "
+        "map at this θi), energy, and the χ² test of a sampler (pdf, histogram, difference)"),
     Key("question_mark", "help", "help", "this screen", "?", footer=True),
     Key("q", "quit", "quit", "quit", footer=True),
 )

@@ -302,3 +302,34 @@ def _chi2(model: Model, values) -> CheckResult:
         detail += "; inconclusive: the lobe is narrower than the map's pixels"
     where = f"at the given parameters, θi {fmt_number(worst_r.theta_i)}°"
     return CheckResult("chi2", v.ok, v.p_value, where, detail)
+
+
+def reciprocity_on_map(model: Model, values: Mapping[str, Any], wi: np.ndarray,
+                       res: int = 32) -> np.ndarray:
+    """The relative reciprocity error ``|f(wi, wo) − f(wo, wi)| / max(|f(wi,wo)|, |f(wo,wi)|)``
+    (floored as :func:`reciprocity_map`) over the Lambert equal-area map of ``wo``
+    (``res × res`` pixel centres, u right, v up; NaN outside the disc), raw values."""
+    step = 2 * np.sqrt(2.0) / res
+    c = (np.arange(res) + 0.5) * step - np.sqrt(2.0)
+    u, v = np.meshgrid(c, -c)  # row 0 at the top (v up)
+    r2 = u * u + v * v
+    inside = r2 <= 2.0
+    s = np.sqrt(np.clip(1.0 - r2[inside] / 4.0, 0.0, None))
+    wo = np.stack([u[inside] * s, v[inside] * s, 1.0 - r2[inside] / 2.0], axis=-1)
+    wi_b = np.broadcast_to(np.asarray(wi, dtype=float), wo.shape).copy()
+    kernel = raw_kernel(model)
+    kw = model.kernel_params(values)
+    with np.errstate(all="ignore"):
+        a = np.array(_call(model, kernel, kw, wi_b, wo))
+        b = np.array(_call(model, kernel, kw, wo, wi_b))
+    a = np.where(np.isfinite(a), a, 0.0)
+    b = np.where(np.isfinite(b), b, 0.0)
+    top = max(float(np.max(np.abs(a), initial=0.0)), float(np.max(np.abs(b), initial=0.0)))
+    den = np.maximum(np.maximum(np.abs(a), np.abs(b)), RECIPROCITY_FLOOR * top)
+    with np.errstate(all="ignore"):
+        r = np.where(den > 0, np.abs(a - b) / np.where(den > 0, den, 1.0), 0.0)
+    if r.ndim == 2:
+        r = r.max(axis=-1)
+    out = np.full((res, res), np.nan)
+    out[inside] = r
+    return out

@@ -210,3 +210,105 @@ def energy_table(model: Model, params: Mapping[str, Any] | None, name: str, lo: 
     return EnergyTable(model.name, dict(base), name, values, mu, np.array(rows), np.array(errs),
                        np.array(avgs, dtype=float), np.array(avg_errs, dtype=float), log,
                        model.rgb, model.param(name).unit)
+
+
+# ---------------------------------------------------------------------------------------------
+# the viewer's energy view
+
+#: the viewer's table: values of the parameter and of μ (a heat map of blocks, not a curve)
+VIEW_N, VIEW_MU_N = 12, 16
+_VIEW_CACHE: dict[tuple, tuple[Model, EnergyTable]] = {}
+_VIEW_CACHE_SIZE = 8
+
+
+@dataclass(frozen=True)
+class EnergyView:
+    """What the energy view shows: the table over the whole range of ``table.param`` (the
+    other parameters the material's), the albedo at the current (μ, p) with its error, and
+    the white-furnace verdict."""
+
+    table: EnergyTable
+    current: float  # the current value of the parameter
+    mu: float  # the current μ = cos θi
+    E: float  # the albedo there (the largest channel)
+    error: float
+    E_avg: float  # E_avg at the current value
+    E_avg_error: float
+    verdict: str
+    gains: bool
+    symbol: str = ""
+
+
+def view_param(model: Model, name: str | None) -> Param | None:
+    """The parameter the view runs over: ``name`` if it is a real one, else the model's first
+    real parameter; None when it has none."""
+    reals = [p for p in model.params if p.kind == "float"]
+    for p in reals:
+        if p.name == name:
+            return p
+    return reals[0] if reals else None
+
+
+def _freeze(v: Any) -> Any:
+    return tuple(v) if isinstance(v, list | tuple) else v
+
+
+def view_table(model: Model, values: Mapping[str, Any], p: Param) -> EnergyTable:
+    """The view's table of ``p`` over its whole range (geometric for a parameter that steps
+    by a factor and starts above 0), the other parameters at ``values``; the last few are kept
+    (stepping ``p`` itself reuses its table)."""
+    others = tuple((k, _freeze(v)) for k, v in values.items() if k != p.name)
+    key = (id(model), p.name, others)
+    hit = _VIEW_CACHE.get(key)
+    if hit is not None and hit[0] is model:
+        return hit[1]
+    log = bool(p.relative and p.min > 0)
+    base = {k: v for k, v in values.items() if k != p.name}
+    lo, hi = float(p.min), float(p.max)
+    # an end that breaks a constraint (kd + ks ≤ 1) is not drawable: the range stops short
+    for end in (lo, hi):
+        try:
+            model.resolve({**base, p.name: end})
+        except ValueError:
+            others_sum = sum(float(values[n]) for c in model.constraints if p.name in c.names
+                             for n in c.names if n != p.name)
+            hi = min(hi, max(lo, 1.0 - others_sum))
+    n = VIEW_N if hi > lo else 1
+    table = energy_table(model, base, p.name, lo, hi, n, VIEW_MU_N, log=log)
+    if len(_VIEW_CACHE) >= _VIEW_CACHE_SIZE:
+        _VIEW_CACHE.pop(next(iter(_VIEW_CACHE)))
+    _VIEW_CACHE[key] = (model, table)
+    return table
+
+
+def energy_view(model: Model, values: Mapping[str, Any], theta_i: float,
+                name: str | None = None, phi_i: float = 180.0) -> EnergyView | None:
+    """The energy view of ``model`` at resolved ``values`` and incidence ``θi`` over
+    parameter ``name`` (:func:`view_param`); None for a model without a real parameter."""
+    from tuibrdf.core.conventions import fmt_number
+
+    p = view_param(model, name)
+    if p is None:
+        return None
+    table = view_table(model, values, p)
+    r = albedo_rule(model, values, [theta_i], phi_i)
+    e = np.max(np.asarray(r.value, dtype=float).reshape(-1))  # the largest channel
+    de = float(np.max(np.asarray(r.error, dtype=float)))
+    avg, davg = e_avg_resolved(model, values, phi_i)
+    sym = p.symbol or p.name
+    cur = float(values[p.name])
+    low = table.E - table.error
+    worst = np.unravel_index(int(np.argmax(low)), low.shape)
+    gains = bool(low[worst] > 1.0) or e - de > 1.0
+    here = f"{sym} = {fmt_number(cur)}, θi = {fmt_number(theta_i)}°"
+    if e - de > 1.0:
+        verdict = f"gains energy: E = {e:.4g} ± {de:.0e} at {here}"
+    else:
+        verdict = f"loses {100 * (1 - e):.3g} % at {here}"
+        if gains:  # elsewhere in the table
+            i, j = worst[0], worst[1]
+            th = float(np.degrees(np.arccos(table.mu[j])))
+            verdict += (f"; gains energy: E = {table.E[worst]:.4g} ± {table.error[worst]:.0e}"
+                        f" at {sym} = {fmt_number(float(table.values[i]))}, θi = {th:.3g}°")
+    return EnergyView(table, cur, float(np.cos(np.radians(theta_i))), float(e), de,
+                      float(np.max(avg)), float(np.max(davg)), verdict, gains, sym)
