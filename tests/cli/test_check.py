@@ -153,3 +153,33 @@ def test_every_built_in_at_defaults_and_ends(name):
     assert _energy(m, configs[:1]).ok  # the defaults
     gains = {label for label, v in configs[1:] if not _energy(m, [(label, v)]).ok}
     assert gains == ENERGY_GAINS.get(name, set())
+
+
+BRDF_FILE = """analytic
+
+::begin parameters
+float k 0 1 0.5
+::end parameters
+
+::begin shader
+vec3 BRDF( vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y )
+{
+    // negative where L and V are both near the normal; not reciprocal (L.z only)
+    return vec3(0.1 - k * 0.2 * dot(L, N) * dot(V, N) + 0.05 * dot(L, N));
+}
+::end shader
+"""
+
+
+def test_a_brdf_file_is_checked_on_its_raw_values(tmp_path, capsys):
+    # the .brdf format clamps negatives to 0 when drawing; the check sees the shader's value:
+    # at k = 1 and the normal pair 0.1 − 0.2 + 0.05 = −0.05
+    path = tmp_path / "neg.brdf"
+    path.write_text(BRDF_FILE)
+    rc, out, _ = run(capsys, "check", str(path), "--json")
+    assert rc == 1
+    checks = {c["name"]: c for c in json.loads(out)["checks"]}
+    assert not checks["positivity"]["ok"]
+    assert checks["positivity"]["worst"] == pytest.approx(-0.05, abs=1e-12)
+    assert "k=1" in checks["positivity"]["where"]
+    assert not checks["reciprocity"]["ok"] and checks["finite"]["ok"]

@@ -223,6 +223,7 @@ def run_checks(model: Model, params: Mapping[str, Any] | None = None, *,
     wi = np.repeat(dirs, n, axis=0)  # pair (a, b): wi = dirs[a], wo = dirs[b]
     wo = np.tile(dirs, (n, 1))
     kernel = raw_kernel(model)
+    opposite = np.sum((dirs[:, None, :] + dirs[None, :, :]) ** 2, axis=-1) < 1e-12
     fin = [True, 0.0, "every configuration"]
     pos = [np.inf, ""]
     rec = [0.0, ""]
@@ -247,6 +248,7 @@ def run_checks(model: Model, params: Mapping[str, Any] | None = None, *,
         if flat[k] < pos[0]:
             pos = [float(flat[k]), _where(label, wi[k], wo[k])]
         r = reciprocity_map(f.reshape((n, n) + f.shape[1:]))
+        r[opposite] = 0.0  # wi = −wo (both on the horizon): H is undefined, no value to compare
         k = int(np.argmax(r))
         if r.flat[k] > rec[0]:
             a, b = divmod(k, n)
