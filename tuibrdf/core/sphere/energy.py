@@ -219,6 +219,7 @@ def energy_table(model: Model, params: Mapping[str, Any] | None, name: str, lo: 
 VIEW_N, VIEW_MU_N = 12, 16
 _VIEW_CACHE: dict[tuple, tuple[Model, EnergyTable]] = {}
 _VIEW_CACHE_SIZE = 8
+_AVG_CACHE: dict[tuple, tuple[Model, tuple]] = {}  # E_avg at the material's values
 
 
 @dataclass(frozen=True)
@@ -294,7 +295,13 @@ def energy_view(model: Model, values: Mapping[str, Any], theta_i: float,
     r = albedo_rule(model, values, [theta_i], phi_i)
     e = np.max(np.asarray(r.value, dtype=float).reshape(-1))  # the largest channel
     de = float(np.max(np.asarray(r.error, dtype=float)))
-    avg, davg = e_avg_resolved(model, values, phi_i)
+    key = (id(model), phi_i, tuple((k, _freeze(v)) for k, v in values.items()))
+    hit = _AVG_CACHE.get(key)
+    if hit is None or hit[0] is not model:
+        if len(_AVG_CACHE) >= _VIEW_CACHE_SIZE:
+            _AVG_CACHE.pop(next(iter(_AVG_CACHE)))
+        hit = _AVG_CACHE[key] = (model, e_avg_resolved(model, values, phi_i))
+    avg, davg = hit[1]
     sym = p.symbol or p.name
     cur = float(values[p.name])
     low = table.E - table.error
