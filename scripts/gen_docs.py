@@ -306,6 +306,7 @@ KEY_WHERE = {
     "save": "any view",
     "load_next": "any view",
     "write_figures": "any view",
+    "checks": "any view (the active side's model)",
     "help": "any view",
     "quit": "any view",
 }

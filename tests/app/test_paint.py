@@ -120,7 +120,7 @@ class Twin:
 
 KEYS = ["right", "right", "minus", "plus", "shift+right", "b", "L", "I", "m", "greater_than_sign",
         "a", "o", "l", "k", "c", "tab", "minus", "right", "question_mark", "escape", "c",
-        "v", "right", "v", "v", "x", "g", "v", "y", "v", "d", "v", "d", "v", "left", "v"]
+        "v", "right", "v", "v", "x", "g", "v", "y", "v", "d", "v", "d", "v", "left", "v", "v"]
 
 
 @pytest.mark.parametrize("size", [(160, 48), (100, 30)])

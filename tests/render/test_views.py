@@ -23,7 +23,7 @@ def to_text(renderable, system=None, width=200) -> str:
 
 def test_views_and_cmaps_tuples():
     assert VIEWS == ("map", "incidence", "perpendicular", "solid", "albedo", "sphere", "plane",
-                     "slice", "theta-h", "theta-d")
+                     "slice", "theta-h", "theta-d", "energy")
     # the renderer and the frame computation know the same extra views
     from tuibrdf.core.views.frame import EXTRA_VIEWS as CORE_EXTRA
     from tuibrdf.render import EXTRA_VIEWS

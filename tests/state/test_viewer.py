@@ -313,7 +313,7 @@ def test_issue13_view_settings_stay_in_range():
     for _ in range(100):
         s.move_probe(1, 0)
     assert s.probe[0] == pytest.approx(2**0.5) and s.probe[1] == 0.0  # held on the horizon
-    assert len(MAIN_VIEWS) == 8
+    assert len(MAIN_VIEWS) == 9
 
 
 @pytest.mark.parametrize("step", [1, -1, 2])

@@ -23,7 +23,7 @@ from tuibrdf.app.frames import FrameDelivery
 from tuibrdf.app.layout import CSS, arrange
 from tuibrdf.app.loading import MeasuredData
 from tuibrdf.app.paint import ViewerScreen
-from tuibrdf.app.screens import HelpScreen, SaveScreen, ValueScreen
+from tuibrdf.app.screens import HelpScreen, ReportScreen, SaveScreen, ValueScreen
 from tuibrdf.app.text import PANES
 from tuibrdf.app.textual_internals import SafeCommandPalette
 from tuibrdf.app.widgets import ParamPanel, Picture, QuietStatic, StatusLine
@@ -53,7 +53,7 @@ FILE_POLL_S = 1.0  # how often a model file's mtime is checked (an edit redraws)
 LEVELS = 32
 #: the actions of the viewer itself (not of a modal screen)
 VIEWER_ACTIONS = frozenset({"state", "save", "load_next", "help", "type_value", "type_theta",
-                            "write_figures"})
+                            "write_figures", "checks"})
 
 
 def _list_presets() -> list[str]:
@@ -229,6 +229,22 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
 
     def action_help(self) -> None:
         self.push_screen(HelpScreen())
+
+    def action_checks(self) -> None:
+        """F: the checks of the active side's model (off the event loop), then the report."""
+        from tuibrdf.app.checks import check_work
+
+        material, look = self.state.side.material, self.look
+        self._changed(f"checking {material.label} …")
+        self.background(partial(check_work, material, self.state.theta_i, self.state.phi_i,
+                                look.cmap, look.color), self._checked)
+
+    def _checked(self, result) -> None:
+        if isinstance(result, str):  # why the checks could not run
+            self._changed(result)
+            return
+        self._changed("checks done (F or Esc closes the report)")
+        self.push_screen(ReportScreen(result))
 
     def action_type_value(self) -> None:
         """Enter or =: type the selected parameter's value (a filtered list for choices)."""

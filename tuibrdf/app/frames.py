@@ -133,7 +133,8 @@ class FrameDelivery:
                             map_px=map_px, solid=s.view == "solid", curve=s.view == "albedo",
                             section_azimuth=s.section_azimuth, extra=extra, extra_px=extra_px,
                             theta_d=s.theta_d, theta_h=s.theta_h, phi_d=s.phi_d,
-                            sqrt_h=s.sqrt_h, probe=s.probe, phi_i=s.phi_i)
+                            sqrt_h=s.sqrt_h, probe=s.probe, phi_i=s.phi_i,
+                            energy_param=s.row.param.name if extra == "energy" else None)
 
     def refresh_frame(self) -> None:
         """Show the current state's frame: at once when computed before or quick to compute

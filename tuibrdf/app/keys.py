@@ -104,6 +104,8 @@ KEYS: tuple[Key, ...] = (
     Key("w", "write_figures", "write",
         "write the screen (SVG) and the main view (PNG, its numbers NPZ/CSV) into the current "
         "directory (tuibrdf view --output-dir DIR)"),
+    Key("F", "checks", "checks", "check the model: finite, positivity, reciprocity (with its "
+        "map at this θi), energy, and the χ² test of a sampler (pdf, histogram, difference)"),
     Key("question_mark", "help", "help", "this screen", "?", footer=True),
     Key("q", "quit", "quit", "quit", footer=True),
 )

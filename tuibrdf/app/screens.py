@@ -26,6 +26,25 @@ class HelpScreen(ModalScreen):
             yield Static(help_text())
 
 
+class ReportScreen(ModalScreen):
+    """A report to read (the check verdicts, key F): any of its keys closes it."""
+
+    BINDINGS = [Binding("escape,F,q", "dismiss", "close")]
+    DEFAULT_CSS = """
+    ReportScreen { align: center middle; }
+    ReportScreen > VerticalScroll { width: 96%; max-height: 96%; border: round $accent;
+                                    background: $surface; padding: 0 1; height: auto; }
+    """
+
+    def __init__(self, body) -> None:
+        super().__init__()
+        self.body = body
+
+    def compose(self) -> ComposeResult:
+        with VerticalScroll():
+            yield Static(self.body)
+
+
 class SaveScreen(ModalScreen[str | None]):
     """Asks for a preset name; Enter saves, Esc cancels."""
 

@@ -61,6 +61,7 @@ def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
                                     materials, s.theta_i, s.cosine, s.phi_i):
         line.append_text(panes.stats_text(frame, s.view, look, terse=max(0, terse - 1)))
         line.append_text(probe_text(frame, terse))
+        line.append_text(energy_text(frame))
     else:
         for i in range(len(s.sides)):
             line.append(f"  {'AB'[i]}: a=…" if s.compare else "  a(θi) …")
@@ -90,6 +91,20 @@ def view_settings(s: ViewerState) -> str:
     if s.section_azimuth != DISPLAY.section_azimuth.default:
         out += f" · section ψ {s.section_azimuth:g}°"
     return out
+
+
+def energy_text(frame: FrameResult) -> Text:
+    """The energy view's white-furnace verdict per side (``loses 23 % at α = 1, θi = 0°``)."""
+    t = Text()
+    if frame.request.extra != "energy":
+        return t
+    for k, side in enumerate(frame.sides):
+        view = side.extra[0] if side.extra else None
+        if view is None:
+            continue
+        tag = f"  {'AB'[k]}: " if len(frame.sides) > 1 else "  "
+        t.append(tag + view.verdict, style="bold red" if view.gains else "green")
+    return t
 
 
 def probe_text(frame: FrameResult, terse: int = 0) -> Text:

@@ -23,6 +23,8 @@ SUBCOMMANDS = [
     ("materials", "materials", "list the 100 MERL materials of the abc and sgd fits"),
     ("eval", "eval", "print BRDF values for given directions"),
     ("albedo", "albedo", "print the directional albedo a(θi)"),
+    ("energy", "energy", "print the albedo table E(μ, p) for energy compensation"),
+    ("check", "check", "check a BRDF: finite, positive, reciprocal, energy, sampling (CI)"),
     ("render", "render", "print a picture of the BRDF (deterministic, for docs and tests)"),
     ("fit", "fit", "fit an analytic model to a measured MERL file"),
     ("view", "view", "open the interactive viewer (the default with no arguments)"),

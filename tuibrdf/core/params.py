@@ -170,6 +170,10 @@ class Model:
     #: what the model returns on the horizon, for docs and `tuibrdf models`
     horizon: str = ""
     notes: tuple[str, ...] = field(default=())
+    #: importance sampling, if the model has it: an object with ``sample(wi, u1, u2,
+    #: **kernel_params) -> (wo, pdf)`` and ``pdf(wi, wo, **kernel_params)``
+    #: (:mod:`tuibrdf.core.brdf.sampling`; ``tuibrdf check`` runs its χ² test)
+    sampler: Any = None
 
     def param(self, name: str) -> Param:
         for p in self.params:

@@ -371,6 +371,11 @@ def extra_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Renderab
         rad, mask = side.extra
         return lit_view.lit_picture(req.extra, name, req.theta_i, rad, mask, w,
                                     exposure=look.exposure, gamma=look.gamma, color=look.color)
+    if req.extra == "energy":
+        from tuibrdf.render.energy_view import energy_picture
+
+        return energy_picture(name, side.extra[0], w, h, cmap=look.cmap, levels=look.levels,
+                              color=look.color)
     if req.extra == "slice":
         f, valid, th, td = side.extra
         vmax = max(halfdiff_view.slice_scale(s.extra, req.phi_d) for s in res.sides)

@@ -18,6 +18,8 @@ Views (:data:`VIEWS`, declared in :mod:`tuibrdf.render`):
 ``slice``          f over θh × θd at fixed φd (:mod:`.halfdiff_view`)
 ``theta-h``        f against θh at fixed θd and φd (:mod:`.halfdiff_view`)
 ``theta-d``        f against θd at fixed θh and φd (:mod:`.halfdiff_view`)
+``energy``         directional albedo E(μ, p) over μ = cos θi and the first real parameter,
+                   with E_avg(p) and the white-furnace verdict (:mod:`.energy_view`)
 =================  ==========================================================================
 
 The numbers come from one :class:`~tuibrdf.core.views.frame.FrameRequest` (the same computation the

@@ -56,7 +56,8 @@ CHANNEL_NAMES = {"rgb": "R, G and B", "lum": "luminance (Rec.709)", "R": "red on
                  "G": "green only", "B": "blue only"}
 
 #: the main views ``v`` cycles through (the cross-sections are always shown beside them)
-MAIN_VIEWS = ("map", "solid", "albedo", "sphere", "plane", "slice", "theta-h", "theta-d")
+MAIN_VIEWS = ("map", "solid", "albedo", "sphere", "plane", "slice", "theta-h", "theta-d",
+              "energy")
 #: the half/difference views and the angle each one's ``d`` key steps
 FIXED_ANGLE = {"theta-h": "theta_d", "theta-d": "theta_h", "slice": "phi_d"}
 #: the probe's step on the map, in Lambert units (the disc's radius is √2)

@@ -64,6 +64,7 @@ from tuibrdf.core.brdf.microfacet import (
     vcavity_g_over_cos,
 )
 from tuibrdf.core.brdf.rgb import rgb
+from tuibrdf.core.brdf.sampling import GGX_VNDF
 from tuibrdf.core.directions import Geometry
 from tuibrdf.core.numerics import safe_div
 from tuibrdf.core.params import Model, Param
@@ -157,7 +158,7 @@ COOK_TORRANCE = Model(
     horizon="limit where one of θi, θo is 90°; specular 0 where both are",
 )
 GGX = Model(
-    "ggx", "GGX / Smith", (KD0, F0, ALPHA, FRESNEL), ggx,
+    "ggx", "GGX / Smith", (KD0, F0, ALPHA, FRESNEL), ggx, sampler=GGX_VNDF,
     summary="kd/π + F·D·G2/(4 cosθi cosθo), GGX D, height-correlated Smith G2",
     horizon="limit where one of θi, θo is 90°; specular 0 where both are",
 )

@@ -100,7 +100,41 @@ def load_python_model(path: str, name: str) -> Model:
         model.resolve({p.name: p.default for p in model.params})
     except ValueError as e:
         raise UserFileError(f"{path}: the declared defaults are invalid: {e}") from None
-    return replace(model, name=name, kernel=_GuardedKernel(path, model.kernel, model.rgb))
+    return replace(model, name=name, kernel=_GuardedKernel(path, model.kernel, model.rgb),
+                   sampler=_sampler(path, module, model))
+
+
+def _sampler(path: str, module, model: Model):
+    """The file's ``sample`` and ``pdf`` functions as a sampler (both or neither), each
+    failure of theirs a one-line :class:`UserFileError`; else the model's own (None)."""
+    from tuibrdf.core.brdf.sampling import Sampler
+
+    fns = {n: getattr(module, n, None) for n in ("sample", "pdf")}
+    if all(f is None for f in fns.values()):
+        return model.sampler
+    for n, f in fns.items():
+        if not callable(f):
+            other = "pdf" if n == "sample" else "sample"
+            raise UserFileError(f"{path}: defines {other} but no function {n}(...): a sampler "
+                                "needs both (docs/reference/formats.md)")
+    return Sampler(*(_GuardedCall(path, fns[n], n) for n in ("sample", "pdf")))
+
+
+class _GuardedCall:
+    """One of the file's sampling functions; what it raises becomes a one-line error."""
+
+    def __init__(self, path: str, fn, what: str):
+        self.path, self.fn, self.what = path, fn, what
+
+    def __call__(self, *args, **kw):
+        try:
+            return self.fn(*args, **kw)
+        except KeyboardInterrupt:
+            raise
+        except Exception as e:  # noqa: BLE001 — the user's error, shown as theirs
+            line = _user_line(e, self.path)
+            raise UserFileError(f"{_where(self.path, line)}: {self.what}() raised "
+                                f"{_describe(e)}") from None
 
 
 class _GuardedKernel:

@@ -74,7 +74,7 @@ from tuibrdf.core.views.hemimap import MapInfo, map_values
 
 PLANES = ("incidence", "perpendicular")
 #: the main views drawn from :func:`extra_values` (beside the map, the solid and the albedo)
-EXTRA_VIEWS = ("sphere", "plane", "slice", "theta-h", "theta-d")
+EXTRA_VIEWS = ("sphere", "plane", "slice", "theta-h", "theta-d", "energy")
 #: samples of the θh and θd line plots over [0°, 90°]
 LINE_SAMPLES = 361
 #: signed θr of the cross-sections: the right half is φr = 0° (incidence) / 90°
@@ -118,6 +118,8 @@ class FrameRequest:
     probe: tuple[float, float] | None = None
     #: the light's azimuth (degrees, in [0, 360)); 180° puts it on the −x side
     phi_i: float = 180.0
+    #: the parameter the energy view runs over (None: the model's first real parameter)
+    energy_param: str | None = None
     #: the light direction at (θi, φi) (:func:`~tuibrdf.core.directions.incident`), made once
     #: here: every part of the frame takes it (read-only; not part of the key)
     wi: np.ndarray = field(init=False, compare=False, repr=False)
@@ -164,6 +166,8 @@ class FrameRequest:
             return (e, self.theta_d, self.phi_d)
         if e == "theta-d":
             return (e, self.theta_h, self.phi_d)
+        if e == "energy":
+            return (e, self.energy_param, self.theta_i, self.phi_i)
         return (e,)
 
 
@@ -391,6 +395,10 @@ def extra_values(m: Material, req: FrameRequest) -> tuple:
         return halfdiff.theta_h_curve(model, values, req.theta_d, req.phi_d, n=LINE_SAMPLES)
     if e == "theta-d":
         return halfdiff.theta_d_curve(model, values, req.theta_h, req.phi_d, n=LINE_SAMPLES)
+    if e == "energy":
+        from tuibrdf.core.sphere.energy import energy_view
+
+        return (energy_view(model, values, req.theta_i, req.energy_param, req.phi_i),)
     raise ValueError(f"unknown view {e!r}")
 
 

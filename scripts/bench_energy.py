@@ -1,0 +1,69 @@
+"""How long ``tuibrdf energy`` takes: the table E(μ, p) with E_avg of a few models, in process
+(:func:`tuibrdf.core.sphere.energy.energy_table`), repeated.
+
+    python scripts/bench_energy.py [--runs 3] [--n 32] [--mu-n 32] [--write-docs]
+
+Prints the median and the minimum per table and the largest error estimate in it;
+``--write-docs`` also writes the table into docs/benchmarks.md (scripts/benchdoc.py: its own
+section, with the command, the machine and the date).
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from benchdoc import command_line, machine, write_section  # noqa: E402
+
+#: (model, other parameters, swept parameter, range, log)
+CASES = [
+    ("lambert", {}, "kd", (0.0, 1.0), False),
+    ("ggx", {"kd": 0.0, "f0": 1.0}, "alpha", (0.001, 1.0), False),
+    ("ggx", {"kd": 0.0, "f0": 1.0}, "alpha", (0.001, 1.0), True),
+    ("cook-torrance", {"kd": 0.0, "f0": 1.0}, "m", (0.001, 1.0), False),
+    ("oren-nayar", {}, "sigma", (0.0, 90.0), False),
+    ("gltf", {"metallic": 1.0, "base_color": 1.0}, "roughness", (0.0, 1.0), False),
+]
+
+
+def main() -> int:
+    from tuibrdf.core.registry import get_model
+    from tuibrdf.core.sphere.energy import energy_table
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--n", type=int, default=32)
+    ap.add_argument("--mu-n", type=int, default=32)
+    ap.add_argument("--write-docs", action="store_true",
+                    help="also write the table into docs/benchmarks.md (its own section)")
+    a = ap.parse_args()
+    started = machine()
+    lines = [f"`tuibrdf energy` tables of {a.n} parameter values × {a.mu_n} values of μ, "
+             f"E_avg included, {a.runs} runs each:", "",
+             "| model | parameter | grid | median s | min s | error bound |",
+             "|---|---|---|---|---|---|"]
+    for name, params, p, (lo, hi), log in CASES:
+        model = get_model(name)
+        times, bound = [], 0.0
+        for _ in range(a.runs):
+            t0 = time.perf_counter()
+            table = energy_table(model, params, p, lo, hi, a.n, a.mu_n, log=log)
+            times.append(time.perf_counter() - t0)
+            bound = table.error_bound
+        lines.append(f"| {name} | {p} {lo:g}…{hi:g} | {'geometric' if log else 'linear'} | "
+                     f"{statistics.median(times):.2f} | {min(times):.2f} | {bound:.0e} |")
+    print("\n".join(lines))
+    if a.write_docs:
+        doc = write_section("bench_energy", "\n".join(lines), command_line(),
+                            machine_line=started)
+        print(f"written into {doc}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,60 @@
+"""The energy view (render --view energy, the viewer's `v` cycle) and the check report."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tests.render.test_views import to_text
+from tuibrdf.core.directions import incident
+from tuibrdf.core.registry import MODELS, get_model
+from tuibrdf.core.sphere.checks import reciprocity_on_map, run_checks
+from tuibrdf.core.sphere.energy import energy_view
+from tuibrdf.render.check_view import check_report
+from tuibrdf.render.views import render_view
+
+
+def test_lambert_verdict_is_one_minus_kd():
+    # Lambert: E = kd at every μ, so it loses (1 − kd) of the energy, and never gains
+    m = MODELS["lambert"]
+    v = energy_view(m, m.resolve({"kd": 0.7}), 30.0)
+    assert v.verdict.startswith("loses 30 % at Kd = 0.7, θi = 30°")
+    assert not v.gains
+    assert abs(v.E - 0.7) <= max(v.error, 1e-12) and abs(v.E_avg - 0.7) <= max(v.E_avg_error,
+                                                                                1e-12)
+    t = v.table
+    assert t.values[0] == 0.0 and t.values[-1] == 1.0  # the parameter's whole range
+    assert np.all(np.abs(t.E - t.values[:, None]) <= np.maximum(t.error, 1e-12))
+
+
+def test_ggx_gains_at_kd_1_and_says_where():
+    # ggx adds kd/π to the specular lobe unweighted: at kd = 1 and grazing E > 1
+    # (docs/reference/checks.md; tests/cli/test_check.py finds the same end)
+    m = MODELS["ggx"]
+    v = energy_view(m, m.resolve({}), 0.0, "kd")
+    assert v.gains and "gains energy" in v.verdict and "Kd = 1, θi = 90°" in v.verdict
+
+
+def test_the_view_marks_the_current_entry_and_fits():
+    m = MODELS["ggx"]
+    out = to_text(render_view("energy", m, m.resolve({"kd": 0.5}), 60, 60, 20, color="none"))
+    lines = out.rstrip("\n").split("\n")
+    assert len(lines) <= 20 and max(len(s) for s in lines) <= 60
+    assert "white furnace" in lines[0]
+    assert sum(s.count("O") for s in lines) == 2  # on the heat map and on the E_avg strip
+
+
+def test_a_model_without_a_real_parameter_says_so():
+    m = MODELS["abc"]
+    out = to_text(render_view("energy", m, m.resolve({}), 30, 60, 20, color="none"))
+    assert "no real parameter" in out
+
+
+def test_check_report_draws_verdicts_and_maps():
+    m = get_model("ggx")
+    v = m.resolve({})
+    rec = reciprocity_on_map(m, v, incident(30.0, 180.0), 16)
+    inside = np.isfinite(rec)
+    assert inside.sum() > 100 and np.all(rec[inside] <= 1e-12)  # reciprocal: rounding only
+    out = to_text(check_report("ggx", run_checks(m, v, chi2=False), rec, None, color="none"),
+                  width=100)
+    assert "reciprocity" in out and "FAIL" in out  # energy fails at kd = 1
