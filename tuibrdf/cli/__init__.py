@@ -23,6 +23,7 @@ SUBCOMMANDS = [
     ("materials", "materials", "list the 100 MERL materials of the abc and sgd fits"),
     ("eval", "eval", "print BRDF values for given directions"),
     ("albedo", "albedo", "print the directional albedo a(θi)"),
+    ("compare", "compare", "how far apart two BRDFs are: albedos, rel_l2, largest difference"),
     ("render", "render", "print a picture of the BRDF (deterministic, for docs and tests)"),
     ("fit", "fit", "fit an analytic model to a measured MERL file"),
     ("view", "view", "open the interactive viewer (the default with no arguments)"),

@@ -77,6 +77,16 @@ class Numbers:
         return d
 
 
+def is_measured(model: Model) -> bool:
+    """Whether ``model`` is measured data (a MERL or an RGL ``.bsdf`` file)."""
+    return model.name == "merl" or model.summary.startswith("RGL-EPFL measured")
+
+
+def reference_side(model_a: Model, model_b: Model) -> str:
+    """``"a"`` when A is measured and B is not (the data is the reference), else ``"b"``."""
+    return "a" if is_measured(model_a) and not is_measured(model_b) else "b"
+
+
 def _columns(model: Model, values: Mapping[str, Any], wi, wo, rgb: bool) -> np.ndarray:
     """f at ``wo (n, 3)``: ``(n,)``, or ``(n, 4)`` = R, G, B, Y when ``rgb`` (a scalar side
     is grey)."""
@@ -147,8 +157,9 @@ def _angles(w: np.ndarray) -> tuple[float, float]:
     return round(t, 6), round(p, 6)
 
 
-def _max_diff(ma, va, mb, vb, wi, rgb: bool, col: int | None):
-    """(signed max difference relative to B's peak or None, θo, φo) for column ``col``."""
+def _max_diff(ma, va, mb, vb, wi, rgb: bool, col: int | None, ref_is_a: bool = False):
+    """(signed max difference relative to the reference's peak or None, θo, φo) for column
+    ``col`` (the sign is always that of fA − fB)."""
 
     def pick(f):
         return f if col is None else f[:, col]
@@ -159,7 +170,10 @@ def _max_diff(ma, va, mb, vb, wi, rgb: bool, col: int | None):
     def absdiff(wo):
         return np.abs(pick(_columns(ma, va, wi, wo, rgb)) - fb(wo))
 
-    peak_b, _ = _search(fb, wi)
+    def fa(wo):
+        return pick(_columns(ma, va, wi, wo, rgb))
+
+    peak_b, _ = _search(fa if ref_is_a else fb, wi)
     big, at = _search(absdiff, wi)
     at2 = at[None, :]
     signed = float(pick(_columns(ma, va, wi, at2, rgb))[0] - fb(at2)[0])
@@ -172,8 +186,13 @@ def _max_diff(ma, va, mb, vb, wi, rgb: bool, col: int | None):
 def compare(model_a: Model, values_a: Mapping[str, Any], model_b: Model,
             values_b: Mapping[str, Any], thetas_deg: Sequence[float],
             phi_i_deg: float = 180.0, *, rtol: float = L2_RTOL,
-            max_evals: int = MAX_EVALS) -> list[Numbers]:
-    """The numbers at each incidence (module docstring); values are resolved."""
+            max_evals: int = MAX_EVALS, reference: str = "b") -> list[Numbers]:
+    """The numbers at each incidence (module docstring); values are resolved.  ``reference``
+    ``"a"`` makes A the reference of rel_l2 and max_diff (:func:`reference_side`: the data
+    when A is measured and B is not); max_diff's sign stays that of fA − fB."""
+    if reference not in ("a", "b"):
+        raise ValueError(f"reference = {reference!r}: expected 'a' or 'b'")
+    ref_a = reference == "a"
     thetas = [check_theta_i(float(t)) for t in thetas_deg]
     phi = check_phi_i(phi_i_deg)
     rgb = bool(model_a.rgb or model_b.rgb)
@@ -185,7 +204,7 @@ def compare(model_a: Model, values_a: Mapping[str, Any], model_b: Model,
     n = len(thetas)
     r = integrator.integrate(
         lambda wi, wo: _pair(_cols_many(model_a, values_a, wi, wo, rgb),
-                             _cols_many(model_b, values_b, wi, wo, rgb)),
+                             _cols_many(model_b, values_b, wi, wo, rgb), ref_a),
         hint.frame, integrator.cases(s[:-1], c[:-1], np.full(n, s[-1]), np.full(n, c[-1])),
         scale=hint.scale, radial_breaks=hint.breaks, symmetric=hint.symmetric, rtol=rtol,
         atol=ATOL, max_evals=min(max_evals, hint.max_evals or max_evals),
@@ -208,7 +227,7 @@ def compare(model_a: Model, values_a: Mapping[str, Any], model_b: Model,
             rl, rle = _ratio(val[_k(j, rgb, 0)], err[_k(j, rgb, 0)],
                              val[_k(j, rgb, 1)], err[_k(j, rgb, 1)])
             md, mt, mp = _max_diff(model_a, values_a, model_b, values_b, wi, rgb,
-                                   j if rgb else None)
+                                   j if rgb else None, ref_a)
             rows.append({"albedo_a": float(aa[j]), "albedo_a_error": float(ae[j]),
                          "albedo_b": float(ba[j]), "albedo_b_error": float(be[j]),
                          "rel_l2": rl, "rel_l2_error": rle, "max_diff": md,
@@ -243,9 +262,10 @@ def _cols_many(model: Model, values, wi: np.ndarray, wo: np.ndarray, rgb: bool) 
     return np.concatenate([f, (f @ np.asarray(REC709))[:, None]], axis=1)
 
 
-def _pair(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
-    """The integrand's columns: (fA − fB)², then fB² (each per channel when RGB)."""
+def _pair(fa: np.ndarray, fb: np.ndarray, ref_a: bool = False) -> np.ndarray:
+    """The integrand's columns: (fA − fB)², then f_ref² (each per channel when RGB)."""
     d = fa - fb
+    fb = fa if ref_a else fb
     if fa.ndim == 1:
         return np.stack([d * d, fb * fb], axis=1)
     return np.concatenate([d * d, fb * fb], axis=1)
