@@ -48,7 +48,7 @@ def run(args: argparse.Namespace) -> int:
     rows = compare(ma, va, mb, vb, [float(t) for t in args.theta_i], args.phi_i,
                    reference=ref)
     if args.json:
-        print_json([dict(r.as_dict(), reference=ref) for r in rows])
+        print_json([r.as_dict() for r in rows])
         return 0
     print(f"# A: {ma.name}  {fmt_params(va)}".rstrip())
     print(f"# B: {mb.name}  {fmt_params(vb)}".rstrip())

@@ -47,3 +47,45 @@ def side(spec: str, tokens: list[str]) -> tuple[Model, dict[str, Any]]:
             check_file(values[p.name])
             load_cached(values[p.name])
     return model, values
+
+
+def add_compare_args(parser) -> None:
+    """``--compare B`` and ``-q/--param-b NAME=VALUE`` (view and render)."""
+    parser.add_argument("--compare", metavar="B",
+                        help="compare with B (model name, file or material:NAME[:abc|sgd]): "
+                             "both side by side, with the numbers of 'tuibrdf compare'")
+    parser.add_argument("-q", "--param-b", action="append", default=[], metavar="NAME=VALUE",
+                        help="with --compare: set a parameter of B (repeatable)")
+
+
+def compare_side(args) -> tuple[Model, dict[str, Any]] | None:
+    """B of ``--compare`` (None without it); ``-q`` without ``--compare`` is an error."""
+    if getattr(args, "compare", None) is None:
+        if getattr(args, "param_b", None):
+            raise UsageError("-q sets a parameter of B: it needs --compare B")
+        return None
+    if getattr(args, "preset", None):
+        raise UsageError("--preset and --compare both choose what to show: give one")
+    return side(args.compare, args.param_b)
+
+
+def sides_of(args) -> tuple[tuple[Model, dict[str, Any]], tuple[Model, dict[str, Any]] | None]:
+    """A and B (None: no comparison) of ``render``: ``MODEL [-p …]`` and ``--compare B
+    [-q …]``, or ``--preset NAME`` (a seed comparison or a saved preset, read as ``view``
+    reads it)."""
+    other = compare_side(args)
+    if getattr(args, "preset", None):
+        if args.model or args.param:
+            raise UsageError("--preset chooses the sides: drop MODEL and -p")
+        import argparse
+
+        from tuibrdf.cli.view import build_state
+
+        ns = argparse.Namespace(model=None, param=[], theta_i=args.theta_i, phi_i=args.phi_i,
+                                preset=args.preset, material=None, fit=None,
+                                compare_fit=False, compare_material=None)
+        sides = [(x.spec, dict(x.values)) for x in build_state(ns).sides]
+        return sides[0], (sides[1] if len(sides) > 1 else None)
+    if not args.model:
+        raise UsageError("give a MODEL (see 'tuibrdf models') or --preset NAME")
+    return side(args.model, args.param), other

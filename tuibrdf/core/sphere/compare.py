@@ -66,6 +66,8 @@ class Numbers:
     max_diff_theta_o: float
     max_diff_phi_o: float
     channels: dict[str, dict[str, float | None]] | None = field(default=None)
+    #: which side rel_l2 and max_diff are relative to: "b", or "a" when A alone is measured
+    reference: str = "b"
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready (floats and None; no NaN or infinity)."""
@@ -74,6 +76,7 @@ class Numbers:
             "rel_l2_error", "max_diff", "max_diff_theta_o", "max_diff_phi_o")}
         if self.channels is not None:
             d["channels"] = self.channels
+        d["reference"] = self.reference
         return d
 
 
@@ -183,6 +186,24 @@ def _max_diff(ma, va, mb, vb, wi, rgb: bool, col: int | None, ref_is_a: bool = F
     return signed / peak_b, theta, phi  # peak_b > 0: tested above
 
 
+def largest_difference(model_a: Model, values_a: Mapping[str, Any], model_b: Model,
+                       values_b: Mapping[str, Any], wi: np.ndarray, cosine: bool = False
+                       ) -> tuple[float, float, float]:
+    """``(max |fA − fB|, θo, φo)`` over the upper hemisphere for the light at ``wi``: the
+    luminance of RGB sides, ``f·cos θo`` with ``cosine`` (the difference map's scale: a
+    property of the two functions, not of any picture's pixels)."""
+    rgb = bool(model_a.rgb or model_b.rgb)
+    wi = np.asarray(wi, dtype=float)
+
+    def g(wo):
+        d = _columns(model_a, values_a, wi, wo, rgb) - _columns(model_b, values_b, wi, wo, rgb)
+        d = np.abs(d[:, 3] if rgb else d)
+        return d * np.maximum(wo[:, 2], 0.0) if cosine else d
+
+    big, at = _search(g, wi)
+    return (big, *_angles(at))
+
+
 def compare(model_a: Model, values_a: Mapping[str, Any], model_b: Model,
             values_b: Mapping[str, Any], thetas_deg: Sequence[float],
             phi_i_deg: float = 180.0, *, rtol: float = L2_RTOL,
@@ -235,7 +256,7 @@ def compare(model_a: Model, values_a: Mapping[str, Any], model_b: Model,
         main = rows[0]
         channels = ({name: row for name, row in zip(CHANNELS, rows[1:], strict=True)}
                     if rgb else None)
-        out.append(Numbers(theta_i=float(t), channels=channels, **main))
+        out.append(Numbers(theta_i=float(t), channels=channels, reference=reference, **main))
     return out
 
 
