@@ -57,3 +57,46 @@ def test_bad_input_is_one_line(capsys, argv, needle):
     rc, out, err = run(capsys, *argv)
     assert rc == 2 and out == ""
     assert len(err.strip().splitlines()) == 1 and needle in err
+
+
+def test_render_compare_and_preset(capsys):
+    rc, out, err = run(capsys, "render", "phong", "-p", "kd=0", "--compare", "cook-torrance",
+                       "-q", "kd=0", "--view", "incidence", "--color", "none")
+    assert rc == 0 and err == ""
+    assert "A:phong" in out and "B:cook-torrance" in out and "rel_l2" in out
+    rc, out2, _ = run(capsys, "render", "--preset", "specular", "--view", "map", "--color",
+                      "none", "--width", "60", "--height", "14")
+    assert rc == 0
+    # both maps and the A − B map, then the numbers
+    assert "A: phong" in out2 and "B: cook-torrance" in out2 and "A − B" in out2
+    assert out2.rstrip().splitlines()[-1].startswith("θi=")
+
+
+@pytest.mark.parametrize("argv, needle", [
+    (["render", "lambert", "-q", "kd=0.5"], "needs --compare"),
+    (["render", "--preset", "specular", "--compare", "ggx"], "--preset and --compare"),
+    (["render", "--preset", "specular", "lambert"], "drop MODEL"),
+    (["render", "--preset", "no-such"], "no preset named"),
+    (["render"], "give a MODEL"),
+    (["render", "lambert", "--compare", "lambert", "-q", "kd=2"], "kd"),
+])
+def test_render_compare_errors(capsys, argv, needle):
+    rc, out, err = run(capsys, *argv)
+    assert rc == 2 and out == "" and needle in err and len(err.splitlines()) == 1
+
+
+def test_view_compare_builds_two_sides():
+    from tuibrdf.cli import build_parser
+    from tuibrdf.cli.view import build_state
+
+    args = build_parser(["view"]).parse_args(
+        ["view", "phong", "-p", "n=70", "--compare", "material:alum-bronze:sgd", "-q",
+         "material=gold-paint"])
+    state = build_state(args)
+    assert state.compare and [s.model for s in state.sides] == ["phong", "sgd"]
+    assert state.sides[0].values["n"] == 70.0
+    assert state.sides[1].values["material"] == "gold-paint"  # -q after the spec wins
+    bad = build_parser(["view"]).parse_args(["view", "--preset", "specular", "--compare",
+                                              "ggx"])
+    with pytest.raises(Exception, match="--preset and --compare"):
+        build_state(bad)

@@ -73,19 +73,44 @@ def sides_of(args) -> tuple[tuple[Model, dict[str, Any]], tuple[Model, dict[str,
     """A and B (None: no comparison) of ``render``: ``MODEL [-p …]`` and ``--compare B
     [-q …]``, or ``--preset NAME`` (a seed comparison or a saved preset, read as ``view``
     reads it)."""
+    if not args.model and not getattr(args, "preset", None):
+        raise UsageError("give a MODEL (see 'tuibrdf models') or --preset NAME")
     other = compare_side(args)
     if getattr(args, "preset", None):
         if args.model or args.param:
             raise UsageError("--preset chooses the sides: drop MODEL and -p")
-        import argparse
-
-        from tuibrdf.cli.view import build_state
-
-        ns = argparse.Namespace(model=None, param=[], theta_i=args.theta_i, phi_i=args.phi_i,
-                                preset=args.preset, material=None, fit=None,
-                                compare_fit=False, compare_material=None)
-        sides = [(x.spec, dict(x.values)) for x in build_state(ns).sides]
-        return sides[0], (sides[1] if len(sides) > 1 else None)
-    if not args.model:
-        raise UsageError("give a MODEL (see 'tuibrdf models') or --preset NAME")
+        return preset_sides(args.preset)
     return side(args.model, args.param), other
+
+
+def preset_sides(name: str) -> tuple[tuple[Model, dict[str, Any]],
+                                     tuple[Model, dict[str, Any]] | None]:
+    """The sides of preset ``name``: a saved preset (``s`` in the viewer), or else one of the
+    seed's comparisons (``diffuse``, ``specular``), as ``view --preset`` finds them."""
+    import os
+
+    from tuibrdf.state.presets import (
+        PresetError,
+        find_preset,
+        list_presets,
+        load_preset,
+        where_presets_are,
+    )
+    from tuibrdf.state.viewer import COMPARE_PRESETS
+
+    seed = {p.name: p for p in COMPARE_PRESETS}
+    try:
+        path = find_preset(name)
+        if os.path.lexists(path) or name not in seed:
+            if not os.path.lexists(path):
+                have = ", ".join(list_presets() + sorted(seed))
+                raise UsageError(f"no preset named {name!r} in {where_presets_are()} "
+                                 f"(available: {have})")
+            _, loaded = load_preset(name)
+            pairs = [(x.spec, dict(x.values)) for x in loaded]
+        else:
+            pairs = [(find_model(m), find_model(m).resolve(v))
+                     for m, v in (seed[name].a, seed[name].b)]
+    except PresetError as e:
+        raise UsageError(str(e)) from None
+    return pairs[0], (pairs[1] if len(pairs) > 1 else None)

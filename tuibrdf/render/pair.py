@@ -26,13 +26,16 @@ PAIR_PANES = {"map": (("map", 0), ("map", 1), ("diff", 0)), "solid": (("solid", 
               "albedo": (("albedo", 0),)}
 
 
-def numbers_line(res) -> Text:
-    """``A: a=0.04  B: a=0.09  rel_l2 0.802 (vs B) · max Δ …``: the frame's compare numbers."""
-    n = res.numbers
-    line = Text(f"θi={res.request.theta_i:g}°")
-    for k, side in enumerate(res.sides):
-        line.append(f"  {'AB'[k]}: a={albedo_text(side.albedo, side.albedo_error)}")
-    line.append_text(compare_text(n))
+def numbers_line(res, width: int) -> Text:
+    """``A: a=0.04  B: a=0.09  rel_l2 0.802 (vs B) · max Δ …``: the frame's compare numbers,
+    shortened (:func:`.panes.compare_text`'s terse forms) to fit ``width`` when it can."""
+    for albedos, terse in ((True, 0), (True, 1), (True, 2), (False, 2)):
+        line = Text(f"θi={res.request.theta_i:g}°")
+        for k, side in enumerate(res.sides if albedos else ()):
+            line.append(f"  {'AB'[k]}: a={albedo_text(side.albedo, side.albedo_error)}")
+        line.append_text(compare_text(res.numbers, terse))
+        if line.cell_len <= width:
+            break
     return line
 
 
@@ -68,7 +71,7 @@ def render_pair(view: str, a: tuple[Model | str, dict[str, Any]],
         if i:
             out.append(Text(""))
         out.append(pane(name, res, k, width, height, look))
-    out += [Text(""), numbers_line(res)]
+    out += [Text(""), numbers_line(res, width)]
     return Group(*out)
 
 
