@@ -29,7 +29,7 @@ PAIR_PANES = {"map": (("map", 0), ("map", 1), ("diff", 0)), "solid": (("solid", 
 def numbers_line(res, width: int) -> Text:
     """``A: a=0.04  B: a=0.09  rel_l2 0.802 (vs B) · max Δ …``: the frame's compare numbers,
     shortened (:func:`.panes.compare_text`'s terse forms) to fit ``width`` when it can."""
-    for albedos, terse in ((True, 0), (True, 1), (True, 2), (False, 2)):
+    for albedos, terse in ((True, 0), (True, 1), (False, 1)):
         line = Text(f"θi={res.request.theta_i:g}°")
         for k, side in enumerate(res.sides if albedos else ()):
             line.append(f"  {'AB'[k]}: a={albedo_text(side.albedo, side.albedo_error)}")

@@ -547,6 +547,8 @@ def compare_text(n, terse: int = 0) -> Text:
     :attr:`~tuibrdf.core.views.frame.FrameResult.numbers`): ``rel_l2 0.802 · max Δ −86 % of
     B's peak (62°,0°)``; ``rel_l2 …`` while they are computed (they come with the albedo)."""
     out = Text()
+    if terse >= 2:  # the tersest status line (80 columns, RGB sides, the probe): no room
+        return out
     if n is None:
         out.append("  rel_l2 …")
         return out
@@ -555,8 +557,6 @@ def compare_text(n, terse: int = 0) -> Text:
         out.append(f"  rel_l2 — ({ref} is 0)")
         return out
     out.append(f"  rel_l2 {albedo_text(n.rel_l2, n.rel_l2_error)}", style="bold")
-    if terse >= 2:
-        return out
     out.append(f" ({ref} ref)" if terse else f" (vs {ref})")
     if n.max_diff is not None:
         at = "" if terse else f" ({n.max_diff_theta_o:.0f}°,{n.max_diff_phi_o:.0f}°)"
