@@ -291,7 +291,11 @@ def diff_pane(res: FrameResult, w: int, h: int, look: Look) -> Group:
     ch = " (Y)" if va.ndim == 3 or vb.ndim == 3 else ""
     head = title([("A − B", 1), (f"max |Δ| {fmt_value(largest)} {_unit(False)}{ch}", 0),
                   (what, 3), (at, 2)], w)
-    lo_t, hi_t = f"-{fmt_value(largest)} B>A", f"A>B +{fmt_value(largest)}"
+    m_t = fmt_value(largest)
+    # the sides' words go first in a narrow pane (the title and the legend say them)
+    lo_t, hi_t = next(((lo, hi) for lo, hi in ((f"-{m_t} B>A", f"A>B +{m_t}"),
+                                              (f"-{m_t}", f"+{m_t}"))
+                       if len(lo) + 1 + len(hi) <= w), (f"-{m_t}", f"+{m_t}"))
     ticks = Text(tick_line(w, lo_t, "0", hi_t))
     if look.color == "none":  # no colour to tell the sign: characters that say it
         return Group(head, signed_text(np.where(finite, t - 0.5, np.nan)),
@@ -396,7 +400,7 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
                      (f"(φ {res.request.phi_i:g}°|{(res.request.phi_i + 180) % 360:g}°)", 4),
                      (fn, 1)]
     cap = caption_parts(caption)
-    if look.channel != "rgb" and any(s.sections[key].ndim == 2 for s in res.sides):
+    if look.channel not in ("rgb", "all") and any(s.sections[key].ndim == 2 for s in res.sides):
         # an RGB model's curves are its luminance or one channel (C): say which, or
         # "section max" reads as a disagreement with the map's "(red)" peak
         cap[0] = (f"{cap[0][0]} ({CHANNEL_TAGS.get(look.channel, look.channel)})", 0)
