@@ -114,3 +114,33 @@ def test_difference_scale_does_not_depend_on_the_window():
     d = abs(float(evaluate(PHONG[0], PHONG[1], wi, mirror(wi))
                   - evaluate(CT[0], CT[1], wi, mirror(wi))))
     assert float(tops[0]) >= float(f"{d:.3g}")
+
+
+def test_status_line_has_the_numbers_once_the_albedo_is_there():
+    from tests.core.sphere.test_compare import reference
+
+    a, b = Material(*PHONG), Material(*CT)
+    req = core_frame.FrameRequest((a, b), 60.0, map_px=map_pixels(40, 12))
+    core_frame.clear_caches()
+    fast = core_frame.compute_frame(req, slow=False)
+    look = panes.Look(color="none")
+    assert fast.numbers is None and not fast.complete
+    assert "rel_l2 …" in panes.stats_text(fast, "map", look).plain
+    full = core_frame.compute_frame(req)
+    assert full.complete
+    text = panes.stats_text(full, "map", look).plain
+    rl2 = reference(PHONG, CT, 60.0)[2]  # the product Gauss–Legendre rule of the core test
+    shown = float(re.search(r"rel_l2 ([0-9.]+)", text).group(1))
+    assert shown == pytest.approx(rl2, rel=1e-2)  # 3 digits shown
+    assert "(vs B)" in text and "max Δ" in text
+
+
+def test_difference_map_without_colour_has_the_marks():
+    res = core_frame.compute_frame(core_frame.FrameRequest(
+        (Material(*PHONG), Material(*CT)), 60.0, map_px=map_pixels(40, 14)))
+    buf = io.StringIO()
+    Console(file=buf, width=40, color_system=None, _environ={}).print(
+        panes.pane("diff", res, 0, 40, 14, panes.Look(color="none")))
+    body = buf.getvalue()
+    assert "X" in body and "o" in body  # the mirror direction and the light
+    assert "-" in body or "=" in body  # B larger at the mirror direction (its peak is 6.7×)

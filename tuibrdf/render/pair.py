@@ -35,8 +35,10 @@ def numbers_line(res, width: int) -> Text:
             line.append(f"  {'AB'[k]}: a={albedo_text(side.albedo, side.albedo_error)}")
         line.append_text(compare_text(res.numbers, terse))
         if line.cell_len <= width:
-            break
-    return line
+            return line
+    n = res.numbers  # the narrowest: rel_l2 alone
+    rel = "—" if n is None or n.rel_l2 is None else albedo_text(n.rel_l2, n.rel_l2_error)
+    return Text(f"θi={res.request.theta_i:g}° rel_l2 {rel}")
 
 
 def render_pair(view: str, a: tuple[Model | str, dict[str, Any]],

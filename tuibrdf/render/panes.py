@@ -297,10 +297,13 @@ def diff_pane(res: FrameResult, w: int, h: int, look: Look) -> Group:
                                               (f"-{m_t}", f"+{m_t}"))
                        if len(lo) + 1 + len(hi) <= w), (f"-{m_t}", f"+{m_t}"))
     ticks = Text(tick_line(w, lo_t, "0", hi_t))
-    if look.color == "none":  # no colour to tell the sign: characters that say it
-        return Group(head, signed_text(np.where(finite, t - 0.5, np.nan)),
-                     title([("+# A>B  -= B>A  . same", 0)], w), ticks)
     px_h, px_w = d.shape
+    if look.color == "none":  # no colour to tell the sign: characters that say it
+        marks = [(info.mirror_px[0] // 2, info.mirror_px[1], MIRROR_MARK["ascii"]),
+                 (info.incident_px[0] // 2, info.incident_px[1], INCIDENT_MARK["ascii"])]
+        return Group(head, signed_text(np.where(finite, t - 0.5, np.nan), marks),
+                     title([("+# A>B  -= B>A  . same", 0), (mark_legend("none"), 1)], w),
+                     ticks)
     pal = diverging_palette(levels)
     ring_index = len(pal)
     index = np.where(ring_mask(px_w, px_h), ring_index, idx)
@@ -332,10 +335,11 @@ def diverging_palette(levels: int) -> np.ndarray:
     return out
 
 
-def signed_text(d: np.ndarray) -> Text:
+def signed_text(d: np.ndarray, marks=()) -> Text:
     """The difference map in plain text, one character per cell (two pixel rows): ``.``
     within 5 % of the largest |Δ| of each other, ``+``/``#`` A larger (under/over half of
-    it), ``-``/``=`` B larger; blank outside the disc."""
+    it), ``-``/``=`` B larger; blank outside the disc; ``marks`` ``(row, col, char)`` over
+    the cells (the mirror and light marks)."""
     if d.shape[0] % 2:
         d = np.vstack([d, np.full((1, d.shape[1]), np.nan)])
     pair = d.reshape(d.shape[0] // 2, 2, d.shape[1])
@@ -349,6 +353,9 @@ def signed_text(d: np.ndarray) -> Text:
     chars[inside & (v > 0.25)] = "#"
     chars[inside & (v < -0.025)] = "-"
     chars[inside & (v < -0.25)] = "="
+    for r, c, ch in marks:
+        if 0 <= r < chars.shape[0] and 0 <= c < chars.shape[1]:
+            chars[r, c] = ch
     return Text("\n".join("".join(row) for row in chars), no_wrap=True)
 
 
