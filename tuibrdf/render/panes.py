@@ -407,10 +407,11 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
                      (f"(φ {res.request.phi_i:g}°|{(res.request.phi_i + 180) % 360:g}°)", 4),
                      (fn, 1)]
     cap = caption_parts(caption)
-    if look.channel not in ("rgb", "all") and any(s.sections[key].ndim == 2 for s in res.sides):
+    shown = "lum" if compare and look.channel == "rgb" else look.channel  # (side_curves)
+    if shown not in ("rgb", "all") and any(s.sections[key].ndim == 2 for s in res.sides):
         # an RGB model's curves are its luminance or one channel (C): say which, or
         # "section max" reads as a disagreement with the map's "(red)" peak
-        cap[0] = (f"{cap[0][0]} ({CHANNEL_TAGS.get(look.channel, look.channel)})", 0)
+        cap[0] = (f"{cap[0][0]} ({CHANNEL_TAGS.get(shown, shown)})", 0)
     # narrower: "max 0.113" (the pane's title says it is a section) before any crop
     short = [(cap[0][0].replace("section max", "max", 1), 0), *cap[1:]]
     variants = [[(what if s is None else s, r) for s, r in parts] + c

@@ -156,8 +156,9 @@ def _search(g, wi: np.ndarray) -> tuple[float, np.ndarray]:
 
 def _angles(w: np.ndarray) -> tuple[float, float]:
     t = float(np.degrees(np.arccos(np.clip(w[2], -1.0, 1.0))))
-    p = float(np.degrees(np.arctan2(w[1], w[0]))) % 360.0 if t > 0.0 else 0.0
-    return round(t, 6), round(p, 6)
+    # rounded before the turn is taken: −1e-12° is 0°, not 360°
+    p = round(float(np.degrees(np.arctan2(w[1], w[0]))), 6) % 360.0 if t > 0.0 else 0.0
+    return round(t, 6), p
 
 
 def _max_diff(ma, va, mb, vb, wi, rgb: bool, col: int | None, ref_is_a: bool = False):
