@@ -131,9 +131,10 @@ def test_many_parameters_scroll_at_80x24(snap_compare):
 
 def test_compare_rgb_legend_folds_at_80x24(snap_compare):
     # two RGB sides in sections squeezed to 6 rows by a 13-row panel: the sections' legends
-    # name all 6 curves on 2 lines, one a side (the last channel, B:blue, was cut before)
+    # name all 6 curves on 2 lines, one a side (the last channel, B:blue, was cut before);
+    # channel "all": compare mode shows each side's luminance unless C asks for the channels
 
     path = str(DATA_DIR / "brdf" / "disney.brdf")
     state = ViewerState(sides=[Side(path), Side.of("gltf", {"base_color": (0.9, 0.5, 0.2)})],
-                        theta_i=30.0)
+                        theta_i=30.0, channel="all")
     assert snap_compare(BrdfApp(state, sync=True), terminal_size=(80, 24))

@@ -11,18 +11,23 @@ from tuibrdf.render.panes import signed_text
 def test_each_side_has_its_own_marker_and_legend_entries():
     rgb = np.column_stack([np.linspace(0, 1, 5)] * 3)
     scalar = np.linspace(0, 2, 5)
-    curves = side_curves([("gltf", rgb), ("ggx", scalar)], "rgb")
+    # compare mode's default ("rgb") shows an RGB side's luminance: six curves in one plot
+    # cannot be read (issue 32)
+    assert [c[0] for c in side_curves([("gltf", rgb), ("ggx", scalar)], "rgb")] == [
+        "A:gltf (Y)", "B:ggx"]
+    curves = side_curves([("gltf", rgb), ("ggx", scalar)], "all")
     labels = [c[0] for c in curves]
     # one legend entry per curve, side named; a channel in words ("A:B" would read as two
     # sides, "B:B" as side B twice)
     assert labels == ["A:red", "A:green", "A:blue", "B:ggx"]
     assert {c[2] for c in curves[:3]} == {SIDE_MARKERS[0]} and curves[3][2] == SIDE_MARKERS[1]
     assert SIDE_MARKERS[0] != SIDE_MARKERS[1]  # the marker survives --color none
-    assert curves[3][3] != "red"  # the scalar B is not drawn in A's red channel colour
+    # each side its own hue family, whatever the channel: no colour of A's is one of B's
+    assert not {c[3] for c in curves[:3]} & {curves[3][3]}
     # the channel choice: luminance (Rec.709: 0.2126 R + 0.7152 G + 0.0722 B) or one channel
     rgb2 = np.column_stack([np.full(4, 1.0), np.full(4, 0.0), np.full(4, 0.0)])
     lum = side_curves([("a", rgb2), ("b", rgb2)], "lum")
-    assert [c[0] for c in lum] == ["A:lum", "B:lum"]
+    assert [c[0] for c in lum] == ["A:a (Y)", "B:b (Y)"]
     np.testing.assert_allclose(lum[0][1], 0.2126, rtol=1e-3)
     green = side_curves([("a", rgb2)], "G")
     assert green[0][0] == "G" and np.all(green[0][1] == 0.0)

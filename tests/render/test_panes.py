@@ -216,8 +216,11 @@ def test_b_means_side_b_and_the_blue_channel_says_blue():
     for k in (0, 1):
         texts += lines(panes.pane("map", res, k, 40, 14, look), 40)
         texts += lines(panes.pane("solid", res, k, 40, 14, look), 40)
+    # the channels of both sides ("all": compare mode's default is the luminance)
     sections = [ln for view in ("incidence", "perpendicular")
-                for ln in lines(panes.pane(view, res, 0, 60, 16, look), 60)]
+                for ln in lines(panes.pane(view, res, 0, 60, 16,
+                                           panes.Look(cmap="grey", color="none", channel="all")),
+                                60)]
     for t in texts + sections:
         assert "(B)" not in t and "(R)" not in t and "(G)" not in t, t
         assert "A:B" not in t and "B:B" not in t, t  # the legends: side, then channel

@@ -25,6 +25,7 @@ SUBCOMMANDS = [
     ("albedo", "albedo", "print the directional albedo a(θi)"),
     ("energy", "energy", "print the albedo table E(μ, p) for energy compensation"),
     ("check", "check", "check a BRDF: finite, positive, reciprocal, energy, sampling (CI)"),
+    ("compare", "compare", "how far apart two BRDFs are: albedos, rel_l2, largest difference"),
     ("render", "render", "print a picture of the BRDF (deterministic, for docs and tests)"),
     ("fit", "fit", "fit an analytic model to a measured MERL file"),
     ("view", "view", "open the interactive viewer (the default with no arguments)"),

@@ -198,9 +198,9 @@ phi_r_deg = bounded("phi_r", -360.0, 360.0)
 # --------------------------------------------------------------------------- shared options
 
 
-def add_model_args(parser: argparse.ArgumentParser) -> None:
-    """``MODEL`` and ``-p/--param NAME=VALUE`` (repeatable)."""
-    parser.add_argument("model", metavar="MODEL",
+def add_model_args(parser: argparse.ArgumentParser, optional: bool = False) -> None:
+    """``MODEL`` (``optional``: may be left out) and ``-p/--param NAME=VALUE`` (repeatable)."""
+    parser.add_argument("model", metavar="MODEL", **({"nargs": "?"} if optional else {}),
                         help="model name (see 'tuibrdf models') or a file: .brdf, .bparam, "
                              ".py, .bsdf, .binary")
     parser.add_argument(

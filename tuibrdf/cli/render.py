@@ -30,6 +30,7 @@ import sys
 
 from tuibrdf.cli.common import (
     TYPE_CHECKING,
+    UsageError,
     add_model_args,
     add_phi_i,
     add_setting,
@@ -37,7 +38,6 @@ from tuibrdf.cli.common import (
     choices_type,
     int_in,
     isatty,
-    resolve,
 )
 from tuibrdf.core.display import DISPLAY
 from tuibrdf.render import CMAPS, MIN_HEIGHT, MIN_WIDTH, VIEWS
@@ -52,7 +52,7 @@ MAX_SIZE = 1000
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
-    add_model_args(parser)
+    add_model_args(parser, optional=True)
     add_theta_i(parser, default=DISPLAY.theta_i.default)
     add_phi_i(parser)
     views = (*VIEWS, "all")
@@ -88,6 +88,12 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     from tuibrdf.cli import export
 
     export.add_args(parser)
+    from tuibrdf.cli.sides import add_compare_args
+
+    add_compare_args(parser)
+    parser.add_argument("--preset", metavar="NAME",
+                        help="draw a saved preset, or a seed comparison: diffuse, specular "
+                             "(its sides; θi from --theta-i)")
 
 
 def add_extra_args(parser: argparse.ArgumentParser) -> None:
@@ -120,11 +126,15 @@ def color_system(choice: str, environ: os._Environ | dict = os.environ,
     return "truecolor" if environ.get("COLORTERM") in ("truecolor", "24bit") else "256"
 
 
-def picture(model, values, args: argparse.Namespace, color: str) -> str:
-    """The text ``run`` prints (ANSI escapes unless ``color == "none"``)."""
+def picture(model, values, args: argparse.Namespace, color: str, other=None) -> str:
+    """The text ``run`` prints (ANSI escapes unless ``color == "none"``); ``other``: side B
+    ``(model, values)`` of a comparison (:func:`tuibrdf.render.pair.render_pair`)."""
+    from functools import partial
+
     from rich.console import Console
 
     from tuibrdf.render.braille import charset_for
+    from tuibrdf.render.pair import render_pair
     from tuibrdf.render.views import render_view
 
     views = ALL if args.view == "all" else (args.view,)
@@ -137,8 +147,9 @@ def picture(model, values, args: argparse.Namespace, color: str) -> str:
         if i:
             con.print()
         # every view through the one frame computation (render_view → compute_frame → pane)
-        con.print(render_view(
-            view, model, values, args.theta_i, args.width, args.height, color=color,
+        con.print((partial(render_pair, view, (model, values), other) if other else
+                   partial(render_view, view, model, values))(
+            args.theta_i, args.width, args.height, color=color,
             cmap=args.cmap, log=args.log, cosine=args.cosine and view != "albedo",
             azimuth_deg=args.azimuth, elevation_deg=args.elevation,
             section_azimuth_deg=args.section_azimuth, exposure=args.exposure, gamma=args.gamma,
@@ -156,17 +167,22 @@ PICTURE_ASCII = {"·": "."}
 
 
 def run(args: argparse.Namespace) -> int:
+    from tuibrdf.cli.sides import sides_of
     from tuibrdf.cli.text import can_encode, to_stream
 
-    model, values = resolve(args)
+    (model, values), other = sides_of(args)
     from tuibrdf.cli import export
 
     if export.wanted(args):  # --format, --output, --inline (cli/export.py)
-        return export.run(args, model, values, lambda c: picture(model, values, args, c),
-                          color_system)
+        if other is not None and args.format not in ("text", "ansi", "svg", "html"):
+            raise UsageError(f"--format {args.format} writes one model's numbers or picture; "
+                             "with --compare: text, ansi, svg or html")
+        return export.run(args, model, values,
+                          lambda c: picture(model, values, args, c, other), color_system)
     color = color_system(args.color)
     if color != "none" and not can_encode(sys.stdout, "▀"):
         color = "none"  # no half blocks in this locale: the ASCII ramp of --color none
-    sys.stdout.write(to_stream(picture(model, values, args, color), sys.stdout, PICTURE_ASCII))
+    sys.stdout.write(to_stream(picture(model, values, args, color, other), sys.stdout,
+                               PICTURE_ASCII))
     sys.stdout.flush()
     return 0

@@ -70,6 +70,9 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                              "and the main view (default: the current directory)")
     parser.add_argument("--compare-material", metavar="NAME",
                         help="with --material: a second material (B, same fit) side by side")
+    from tuibrdf.cli.sides import add_compare_args
+
+    add_compare_args(parser)
 
 
 def material_sides(args: argparse.Namespace):
@@ -107,7 +110,23 @@ def material_sides(args: argparse.Namespace):
 
 
 def build_state(args: argparse.Namespace):
-    """The viewer's initial state from the arguments (no Textual); raises UsageError."""
+    """The viewer's initial state from the arguments (no Textual); raises UsageError.
+    ``--compare B [-q …]`` adds side B (:mod:`tuibrdf.cli.sides`)."""
+    from tuibrdf.cli.sides import compare_side
+    from tuibrdf.state.viewer import Side
+
+    other = compare_side(args)
+    state = _build_state(args)
+    if other is not None:
+        from tuibrdf.core.material import Material
+
+        if state.compare:
+            raise UsageError("--compare and a comparison already asked for: give one")
+        state.sides = [state.sides[0], Side(Material(*other))]
+    return state
+
+
+def _build_state(args: argparse.Namespace):
     from tuibrdf.core.formats.merl import check_file, load_cached
     from tuibrdf.core.registry import MODELS
     from tuibrdf.state.presets import (

@@ -61,6 +61,8 @@ def albedo_plot(
         for j, (label, a, *style) in enumerate(curves):
             marker = style[0] if style else "braille"
             col = style[1] if len(style) > 1 else curve_color(label, j)
+            if col.startswith("#"):  # a side's hue (curves.SIDE_HUES): plotext takes RGB
+                col = tuple(int(col[i:i + 2], 16) for i in (1, 3, 5))
             a = on_axis_grid(a, top)
             plt.plot(thetas.tolist(), a.tolist(), marker=marker, color=col,
                      label=label if len(curves) > 1 else None)

@@ -67,7 +67,10 @@ class Layer:
 
 
 @lru_cache(maxsize=256)
-def _style(color: str | None) -> Style:
+def _style(color: str | None, system: str = "truecolor") -> Style:
+    # one Style per colour system: Rich caches a Style's escape codes on the object for the
+    # first console that renders it (Style._ansi), so a style shared by a truecolor and a
+    # 256-colour picture in one process would give the second the first one's codes
     return Style(color=color) if color else NULL_STYLE
 
 
@@ -280,7 +283,7 @@ class BrailleCanvas:
         flat = rows * self.width + cols
         ends = np.minimum(np.append(flat[1:], self.height * self.width),
                           (rows + 1) * self.width)
-        styles = [_style(c) for c in palette]
+        styles = [_style(c, self.color) for c in palette]
         run_styles = [styles[i] for i in cid[rows, cols].tolist()]
         # one character per cell: the rows of the contiguous U1 array as one string
         text = "".join(chars.view(f"<U{self.width}")[:, 0].tolist())

@@ -24,6 +24,12 @@ Curve = tuple
 #: per sample); the sections draw each side with its own dot pattern instead
 #: (:data:`.sections.SIDE_PATTERNS`)
 SIDE_MARKERS = ("braille", "+")
+#: each compare side's hue family, whatever the channel (A orange, B violet: apart for the
+#: common colour-vision deficiencies, and neither is the light's cyan nor the guides' grey):
+#: the side's own colour (a scalar side, or the luminance), then its R, G, B shades (the
+#: channels told apart by lightness and their legend, the sides by hue and dot pattern)
+SIDE_HUES = (("#ff8c1a", "#ffb366", "#ff8c1a", "#b35900"),
+             ("#b266ff", "#d9b3ff", "#b266ff", "#7a29cc"))
 #: an RGB channel where a side may be named too (compare mode's legends, a peak's channel):
 #: in words, so that "B" only ever means side B, never the blue channel; also its colour
 CHANNEL_WORDS = {"R": "red", "G": "green", "B": "blue"}
@@ -50,17 +56,22 @@ def channel_curves(label: str, values: np.ndarray, channel: str = "rgb"
 
 
 def side_curves(sides: Sequence[tuple[str, np.ndarray]], channel: str = "rgb") -> list[tuple]:
-    """The curves of one or two sides ``(label, values)``: alone, :func:`channel_curves`;
-    in compare mode each label prefixed ``A:``/``B:`` and each side drawn with its own marker
-    (:data:`SIDE_MARKERS`), channels in their colours, scalar sides in A's and B's colours,
-    so the sides differ in every colour mode.  Items: ``(label, values, marker, colour)``."""
+    """The curves of one or two sides ``(label, values)``: alone, :func:`channel_curves`
+    (``"all"`` is ``"rgb"``); in compare mode each label prefixed ``A:``/``B:`` and each side
+    drawn with its own marker (:data:`SIDE_MARKERS`) in its own hue family
+    (:data:`SIDE_HUES`), so the sides differ in every colour mode; an RGB side shows its
+    luminance for ``"rgb"`` (six curves in one plot cannot be read) and its three channels
+    only for ``"all"``.  Items: ``(label, values, marker, colour)``."""
     if len(sides) == 1:
+        channel = "rgb" if channel == "all" else channel
         return [(lab, v) for lab, v in channel_curves(sides[0][0], sides[0][1], channel)]
+    channel = {"rgb": "lum", "all": "rgb"}.get(channel, channel)
     out = []
     for k, (name, values) in enumerate(sides):
         side = "AB"[k]
         for lab, v in channel_curves(name, values, channel):
-            col = CHANNEL_WORDS.get(lab, CURVE_COLORS[k])
-            text = f"{side}:{name}" if lab == name else f"{side}:{CHANNEL_WORDS.get(lab, lab)}"
+            col = SIDE_HUES[k][1 + "RGB".index(lab)] if lab in CHANNEL_WORDS else SIDE_HUES[k][0]
+            text = (f"{side}:{name}" if lab == name else f"{side}:{name} (Y)" if lab == "lum"
+                    else f"{side}:{CHANNEL_WORDS.get(lab, lab)}")
             out.append((text, v, SIDE_MARKERS[k], col))
     return out

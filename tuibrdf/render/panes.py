@@ -35,7 +35,14 @@ from tuibrdf.core.sphere.peak import Peak
 from tuibrdf.core.views.frame import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
 from tuibrdf.core.views.hemimap import geometry
 from tuibrdf.render.albedo_plot import albedo_plot, plot_body
-from tuibrdf.render.colormap import DEFAULT_LEVELS, LOG_DECADES, Scale, colorbar, colorize
+from tuibrdf.render.colormap import (
+    DEFAULT_LEVELS,
+    LOG_DECADES,
+    Scale,
+    colorbar,
+    colorize,
+    tick_line,
+)
 from tuibrdf.render.curves import CHANNEL_WORDS, side_curves
 from tuibrdf.render.halfblock import HalfBlockImage, Mark
 from tuibrdf.render.sections import caption_parts, fwhm_text, polar_canvas
@@ -57,8 +64,10 @@ SIDE_LABELS = ("A", "B")
 #: how a section's caption names the curves of an RGB model (Look.channel): Y the luminance,
 #: as the status line's "(Y)" peak, a channel as the peak's
 CHANNEL_TAGS = {"lum": "Y", **CHANNEL_WORDS}
-#: diverging palette of the difference map: blue (B larger) – grey – red (A larger)
-DIVERGING = ((59, 76, 192), (221, 221, 221), (180, 4, 38))
+#: diverging palette of the difference map: B's violet (B larger) – dark grey (equal) – A's
+#: orange (A larger), the sides' own hues (render.curves.SIDE_HUES); zero is neutral and
+#: dark, so a small difference does not glare
+DIVERGING = ((178, 102, 255), (40, 40, 40), (255, 140, 26))
 
 
 @dataclass(frozen=True)
@@ -258,32 +267,79 @@ def map_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
 
 
 def diff_pane(res: FrameResult, w: int, h: int, look: Look) -> Group:
-    """A − B (luminance for RGB) on a diverging scale symmetric about 0."""
+    """A − B (luminance for RGB) on a diverging scale symmetric about 0: B's hue where B is
+    larger, A's where A is, dark grey at zero (:data:`DIVERGING`), with the horizon ring, the
+    mirror and light marks and a labelled colour bar.  Its scale is the largest |A − B| of
+    the functions (:attr:`FrameResult.diff_max`), not of the pixels, so it does not change
+    with the window's size."""
     va, vb = (s.map[0] for s in res.sides)
+    info = res.sides[0].map[1]
     d = (luminance(va) if va.ndim == 3 else va) - (luminance(vb) if vb.ndim == 3 else vb)
     finite = np.isfinite(d)
     largest = float(np.max(np.abs(d[finite]))) if finite.any() else 0.0
-    m = largest if largest > 0 else 1.0  # identical sides: all mid-grey, no division by zero
+    at = ""
+    if res.diff_max is not None:  # on the function; the pixels never exceed it by much
+        largest, th, ph = max(res.diff_max[0], largest), res.diff_max[1], res.diff_max[2]
+        at = f"at {where(th, ph)}"
+    m = largest if largest > 0 else 1.0  # identical sides: all zero, no division by zero
     t = np.clip(d / m * 0.5 + 0.5, 0.0, 1.0)
-    levels = min(look.levels, 32)
-    # identical sides give t = ½ exactly, a tie for an even number of levels: decided on the
+    levels = DIFF_LEVELS
+    # identical sides give t = ½ exactly: the middle level (levels is odd), decided on the
     # snapped value (core.numerics.snap), as every level of every picture
     idx = np.where(finite, snapped_rint(np.nan_to_num(t) * (levels - 1)), -1).astype(np.int64)
+    what = " of f·cosθr" if res.request.cosine else ""
+    ch = " (Y)" if va.ndim == 3 or vb.ndim == 3 else ""
+    head = title([("A − B", 1), (f"max |Δ| {fmt_value(largest)} {_unit(False)}{ch}", 0),
+                  (what, 3), (at, 2)], w)
+    m_t = fmt_value(largest)
+    # the sides' words go first in a narrow pane (the title and the legend say them)
+    lo_t, hi_t = next(((lo, hi) for lo, hi in ((f"-{m_t} B>A", f"A>B +{m_t}"),
+                                              (f"-{m_t}", f"+{m_t}"))
+                       if len(lo) + 1 + len(hi) <= w), (f"-{m_t}", f"+{m_t}"))
+    ticks = Text(tick_line(w, lo_t, "0", hi_t))
+    px_h, px_w = d.shape
+    if look.color == "none":  # no colour to tell the sign: characters that say it
+        marks = [(info.mirror_px[0] // 2, info.mirror_px[1], MIRROR_MARK["ascii"]),
+                 (info.incident_px[0] // 2, info.incident_px[1], INCIDENT_MARK["ascii"])]
+        return Group(head, signed_text(np.where(finite, t - 0.5, np.nan), marks),
+                     title([("+# A>B  -= B>A  . same", 0), (mark_legend("none"), 1)], w),
+                     ticks)
+    pal = diverging_palette(levels)
+    ring_index = len(pal)
+    index = np.where(ring_mask(px_w, px_h), ring_index, idx)
+    pal = np.concatenate([pal, np.array([RING_RGB], dtype=np.uint8)])
+    marks = [Mark(info.mirror_px[0] // 2, info.mirror_px[1], **MIRROR_MARK)]
+    r, c = info.incident_px
+    if (r // 2, c) != (marks[0].row, marks[0].col):
+        marks.append(Mark(r // 2, c, **INCIDENT_MARK))
+    img = HalfBlockImage(index, pal, marks, color_system=look.color, ring=ring_index)
+    bar_t = (np.arange(w) + 0.5) / w
+    bar_idx = snapped_rint(bar_t * (levels - 1)).astype(np.int64)[None, :].repeat(2, axis=0)
+    bar = HalfBlockImage(bar_idx, pal[:-1], color_system=look.color)
+    return Group(head, img, bar, ticks)
+
+
+#: levels of the difference map: odd, so that zero is one level exactly
+DIFF_LEVELS = 33
+
+
+@lru_cache(maxsize=4)
+def diverging_palette(levels: int) -> np.ndarray:
+    """``(levels, 3)`` uint8: :data:`DIVERGING` from B's end through dark grey to A's,
+    linear in each channel (read-only)."""
     stops = np.array(DIVERGING, dtype=float)
     x = np.linspace(0, 1, levels)
     pal = np.stack([np.interp(x, [0, 0.5, 1], stops[:, c]) for c in range(3)], -1)
-    head = title([("A − B", 1), (f"max |Δ| {fmt_value(largest)}", 0)], w)  # not the guard
-    if look.color == "none":  # no colour to tell the sign: characters that say it
-        return Group(head, signed_text(np.where(finite, t - 0.5, np.nan)),
-                     title([("+# A>B  -= B>A  . same", 0)], w))
-    img = HalfBlockImage(idx, snapped_rint(pal).astype(np.uint8), (), color_system=look.color)
-    return Group(head, img, title([("red: A>B  blue: B>A", 0)], w))
+    out = snapped_rint(pal).astype(np.uint8)
+    out.setflags(write=False)
+    return out
 
 
-def signed_text(d: np.ndarray) -> Text:
+def signed_text(d: np.ndarray, marks=()) -> Text:
     """The difference map in plain text, one character per cell (two pixel rows): ``.``
     within 5 % of the largest |Δ| of each other, ``+``/``#`` A larger (under/over half of
-    it), ``-``/``=`` B larger; blank outside the disc."""
+    it), ``-``/``=`` B larger; blank outside the disc; ``marks`` ``(row, col, char)`` over
+    the cells (the mirror and light marks)."""
     if d.shape[0] % 2:
         d = np.vstack([d, np.full((1, d.shape[1]), np.nan)])
     pair = d.reshape(d.shape[0] // 2, 2, d.shape[1])
@@ -297,6 +353,9 @@ def signed_text(d: np.ndarray) -> Text:
     chars[inside & (v > 0.25)] = "#"
     chars[inside & (v < -0.025)] = "-"
     chars[inside & (v < -0.25)] = "="
+    for r, c, ch in marks:
+        if 0 <= r < chars.shape[0] and 0 <= c < chars.shape[1]:
+            chars[r, c] = ch
     return Text("\n".join("".join(row) for row in chars), no_wrap=True)
 
 
@@ -348,10 +407,11 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
                      (f"(φ {res.request.phi_i:g}°|{(res.request.phi_i + 180) % 360:g}°)", 4),
                      (fn, 1)]
     cap = caption_parts(caption)
-    if look.channel != "rgb" and any(s.sections[key].ndim == 2 for s in res.sides):
+    shown = "lum" if compare and look.channel == "rgb" else look.channel  # (side_curves)
+    if shown not in ("rgb", "all") and any(s.sections[key].ndim == 2 for s in res.sides):
         # an RGB model's curves are its luminance or one channel (C): say which, or
         # "section max" reads as a disagreement with the map's "(red)" peak
-        cap[0] = (f"{cap[0][0]} ({CHANNEL_TAGS.get(look.channel, look.channel)})", 0)
+        cap[0] = (f"{cap[0][0]} ({CHANNEL_TAGS.get(shown, shown)})", 0)
     # narrower: "max 0.113" (the pane's title says it is a section) before any crop
     short = [(cap[0][0].replace("section max", "max", 1), 0), *cap[1:]]
     variants = [[(what if s is None else s, r) for s, r in parts] + c
@@ -394,7 +454,10 @@ def solid_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     """Title and the photometric solid as half blocks, its radius scale the frame's peak."""
     side = res.sides[k]
     peak, sc = shown_peak(side, "solid", look), shown_scale(side, "solid", look)
-    index, pal = solid_image(side.solid, res.request.theta_i, w, 2 * (h - 1), rmax=sc.value,
+    # compare mode: both solids on one radius scale, the larger of the two (as the maps share
+    # one colour scale), so the smaller lobe is drawn smaller
+    rmax = max(shown_scale(s, "solid", look).value for s in res.sides)
+    index, pal = solid_image(side.solid, res.request.theta_i, w, 2 * (h - 1), rmax=rmax,
                              phi_i_deg=res.request.phi_i,
                              cmap=look.cmap, log=look.log, azimuth_deg=look.azimuth,
                              elevation_deg=look.elevation)
@@ -410,6 +473,10 @@ def solid_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
                (peak_text(peak, res.request.cosine, ps, short=True), 1)]
     else:
         num = [(f"solid {what}, peak {fmt_value(peak.value)}{ch}", 0)]
+    if len(res.sides) > 1:
+        k_top = max(range(len(res.sides)),
+                    key=lambda j: shown_scale(res.sides[j], "solid", look).value)
+        num.append((f"(scale: {SIDE_LABELS[k_top]}'s)", 1))
     head = title([(_label(res, k), 2), (f"θi={res.request.theta_i:g}°", 3), *num,
                   (f"az {look.azimuth:g}° el {look.elevation:g}°", 4)], w)
     return Group(head, HalfBlockImage(index, pal, color_system=look.color))
@@ -487,5 +554,29 @@ def stats_text(res: FrameResult, view: str, look: Look, terse: int = 0) -> Text:
             line.append(f"  {what} {fmt_value(pk.value)}{ch}{'' if terse else ' ' + at}")
         if sc is not None and sc.capped and not terse:  # (the map's bar says it too)
             line.append(f" · {scale_text(sc, short=compare)}")
+    if compare:
+        line.append_text(compare_text(res.numbers, terse))
     return line
+
+
+def compare_text(n, terse: int = 0) -> Text:
+    """Compare mode's numbers (:func:`tuibrdf.core.sphere.compare.compare`, the frame's
+    :attr:`~tuibrdf.core.views.frame.FrameResult.numbers`): ``rel_l2 0.802 · max Δ −86 % of
+    B's peak (62°,0°)``; ``rel_l2 …`` while they are computed (they come with the albedo)."""
+    out = Text()
+    if terse >= 2:  # the tersest status line (80 columns, RGB sides, the probe): no room
+        return out
+    if n is None:
+        out.append("  rel_l2 …")
+        return out
+    ref = "A" if n.reference == "a" else "B"
+    if n.rel_l2 is None:
+        out.append(f"  rel_l2 — ({ref} is 0)")
+        return out
+    out.append(f"  rel_l2 {albedo_text(n.rel_l2, n.rel_l2_error)}", style="bold")
+    out.append(f" ({ref} ref)" if terse else f" (vs {ref})")
+    if n.max_diff is not None:
+        at = "" if terse else f" ({n.max_diff_theta_o:.0f}°,{n.max_diff_phi_o:.0f}°)"
+        out.append(f" · max Δ {100 * n.max_diff:+.3g}% of {ref} peak{at}")
+    return out
 

@@ -159,11 +159,18 @@ def polar_canvas(
         canvas.polyline(np.array([0.0, -float(s) * rmax]), np.array([0.0, float(c) * rmax]),
                         light)
     colors = [c[4] if len(c) > 4 else curve_color(c[0], j) for j, c in enumerate(curves)]
-    ids = curve_layers(canvas, [c[:3] for c in curves], colors)
-    for j, c in enumerate(curves):
-        if len(c) > 3:  # a compare side's own style (curves.side_curves): A and B differ in
-            k = SIDE_MARKERS.index(c[3])  # every colour mode, by dot pattern and marker
+    if any(len(c) > 3 for c in curves):
+        # a compare side's own style (curves.side_curves): A and B differ in every colour
+        # mode, by hue, dot pattern and marker.  A cell shows its last layer's colour (and
+        # ASCII marker): the curves go on in decreasing order of their largest radius, so the
+        # smaller lobe, inside the larger one, is drawn last and keeps its cells
+        ids = [0] * len(curves)
+        tops = [float(np.max(radius(c[2], vmax, log, decades), initial=0.0)) for c in curves]
+        for j in sorted(range(len(curves)), key=lambda j: -tops[j]):
+            k = SIDE_MARKERS.index(curves[j][3])
             ids[j] = canvas.layer(colors[j], SIDE_PATTERNS[k], SIDE_ASCII[k])
+    else:
+        ids = curve_layers(canvas, [c[:3] for c in curves], colors)
     for (_, thetas, vals, *_style), lid in zip(curves, ids, strict=True):
         r = radius(vals, vmax, log, decades)
         s, c = sincos_deg(np.asarray(thetas, dtype=float))

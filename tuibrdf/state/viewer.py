@@ -53,7 +53,7 @@ from tuibrdf.render import CMAPS
 from tuibrdf.state import sandbox
 
 CHANNEL_NAMES = {"rgb": "R, G and B", "lum": "luminance (Rec.709)", "R": "red only",
-                 "G": "green only", "B": "blue only"}
+                 "G": "green only", "B": "blue only", "all": "R, G and B of both sides"}
 
 #: the main views ``v`` cycles through (the cross-sections are always shown beside them)
 MAIN_VIEWS = ("map", "solid", "albedo", "sphere", "plane", "slice", "theta-h", "theta-d",
@@ -370,12 +370,16 @@ class ViewerState:
         return None
 
     def cycle_channel(self) -> str | None:
-        """The curves of RGB models: R, G, B → luminance → R → G → B → all three."""
-        order = ("rgb", "lum", "R", "G", "B")
-        self.channel = order[(order.index(self.channel) + 1) % len(order)]
+        """The curves of RGB models: R, G, B → luminance → R → G → B → all three.  In compare
+        mode "rgb" shows each side's luminance (render.curves.side_curves), so the cycle is
+        luminance → R → G → B → all three channels of both sides ("all")."""
+        order = ("rgb", "R", "G", "B", "all") if self.compare else ("rgb", "lum", "R", "G", "B")
+        cur = self.channel if self.channel in order else "rgb"
+        self.channel = order[(order.index(cur) + 1) % len(order)]
+        names = dict(CHANNEL_NAMES, rgb="luminance (Rec.709)") if self.compare else CHANNEL_NAMES
         if not any(x.spec.rgb for x in self.sides):
-            return f"curves of RGB models: {CHANNEL_NAMES[self.channel]} (no RGB model shown)"
-        return f"curves of RGB models: {CHANNEL_NAMES[self.channel]}"
+            return f"curves of RGB models: {names[self.channel]} (no RGB model shown)"
+        return f"curves of RGB models: {names[self.channel]}"
 
     def toggle_cosine(self) -> str | None:
         self.cosine = not self.cosine

@@ -62,6 +62,7 @@ from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.evaluate import f_cos
 from tuibrdf.core.lru import LRU
 from tuibrdf.core.material import Material
+from tuibrdf.core.sphere import compare as sphere_compare
 from tuibrdf.core.sphere.albedo import (
     AlbedoEstimate,
     albedo_curve_estimate_resolved,
@@ -292,19 +293,27 @@ class SideFrame:
 class FrameResult:
     request: FrameRequest
     sides: tuple[SideFrame, ...]
+    #: compare mode: ``(max |fA − fB|, θo, φo)`` of the luminance (f·cos θr with cosine) on
+    #: the function (:func:`tuibrdf.core.sphere.compare.largest_difference`), with a map
+    diff_max: tuple[float, float, float] | None = None
+    #: compare mode: the numbers of :func:`tuibrdf.core.sphere.compare.compare` at θi (a slow
+    #: part, with the albedo)
+    numbers: sphere_compare.Numbers | None = None
 
     @property
     def complete(self) -> bool:
         """Whether the slow parts the request asks for are there."""
         return all(s.albedo is not None and (s.curve is not None or not self.request.curve)
-                   for s in self.sides)
+                   for s in self.sides) and (len(self.sides) < 2 or self.numbers is not None)
 
 
 # ------------------------------------------------------------------------------ the parts
 _PEAKS, _SECTIONS, _MAPS, _SOLIDS = LRU(64), LRU(64), LRU(8), LRU(16)
 _ALBEDO, _CURVES, _FRAMES = LRU(256), LRU(32), LRU(32)
 _EXTRA, _PROBES = LRU(16), LRU(64)
-CACHES = (_PEAKS, _SECTIONS, _MAPS, _SOLIDS, _ALBEDO, _CURVES, _FRAMES, _EXTRA, _PROBES)
+_DIFFS, _NUMBERS = LRU(32), LRU(64)
+CACHES = (_PEAKS, _SECTIONS, _MAPS, _SOLIDS, _ALBEDO, _CURVES, _FRAMES, _EXTRA, _PROBES,
+          _DIFFS, _NUMBERS)
 
 
 def clear_caches() -> None:
@@ -521,7 +530,19 @@ def compute_frame(req: FrameRequest, *, slow: bool = True,
         if side is None:
             return None
         sides.append(side)
-    return _FRAMES.put(req, FrameResult(req, tuple(sides)))
+    diff, numbers = None, None
+    if len(sides) == 2:  # compare mode: the numbers that say how far apart the sides are
+        (a, b), t, pi = req.materials, req.theta_i, req.phi_i
+        if req.map_px is not None:
+            diff = _DIFFS.get((a, b, t, pi, req.cosine), lambda: sphere_compare.largest_difference(
+                a.model, a.values, b.model, b.values, req.wi, req.cosine))
+        if slow:
+            numbers = _NUMBERS.get((a, b, t, pi), lambda: sphere_compare.compare(
+                a.model, a.values, b.model, b.values, [t], pi,
+                reference=sphere_compare.reference_side(a.model, b.model))[0])
+        else:
+            numbers = _NUMBERS.peek((a, b, t, pi))
+    return _FRAMES.put(req, FrameResult(req, tuple(sides), diff, numbers))
 
 
 def cached_frame(req: FrameRequest) -> FrameResult | None:
