@@ -43,6 +43,7 @@ import numpy as np
 
 from tuibrdf.core.formats.files import UserFileError
 from tuibrdf.core.formats.glsl import BUILTIN_NAMES, RESERVED, GlslError, Shader, compile_shader
+from tuibrdf.core.formats.glsl.budgets import MAX_FILE_BYTES
 from tuibrdf.core.numerics import shader_errstate
 from tuibrdf.core.params import Model, Param, unknown_message
 
@@ -68,11 +69,13 @@ def _err(path: str, line: int | None, msg: str) -> UserFileError:
 def read_text(path: str) -> str:
     try:
         with open(path, "rb") as f:
-            raw = f.read(4 * 1024 * 1024 + 1)
+            raw = f.read(MAX_FILE_BYTES + 1)
     except OSError as e:
         raise UserFileError(f"{path}: cannot read: {e.strerror or e}") from None
-    if len(raw) > 4 * 1024 * 1024:
-        raise UserFileError(f"{path}: too large for a BRDF Explorer file (over 4 MB)")
+    if len(raw) > MAX_FILE_BYTES:
+        raise UserFileError(f"{path}: too large for a BRDF Explorer file (over "
+                            f"{MAX_FILE_BYTES // 1024} KB; the budgets are in "
+                            "docs/reference/formats.md)")
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError as e:
