@@ -696,20 +696,28 @@ VIEWS = ["map", "incidence", "perpendicular", "solid", "albedo", "sphere", "plan
 
 
 @pytest.mark.parametrize("extra", [(), ("--log",), ("--cosine",)])
-def test_render_subnormal_peak_draws_every_view(capsys, extra):
+@pytest.mark.parametrize("params", [("blinn-phong", "kd=0", "ks=5e-324"), ("lambert", "kd=1e-307"),
+                                    ("phong", "kd=0", "ks=1e-289")])
+def test_render_tiny_peak_draws_every_view(capsys, params, extra):
     """`render blinn-phong -p kd=0 -p ks=5e-324 --view incidence` exited 2 (a 10^k step of a
-    subnormal maximum underflowed to 0 and was divided by): every view draws."""
+    subnormal maximum underflowed to 0 and was divided by), a 3e-308 Lambert overflowed the
+    solid's pixels/max: every view draws, without a warning."""
+    model, *ps = params
     for view in VIEWS:
-        rc = main(["render", "blinn-phong", "-p", "kd=0", "-p", "ks=5e-324", "--view", view,
+        rc = main(["render", model, *(x for p in ps for x in ("-p", p)), "--view", view,
                    "--width", "30", "--height", "10", "--color", "none", *extra])
         out, err = capsys.readouterr()
         assert rc == 0 and err == "", (view, err)
 
 
-def test_flush_subnormal():
-    from tuibrdf.core.evaluate import flush_subnormal
+def test_flush_tiny():
+    """Values under 1e-290 in magnitude are 0; the rest, and exact zeros, are unchanged."""
+    from tuibrdf.core.evaluate import FLUSH_BELOW, flush_tiny
 
+    assert FLUSH_BELOW == 1e-290
     tiny = np.finfo(float).tiny  # the smallest normal float64
-    f = np.array([0.0, 5e-324, tiny / 2, tiny, 1.0, -1e-310])
-    assert flush_subnormal(f).tolist() == [0.0, 0.0, 0.0, tiny, 1.0, 0.0]
-    assert flush_subnormal(5e-324) == 0.0 and flush_subnormal(0.25) == 0.25
+    f = np.array([0.0, 5e-324, tiny / 2, tiny, 9.9e-291, 1e-290, 1.0, -1e-310])
+    assert flush_tiny(f).tolist() == [0.0, 0.0, 0.0, 0.0, 0.0, 1e-290, 1.0, 0.0]
+    assert flush_tiny(5e-324) == 0.0 and flush_tiny(0.25) == 0.25
+    g = np.array([0.5, 2.0])
+    assert flush_tiny(g) is g  # nothing to flush: no copy

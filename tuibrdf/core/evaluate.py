@@ -122,27 +122,29 @@ def evaluate_resolved(m: Model, values: Mapping[str, Any], wi: np.ndarray, wo: n
                 wo = one_o
     with kernel_errstate():
         f = m.kernel(wi, wo, **kw)
-    return flush_subnormal(f)
+    return flush_tiny(f)
 
 
-#: the smallest normal float64 (2.2e-308)
-_TINY = float(np.finfo(np.float64).tiny)
+#: BRDF values of smaller magnitude are 0 (sr⁻¹): a picture's scale is taken from its maximum
+#: (pixels / max, log10(max), a 1-2-5 × 10^k step, max · 10⁻⁸ for the log scale), and these
+#: stay finite and normal only for a maximum well above the smallest normal float (2.2e-308):
+#: 1e-290 leaves 18 decades for them.  Physically, any such value is 0.
+FLUSH_BELOW = 1e-290
 
 
-def flush_subnormal(f):
-    """``f`` with subnormal values (0 < |f| < 2.2e-308) made 0.  They keep only a few bits,
-    and every scale taken from a maximum (1/max, log10(max), a 10^k step) overflows or
-    underflows on them: `render blinn-phong -p ks=5e-324` drew nothing (exit 2) in the
-    sections, the solid and the θh/θd views.  A BRDF value below 2.2e-308 sr⁻¹ is 0 to any
-    instrument, so every consumer (pictures, albedo, fits, `eval`) gets 0 there."""
+def flush_tiny(f):
+    """``f`` with values of magnitude under :data:`FLUSH_BELOW` (subnormal ones included) made
+    0: `render blinn-phong -p ks=5e-324` (a 1e-323 peak) and `render lambert -p kd=1e-307`
+    failed in the sections, the solid and the θh/θd views, whose scales overflowed or
+    underflowed.  Every consumer (pictures, albedo, fits, `eval`) gets the same 0."""
     if not isinstance(f, np.ndarray):
         a = np.asarray(f)
-        if a.dtype.kind == "f" and a.ndim == 0 and 0.0 < abs(float(a)) < _TINY:
+        if a.dtype.kind == "f" and a.ndim == 0 and 0.0 < abs(float(a)) < FLUSH_BELOW:
             return 0.0
         return f
     if f.dtype.kind != "f" or not f.size:
         return f
-    sub = np.abs(f) < _TINY
+    sub = np.abs(f) < FLUSH_BELOW
     np.logical_and(sub, f != 0.0, out=sub)
     if sub.any():
         f = np.where(sub, 0.0, f)
