@@ -137,15 +137,13 @@ def flush_tiny(f):
     0: `render blinn-phong -p ks=5e-324` (a 1e-323 peak) and `render lambert -p kd=1e-307`
     failed in the sections, the solid and the θh/θd views, whose scales overflowed or
     underflowed.  Every consumer (pictures, albedo, fits, `eval`) gets the same 0."""
-    if not isinstance(f, np.ndarray):
-        a = np.asarray(f)
-        if a.dtype.kind == "f" and a.ndim == 0 and 0.0 < abs(float(a)) < FLUSH_BELOW:
-            return 0.0
+    a = np.asarray(f)
+    if a.dtype.kind != "f" or not a.size:
         return f
-    if f.dtype.kind != "f" or not f.size:
+    if a.ndim == 0:  # a scalar: 0 of the same kind
+        if 0.0 < abs(float(a)) < FLUSH_BELOW:
+            return np.zeros_like(a) if isinstance(f, np.ndarray) else 0.0
         return f
-    sub = np.abs(f) < FLUSH_BELOW
-    np.logical_and(sub, f != 0.0, out=sub)
-    if sub.any():
-        f = np.where(sub, 0.0, f)
-    return f
+    sub = np.abs(a) < FLUSH_BELOW
+    sub &= a != 0.0
+    return np.where(sub, 0.0, a) if sub.any() else f
