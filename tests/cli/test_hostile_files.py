@@ -470,6 +470,10 @@ BOMBS = {
     "specialised copies": (_specialisation_bomb(), "specialised copies", None),
     "call tree": (_call_tree_bomb(), "call tree is too large", None),
     "generated code": (_long_shader(3000), "too large to translate", None),
+    "nested parentheses": (f"{BRDF_HEAD} {{ return vec3({'(' * 40000}kd{')' * 40000}); }}",
+                           "nests too deeply", None),
+    "operator chain": (f"{BRDF_HEAD} {{ return vec3(kd{' + kd' * 25000}); }}",
+                       "nests too deeply", None),
 }
 
 

@@ -142,6 +142,7 @@ class Compiler(Emitter):
         for name, infos in self.funcs.items():
             acc: set[str] = set()
             for info in infos:
+                self.line = info.node.line  # for a RecursionError on a very deep tree
                 walk(info.node.body, acc)
             calls[name] = acc & set(self.funcs)
         state: dict[str, int] = {}
@@ -705,7 +706,11 @@ class Shader:
 def compile_shader(src: str, uniforms: dict[str, str], first_line: int = 1) -> Shader:
     """Parse, check and translate ``src``; raises :class:`GlslError` with the line."""
     globs, funcs = parse(src, first_line)
-    source, returns = Compiler(globs, funcs, uniforms).compile()
+    c = Compiler(globs, funcs, uniforms)
+    try:
+        source, returns = c.compile()
+    except RecursionError:  # Python's stack: an expression of hundreds of operators
+        raise GlslError("the shader nests too deeply to translate", c.line) from None
     namespace = dict(RUNTIME)
     exec(compile(source, "<shader>", "exec"), namespace)  # noqa: S102 — our own generated code
     return Shader(namespace["_shader"], returns, source)
