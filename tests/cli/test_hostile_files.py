@@ -502,16 +502,55 @@ def test_brdf_file_over_the_size_budget(tmp_path):
 
 
 def test_brdf_within_the_budgets_still_runs(tmp_path):
-    """A file near every budget (a helper of 200 lines called 80 times: ~18,000 operations a
-    value) is not refused, and renders within the memory bound."""
+    """A file near the run-time budget (a helper of 200 lines called 45 times: ~9,400
+    operations a value) is not refused, and renders within the memory bound."""
     helper = "float h(float x) {\n  float y = x;\n" + "  y = y * 0.999 + x * 0.001;\n" * 50 + \
         "  return y;\n}\n"
-    calls = "".join(f"  s += h(L.z * {i}.0 + V.z);\n" for i in range(80))
+    calls = "".join(f"  s += h(L.z * {i}.0 + V.z);\n" for i in range(45))
     f = brdf_file(tmp_path / "ok.brdf",
                   helper + f"{BRDF_HEAD} {{\n  float s = 0.0;\n{calls}  return vec3(s * kd);\n}}")
     rc, out, err, kb = cli_measured("render", str(f), "--width", "40", "--height", "12")
     assert rc == 0, err
     assert kb < RSS_BOUND_KB
+
+
+def test_brdf_temporaries_are_bounded(tmp_path):
+    """A long BRDF (9,600 generated lines, within the budgets) keeps every temporary until it
+    returns: `render --view all` took 1.9 GB and `albedo` 0.9 GB; evaluated in chunks, the
+    temporaries take at most 64 MB."""
+    f = brdf_file(tmp_path / "wide.brdf", _long_shader(2400))
+    for argv in (("render", "--view", "all", "--width", "60", "--height", "16"), ("albedo",)):
+        rc, _, err, kb = cli_measured(*argv, str(f))
+        assert rc == 0, err
+        assert kb < 250_000, argv  # imports ~30 MB + 64 MB of temporaries + the frame
+
+
+@pytest.mark.parametrize("ret", ["vec3(kd * L.z * V.z, L.z, V.z)", "kd * L.z * V.z"])
+def test_brdf_chunked_evaluation_is_the_whole(tmp_path, monkeypatch, ret):
+    """Evaluated in chunks of 256 directions (the temporaries' bound made tiny), a shader gives
+    its closed form on every direction, one light or many, and 0 below the horizon."""
+    from tuibrdf.core.evaluate import evaluate_resolved
+    from tuibrdf.core.formats.brdf_explorer import load_brdf
+    from tuibrdf.core.formats.glsl import budgets
+
+    monkeypatch.setattr(budgets, "MAX_TEMP_BYTES", 1)
+    rtype = "vec3" if ret.startswith("vec3") else "float"
+    f = brdf_file(tmp_path / "c.brdf", f"{rtype} BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) "
+                                       f"{{ return {ret}; }}")
+    m = load_brdf(str(f), "t")
+    rng = np.random.default_rng(7)
+    wo = rng.normal(size=(37, 29, 3))
+    wo /= np.linalg.norm(wo, axis=-1, keepdims=True)  # both hemispheres
+    for wi in (np.array([0.6, 0.0, 0.8]), wo[::-1, ::-1]):
+        wi_b = np.broadcast_to(wi, wo.shape)
+        got = np.asarray(evaluate_resolved(m, m.resolve({"kd": 0.5}), wi_b, wo))
+        zi, zo = wi_b[..., 2], wo[..., 2]
+        above = (zi >= 0) & (zo >= 0)
+        want = np.where(above, 0.5 * zi * zo, 0.0)
+        if rtype == "vec3":  # negative components clamped to 0 (none above the horizon)
+            want = np.stack([want, np.where(above, zi, 0.0), np.where(above, zo, 0.0)], -1)
+        assert got.shape == want.shape
+        assert np.allclose(got, want, rtol=0, atol=1e-15)
 
 
 def _brdf_value(path: Path, **params) -> np.ndarray:

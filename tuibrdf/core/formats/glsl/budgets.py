@@ -22,15 +22,27 @@ MAX_GENERATED_LINES = 10_000
 #: function calls made to evaluate BRDF once (the call tree's size, BRDF included)
 MAX_CALLS = 1_000
 #: generated lines run to evaluate BRDF once (each line is one array operation)
-MAX_STEPS = 20_000
+MAX_STEPS = 10_000
+#: the generated code keeps every temporary of a call alive until it returns (up to 3 arrays a
+#: line, 8 bytes an element): directions are evaluated in chunks of at most this many bytes of
+#: temporaries, at least 256 directions a chunk (see :func:`chunk_size`)
+MAX_TEMP_BYTES = 64 * 1024 * 1024
 
 
-def check_run_cost(graph: dict[str, tuple[str, int, int, list[str]]], entry: str) -> None:
+def chunk_size(steps: int) -> int:
+    """Directions per evaluation of a shader that runs ``steps`` lines a value: its temporaries
+    (≤ 3 arrays a line, 8 bytes an element) then take at most :data:`MAX_TEMP_BYTES` (about 256
+    directions for a shader at :data:`MAX_STEPS`, 10,000 for Disney's)."""
+    return max(256, MAX_TEMP_BYTES // (24 * max(steps, 1)))
+
+
+def check_run_cost(graph: dict[str, tuple[str, int, int, list[str]]], entry: str) -> int:
     """Refuse a shader whose one evaluation runs more than :data:`MAX_CALLS` calls or
-    :data:`MAX_STEPS` lines.  ``graph`` maps a generated function to ``(GLSL name, line, its
-    own lines, the generated functions it calls, one entry per call site)``; recursion was
-    refused before, so the graph has no cycle.  Costs are summed bottom up, and the first
-    function over a budget is named (the one whose callees are all within it)."""
+    :data:`MAX_STEPS` lines; returns the lines it runs.  ``graph`` maps a generated function
+    to ``(GLSL name, line, its own lines, the generated functions it calls, one entry per call
+    site)``; recursion was refused before, so the graph has no cycle.  Costs are summed bottom
+    up, and the first function over a budget is named (the one whose callees are all within
+    it)."""
     cost: dict[str, tuple[int, int]] = {}
 
     def visit(fn: str) -> tuple[int, int]:
@@ -69,3 +81,4 @@ def check_run_cost(graph: dict[str, tuple[str, int, int, list[str]]], entry: str
         stack.extend((c, False) for c in graph[fn][3] if c not in seen)
     for fn in order:
         visit(fn)
+    return cost[entry][1]  # the lines one evaluation runs

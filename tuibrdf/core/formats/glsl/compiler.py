@@ -5,13 +5,12 @@ branches, returns and constants are compiled)."""
 
 from __future__ import annotations
 
-import operator
 from dataclasses import dataclass
 from typing import Any
 
 from tuibrdf.core.formats.glsl import budgets
 from tuibrdf.core.formats.glsl.builtins import BUILTIN_NAMES, builtin
-from tuibrdf.core.formats.glsl.emitter import Ctx, Emitter, FuncInfo, Sym, Value, _py
+from tuibrdf.core.formats.glsl.emitter import _COMPARE, Ctx, Emitter, FuncInfo, Sym, Value, _py
 from tuibrdf.core.formats.glsl.errors import GlslError
 from tuibrdf.core.formats.glsl.parser import parse
 from tuibrdf.core.formats.glsl.runtime import RUNTIME
@@ -115,7 +114,7 @@ class Compiler(Emitter):
                 bodies.extend(self.function(info, entry=info is entry))
         while self.pending:  # copies specialised for constant arguments, found on the way
             bodies.extend(self.function(self.pending.pop(), entry=False))
-        budgets.check_run_cost(self.callgraph, entry.pyname)
+        self.steps = budgets.check_run_cost(self.callgraph, entry.pyname)
         args = ", ".join(f"u_{n}" for n in self.uniforms)
         src = ["def _shader(L, V" + (", " + args if args else "") + "):"]
         for name, ty in self.uniforms.items():
@@ -659,10 +658,6 @@ class Compiler(Emitter):
         return Value(rt, list(parts[0]))
 
 
-#: comparisons of two constants, folded as the runtime compares (IEEE: NaN compares false)
-_COMPARE = {"<": operator.lt, ">": operator.gt, "<=": operator.le, ">=": operator.ge}
-
-
 def _assigned_names(node, out_funcs: set[str]) -> set[str]:
     """Names assigned anywhere in ``node`` (including as arguments of functions with out
     parameters)."""
@@ -701,6 +696,7 @@ class Shader:
     fn: Any
     returns: str
     source: str
+    steps: int = 1  # lines run per value (the run-time budget; sets the evaluation's chunks)
 
 
 def compile_shader(src: str, uniforms: dict[str, str], first_line: int = 1) -> Shader:
@@ -713,4 +709,4 @@ def compile_shader(src: str, uniforms: dict[str, str], first_line: int = 1) -> S
         raise GlslError("the shader nests too deeply to translate", c.line) from None
     namespace = dict(RUNTIME)
     exec(compile(source, "<shader>", "exec"), namespace)  # noqa: S102 — our own generated code
-    return Shader(namespace["_shader"], returns, source)
+    return Shader(namespace["_shader"], returns, source, c.steps)

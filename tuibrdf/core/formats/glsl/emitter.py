@@ -10,6 +10,7 @@ fresh names, emits lines and does the arithmetic of components, folding constant
 from __future__ import annotations
 
 import math
+import operator
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -20,6 +21,8 @@ from tuibrdf.core.formats.glsl.errors import GlslError
 from tuibrdf.core.formats.glsl.syntax import Func
 
 Comp = Any  # float | bool (compile-time constant) or str (a Python name)
+#: comparisons of two constants, folded as the runtime compares (IEEE: NaN compares false)
+_COMPARE = {"<": operator.lt, ">": operator.gt, "<=": operator.le, ">=": operator.ge}
 
 
 @dataclass
