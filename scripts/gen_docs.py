@@ -135,7 +135,8 @@ CLI_ERRORS = """## Exit status and mistakes
   names the problem (control characters escaped), with a close match for a typo; never a
   traceback;
 - 70: an internal error (a bug): one line; `TUIBRDF_DEBUG=1` shows the traceback;
-- 130: Ctrl-C; 141: the reader of a pipe left (`tuibrdf models | head`).
+- 130: Ctrl-C; 141: the reader of a pipe left before all the output was written
+  (`tuibrdf render … | head`).
 
 Files are opened only when they are regular files: a FIFO or a directory is named as such and
 never blocks. In a locale that cannot show θ, ⁻¹ or the block characters (`LANG=C`,

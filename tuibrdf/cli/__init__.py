@@ -114,6 +114,8 @@ def _main(argv: list[str] | None) -> int:
     try:
         code = args.run(args)
         sys.stdout.flush()
+        if _reader_left():
+            raise BrokenPipeError  # part of the output never reached the reader: 141
         return code
     except (UsageError, ValueError, OverflowError) as e:
         _error(str(e))
@@ -138,6 +140,25 @@ def _silence_stdout() -> None:
         os.dup2(devnull, sys.stdout.fileno())
     except (OSError, ValueError, AttributeError):
         pass
+
+
+def _reader_left() -> bool:
+    """stdout is a pipe whose reader has gone (``render | head``).  Checked once the output is
+    written, because a large write cut short by the reader leaving can end without an error
+    (CPython's buffered writer takes the partial count and drops the rest): POLLERR on the
+    pipe's write end says the reader closed it."""
+    import select
+    import stat
+
+    try:
+        fd = sys.stdout.fileno()
+        if not hasattr(select, "poll") or not stat.S_ISFIFO(os.fstat(fd).st_mode):
+            return False
+        poll = select.poll()
+        poll.register(fd, select.POLLOUT)
+        return any(ev & select.POLLERR for _, ev in poll.poll(0))
+    except (OSError, ValueError, AttributeError):  # not a real file (tests), closed
+        return False
 
 
 def _broken_pipe() -> int:

@@ -80,5 +80,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print_json([model_doc(m) for m in models], ascii=False)
         return 0
-    print("\n\n".join("\n".join(model_text(m)) for m in models))
+    from tuibrdf.cli.text import one_line  # a file's text (titles, notes) is printed inert
+
+    print("\n\n".join("\n".join(one_line(x) for x in model_text(m)) for m in models))
     return 0

@@ -139,4 +139,29 @@ def evaluate_resolved(m: Model, values: Mapping[str, Any], wi: np.ndarray, wo: n
             if one_o is not None:
                 wo = one_o
     with kernel_errstate():
-        return m.kernel(wi, wo, **kw)
+        f = m.kernel(wi, wo, **kw)
+    return flush_tiny(f)
+
+
+#: BRDF values of smaller magnitude are 0 (sr⁻¹): a picture's scale is taken from its maximum
+#: (pixels / max, log10(max), a 1-2-5 × 10^k step, max · 10⁻⁸ for the log scale), and these
+#: stay finite and normal only for a maximum well above the smallest normal float (2.2e-308):
+#: 1e-290 leaves 18 decades for them.  Physically, any such value is 0.
+FLUSH_BELOW = 1e-290
+
+
+def flush_tiny(f):
+    """``f`` with values of magnitude under :data:`FLUSH_BELOW` (subnormal ones included) made
+    0: `render blinn-phong -p ks=5e-324` (a 1e-323 peak) and `render lambert -p kd=1e-307`
+    failed in the sections, the solid and the θh/θd views, whose scales overflowed or
+    underflowed.  Every consumer (pictures, albedo, fits, `eval`) gets the same 0."""
+    a = np.asarray(f)
+    if a.dtype.kind != "f" or not a.size:
+        return f
+    if a.ndim == 0:  # a scalar: 0 of the same kind
+        if 0.0 < abs(float(a)) < FLUSH_BELOW:
+            return np.zeros_like(a) if isinstance(f, np.ndarray) else 0.0
+        return f
+    sub = np.abs(a) < FLUSH_BELOW
+    sub &= a != 0.0
+    return np.where(sub, 0.0, a) if sub.any() else f

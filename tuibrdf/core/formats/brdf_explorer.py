@@ -43,6 +43,7 @@ import numpy as np
 
 from tuibrdf.core.formats.files import UserFileError
 from tuibrdf.core.formats.glsl import BUILTIN_NAMES, RESERVED, GlslError, Shader, compile_shader
+from tuibrdf.core.formats.glsl.budgets import MAX_FILE_BYTES, chunk_size
 from tuibrdf.core.numerics import shader_errstate
 from tuibrdf.core.params import Model, Param, unknown_message
 
@@ -68,11 +69,13 @@ def _err(path: str, line: int | None, msg: str) -> UserFileError:
 def read_text(path: str) -> str:
     try:
         with open(path, "rb") as f:
-            raw = f.read(4 * 1024 * 1024 + 1)
+            raw = f.read(MAX_FILE_BYTES + 1)
     except OSError as e:
         raise UserFileError(f"{path}: cannot read: {e.strerror or e}") from None
-    if len(raw) > 4 * 1024 * 1024:
-        raise UserFileError(f"{path}: too large for a BRDF Explorer file (over 4 MB)")
+    if len(raw) > MAX_FILE_BYTES:
+        raise UserFileError(f"{path}: too large for a BRDF Explorer file (over "
+                            f"{MAX_FILE_BYTES // 1024} KB; the budgets are in "
+                            "docs/reference/formats.md)")
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError as e:
@@ -217,9 +220,27 @@ def _kernel(shader: Shader, params: tuple[Param, ...], *args, **values):
         if p.kind == "choice":
             v = v == "on"
         uniforms.append(v)
+    shape = np.broadcast_shapes(wi.shape[:-1], wo.shape[:-1])
+    n = math.prod(shape)
+    step = chunk_size(shader.steps)
+    if n <= step:
+        f = _run(shader, wi, wo, uniforms, shape)
+    else:  # the generated code's temporaries live until a call returns: bounded chunks
+        wi_f = np.broadcast_to(wi, shape + (3,)).reshape(n, 3)
+        wo_f = np.broadcast_to(wo, shape + (3,)).reshape(n, 3)
+        f = np.concatenate([_run(shader, wi_f[k:k + step], wo_f[k:k + step], uniforms,
+                                 (min(step, n - k),)) for k in range(0, n, step)])
+        f = f.reshape(shape + f.shape[1:])
+    below = (wi[..., 2] < 0.0) | (wo[..., 2] < 0.0)
+    if below.any():
+        f[np.broadcast_to(below, shape)] = 0.0
+    return f
+
+
+def _run(shader: Shader, wi, wo, uniforms: list, shape: tuple) -> np.ndarray:
+    """The shader on directions of ``shape``, made usable (module docstring)."""
     L = (wi[..., 0], wi[..., 1], wi[..., 2])
     V = (wo[..., 0], wo[..., 1], wo[..., 2])
-    shape = np.broadcast_shapes(wi.shape[:-1], wo.shape[:-1])
     with shader_errstate():  # the user's arithmetic: IEEE, made finite below
         out = shader.fn(L, V, *uniforms)
         if shader.returns == "vec3":
@@ -230,9 +251,6 @@ def _kernel(shader: Shader, params: tuple[Param, ...], *args, **values):
             f = np.array(np.broadcast_to(out, shape), dtype=float)
         np.fmax(f, 0.0, out=f)  # negative → 0, and NaN → 0 (fmax ignores NaN)
         np.putmask(f, f == np.inf, 0.0)  # overflow → 0
-    below = (wi[..., 2] < 0.0) | (wo[..., 2] < 0.0)
-    if below.any():
-        f[np.broadcast_to(below, shape)] = 0.0
     return f
 
 

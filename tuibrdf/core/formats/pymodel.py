@@ -17,7 +17,8 @@ The file is imported from its path (``importlib``; a fresh module each time the 
 and must define ``MODEL``, a :class:`~tuibrdf.core.params.Model`.  The model's registry name
 becomes the file's absolute path; its title, parameters and flags are the file's.
 
-User code is the user's: anything it raises — an import error, a syntax error, an exception or
+User code is the user's: anything it raises — an import error, a syntax error, an exception
+(``SystemExit`` included; only ``KeyboardInterrupt``, the user's Ctrl-C, passes through) or
 a floating-point error in the kernel (kernels run under the package's raising errstate,
 :mod:`tuibrdf.core.numerics`) — becomes a :class:`~tuibrdf.core.formats.userfiles.UserFileError`
 naming the file and the line in it, as does a result of the wrong shape (scalars broadcast) or
@@ -150,9 +151,9 @@ class _GuardedKernel:
     def __call__(self, wi, wo, **params):
         try:
             out = self.kernel(wi, wo, **params)
-        except KeyboardInterrupt:
+        except KeyboardInterrupt:  # the user's Ctrl-C, not the file's error: it stops us
             raise
-        except Exception as e:  # noqa: BLE001 — the user's error, shown as theirs
+        except BaseException as e:  # noqa: BLE001 — SystemExit too: the user's error
             line = _user_line(e, self.path) or self.def_line
             raise UserFileError(f"{_where(self.path, line)}: the kernel raised "
                                 f"{_describe(e)}") from None

@@ -64,6 +64,18 @@ DTYPE_NAMES = {1: "uint8", 2: "int8", 3: "uint16", 4: "int16", 5: "uint32", 6: "
                7: "uint64", 8: "int64", 9: "float16", 10: "float32", 11: "float64"}
 MAX_FIELDS = 256
 MAX_NDIM = 8
+#: the fields tuibrdf reads (the module docstring); the data of any other field is not read
+KNOWN_FIELDS = ("description", "phi_i", "theta_i", "ndf", "sigma", "vndf", "luminance", "rgb",
+                "spectra", "wavelengths", "jacobian", "valid", "version")
+#: float fields must lie within ±MAX_MAGNITUDE, and values closer to 0 than MIN_MAGNITUDE are
+#: read as 0, so that every step of the evaluation stays finite: a warp's slice total (sums of
+#: trapezoids, no products) is 0 or ≥ 1e-20/4, so its inverse ≤ 4e20; an interpolated σ is 0
+#: or ≥ 1e-20 times a cell fraction ≥ 1e-77 (u = √(2θ/π) with θ ≥ 1e-154, the smallest
+#: non-zero elevation of a unit vector in float64), so ndf/(4σ) ≤ 1e20/4e-97 and the value,
+#: times rgb ≤ 1e20 over cos θo ≥ cos 89.9°, stays under 1e140.  Measured data lies many
+#: decades inside these bounds.
+MAX_MAGNITUDE = 1e20
+MIN_MAGNITUDE = 1e-20
 #: ``cos θo`` floor of step 6: cos 89.9°
 COS_FLOOR = float(np.cos(np.radians(89.9)))
 
@@ -128,20 +140,36 @@ def read_header(f, path: str, size: int) -> dict[str, Field]:
             raise bad(f"field {name!r} ({DTYPE_NAMES[dtype]} × {fld.shape}: {fld.nbytes:,} "
                       f"bytes at offset {offset:,}) runs past the end of the file "
                       f"({size:,} bytes): truncated data or a wrong shape")
+        if any(s > size for s in fld.shape):  # empty, yet a side larger than the file
+            raise bad(f"field {name!r} declares shape {fld.shape}: a side is larger than "
+                      f"the file ({size:,} bytes)")
         if name in fields:
             raise bad(f"field {name!r} appears twice")
         fields[name] = fld
+    end = f.tell()  # the data lies after the header, each field's bytes its own
+    spans = sorted((fld.offset, fld.offset + fld.nbytes, name) for name, fld in fields.items()
+                   if fld.nbytes)
+    prev_end, prev = end, "the header"
+    for start, stop, name in spans:
+        if start < prev_end:
+            other = prev if prev == "the header" else f"field {prev!r}"
+            raise bad(f"field {name!r} (bytes {start:,}–{stop:,}) overlaps {other} (which ends "
+                      f"at byte {prev_end:,}): each field's data must be its own")
+        prev_end, prev = stop, name
     return fields
 
 
-def read_tensor(path: str) -> dict[str, np.ndarray]:
-    """All fields of a tensor file as arrays (validated against the file's size first)."""
+def read_tensor(path: str, names=None) -> dict[str, np.ndarray]:
+    """The fields of a tensor file as arrays (all, or those in ``names``), validated against
+    the file's size and against each other first (no overlap: at most the file is read)."""
     try:
         with open(path, "rb") as f:
             size = os.fstat(f.fileno()).st_size
             fields = read_header(f, path, size)
             out = {}
             for name, fld in fields.items():
+                if names is not None and name not in names:
+                    continue  # unknown fields are not read
                 f.seek(fld.offset)
                 raw = f.read(fld.nbytes)
                 if len(raw) < fld.nbytes:
@@ -314,13 +342,18 @@ def _check_float(path, arrays, name, ndim):
     if not np.all(np.isfinite(a)):
         n = int((~np.isfinite(a)).sum())
         raise BsdfError(f"{path}: field {name!r} has {n} NaN or infinite values")
+    mag = np.abs(a)
+    if a.size and mag.max() > MAX_MAGNITUDE:
+        raise BsdfError(f"{path}: field {name!r} has values up to {mag.max():.3g} in magnitude "
+                        f"(at most {MAX_MAGNITUDE:g}; measured data lies far below)")
+    a[mag < MIN_MAGNITUDE] = 0.0  # below any measurement's resolution: 0 (keeps 1/x finite)
     return a
 
 
 def load(path: str | os.PathLike) -> RglData:
     """Read, validate and prepare an RGL ``.bsdf`` file (raises :class:`BsdfError`)."""
     path = os.fspath(path)
-    arrays = read_tensor(path)
+    arrays = read_tensor(path, KNOWN_FIELDS)
 
     def need(name):
         if name not in arrays:
@@ -357,9 +390,9 @@ def load(path: str | os.PathLike) -> RglData:
     if vndf.shape[:2] != (n_phi, n_theta) or min(vndf.shape[2:]) < 2:
         raise BsdfError(f"{path}: field 'vndf' has shape {vndf.shape}, expected "
                         f"({n_phi}, {n_theta}, ny ≥ 2, nx ≥ 2)")
-    if lum.shape[:2] != (n_phi, n_theta) or lum.shape[2] != lum.shape[3]:
+    if lum.shape[:2] != (n_phi, n_theta) or lum.shape[2] != lum.shape[3] or lum.shape[2] < 2:
         raise BsdfError(f"{path}: field 'luminance' has shape {lum.shape}, expected "
-                        f"({n_phi}, {n_theta}, n, n)")
+                        f"({n_phi}, {n_theta}, n, n) with n ≥ 2")
     name = "spectra" if spectral else "rgb"
     if values.shape[:2] != (n_phi, n_theta) or values.shape[3:] != lum.shape[2:]:
         raise BsdfError(f"{path}: field {name!r} has shape {values.shape}, expected "
@@ -401,13 +434,23 @@ def load(path: str | os.PathLike) -> RglData:
     n_invalid = int(np.count_nonzero(valid == 0)) if valid is not None else None
     return RglData(
         path=path,
-        description=bytes(desc).decode("utf-8", errors="replace").strip("\0 \n"),
+        description=_inert(bytes(desc).decode("utf-8", errors="replace").strip("\0 \n")),
         isotropic=isotropic, jacobian=bool(jac[0]), reduction=reduction, spectral=spectral,
         n_wavelengths=int(values.shape[2]) if spectral else 0, n_invalid=n_invalid,
         phi_i=params[0], theta_i=params[1],
         ndf=Warp(ndf, [], cdf=False), sigma=Warp(sigma, [], cdf=False), vndf=vwarp,
         rgb=_channels_last(rgb, params),
     )
+
+
+#: control characters (C0, DEL, C1, line separators) → visible escapes: a description is the
+#: file's text, printed by `tuibrdf models` and shown in the viewer, never sent raw
+_CONTROL = {c: f"\\x{c:02x}" for c in (*range(0x20), 0x7F, *range(0x80, 0xA0))}
+_CONTROL.update({0x2028: "\\u2028", 0x2029: "\\u2029"})
+
+
+def _inert(text: str) -> str:
+    return text.translate(_CONTROL)
 
 
 def _channels_last(rgb: np.ndarray, params: list[np.ndarray]) -> Warp:

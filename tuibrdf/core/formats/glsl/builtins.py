@@ -6,8 +6,11 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from tuibrdf.core.formats.glsl.emitter import Ctx, Emitter, Value, _py
 from tuibrdf.core.formats.glsl.errors import GlslError
+from tuibrdf.core.numerics import shader_errstate
 
 #: one-argument component-wise built-ins: GLSL name → runtime expression template
 UNARY_BUILTINS = {
@@ -19,12 +22,20 @@ UNARY_BUILTINS = {
     "fract": "_fract({})", "radians": "({} * 0.017453292519943295)",
     "degrees": "({} * 57.29577951308232)",
 }
-#: the one-argument built-ins computed at compile time on a constant component
+#: the one-argument built-ins computed at compile time on a constant component: the
+#: runtime's own numpy functions on a float64 under the shader's IEEE errstate, so a folded
+#: value is the one the runtime computes (exp(1000) → inf, floor(nan) → nan, sin(inf) → nan)
 _FOLD_UNARY = {
-    "sqrt": lambda x: math.sqrt(max(x, 0.0)), "exp": math.exp, "sin": math.sin,
-    "cos": math.cos, "abs": abs, "floor": math.floor, "ceil": math.ceil,
-    "radians": math.radians, "degrees": math.degrees,
+    "sqrt": lambda x: np.sqrt(max(x, 0.0)), "exp": np.exp, "sin": np.sin,
+    "cos": np.cos, "abs": np.abs, "floor": np.floor, "ceil": np.ceil,
+    "radians": lambda x: x * 0.017453292519943295, "degrees": lambda x: x * 57.29577951308232,
 }
+
+
+def fold_unary(name: str, x: float) -> float:
+    """``name(x)`` of a constant, as the runtime computes it."""
+    with shader_errstate():
+        return float(_FOLD_UNARY[name](np.float64(x)))
 #: component-wise built-ins with 2 or 3 arguments (a float may stand for a vec3 where GLSL
 #: allows it: min/max/clamp/mix/step/smoothstep/mod/pow per component)
 NARY_BUILTINS = {
@@ -84,7 +95,7 @@ def builtin(em: Emitter, name: str, vals: list[Value], line: int, ctx: Ctx) -> V
         out = []
         for c in vals[0].comps:
             if not isinstance(c, str) and name in _FOLD_UNARY:
-                out.append(float(_FOLD_UNARY[name](c)))
+                out.append(fold_unary(name, c))
             else:
                 out.append(em.tmp(ctx, UNARY_BUILTINS[name].format(_py(c))))
         return Value(vals[0].type, out)
@@ -179,10 +190,11 @@ def broadcast_ok(name: str, types: tuple) -> bool:
 
 def fold_nary(name: str, a: list) -> float:
     """``min``, ``max``, ``clamp`` or ``mix`` of constant components, at compile time."""
-    if name == "min":
-        return min(a[0], a[1])
-    if name == "max":
-        return max(a[0], a[1])
-    if name == "clamp":
-        return min(max(a[0], a[1]), a[2])
-    return a[0] * (1.0 - a[2]) + a[1] * a[2]
+    with shader_errstate():  # as the runtime: np.minimum/np.maximum propagate NaN
+        if name == "min":
+            return float(np.minimum(a[0], a[1]))
+        if name == "max":
+            return float(np.maximum(a[0], a[1]))
+        if name == "clamp":
+            return float(np.minimum(np.maximum(a[0], a[1]), a[2]))
+        return float(np.float64(a[0]) * (1.0 - a[2]) + np.float64(a[1]) * a[2])

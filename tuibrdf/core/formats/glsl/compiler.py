@@ -8,8 +8,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from tuibrdf.core.formats.glsl import budgets
 from tuibrdf.core.formats.glsl.builtins import BUILTIN_NAMES, builtin
-from tuibrdf.core.formats.glsl.emitter import Ctx, Emitter, FuncInfo, Sym, Value, _py
+from tuibrdf.core.formats.glsl.emitter import _COMPARE, Ctx, Emitter, FuncInfo, Sym, Value, _py
 from tuibrdf.core.formats.glsl.errors import GlslError
 from tuibrdf.core.formats.glsl.parser import parse
 from tuibrdf.core.formats.glsl.runtime import RUNTIME
@@ -53,6 +54,9 @@ class Compiler(Emitter):
         #: still to be compiled
         self.specials: dict[tuple, FuncInfo] = {}
         self.pending: list[FuncInfo] = []
+        self._copies: dict[int, int] = {}  # specialised copies per function (a budget)
+        #: generated function → (GLSL name, line, own lines, callees): the run-time budget
+        self.callgraph: dict[str, tuple[str, int, int, list[str]]] = {}
         self._assigned: dict[int, set[str]] = {}
         #: user functions with out/inout parameters (their arguments may be assigned)
         self.out_funcs = {f.name for f in funcs
@@ -88,14 +92,19 @@ class Compiler(Emitter):
         if entry.sig != ("vec3",) * 5 or entry.node.ret not in ("vec3", "float"):
             raise GlslError("BRDF must be 'vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)'",
                             entry.node.line)
+        for qual, _, pname in entry.node.params:
+            if qual != "in":
+                raise GlslError(f"BRDF's parameter '{pname}' is '{qual}': BRDF must be "
+                                "'vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)' with "
+                                "input parameters only", entry.node.line)
         for infos in self.funcs.values():
             for info in infos:
                 if info.node.body is None:
                     raise GlslError(f"function '{info.node.name}' is declared but never "
                                     "defined", info.node.line)
         self.check_recursion()
-        for name, ty in self.uniforms.items():
-            self.global_scope[name] = Sym(ty, [f"u_{name}_{k}" for k in range(3)]
+        for name, ty in self.uniforms.items():  # uc_NAME_K never equals a u_NAME
+            self.global_scope[name] = Sym(ty, [f"uc_{name}_{k}" for k in range(3)]
                                           if ty == "vec3" else [f"u_{name}"], 0, "uniform")
         for d in self.globs:
             self.global_decl(d)
@@ -105,11 +114,12 @@ class Compiler(Emitter):
                 bodies.extend(self.function(info, entry=info is entry))
         while self.pending:  # copies specialised for constant arguments, found on the way
             bodies.extend(self.function(self.pending.pop(), entry=False))
+        self.steps = budgets.check_run_cost(self.callgraph, entry.pyname)
         args = ", ".join(f"u_{n}" for n in self.uniforms)
         src = ["def _shader(L, V" + (", " + args if args else "") + "):"]
         for name, ty in self.uniforms.items():
             if ty == "vec3":
-                src.append(f"    u_{name}_0, u_{name}_1, u_{name}_2 = u_{name}")
+                src.append(f"    uc_{name}_0, uc_{name}_1, uc_{name}_2 = u_{name}")
         src += ["    " + s for s in self.prologue]
         src += bodies
         src.append(f"    return {entry.pyname}(L, V)")
@@ -131,6 +141,7 @@ class Compiler(Emitter):
         for name, infos in self.funcs.items():
             acc: set[str] = set()
             for info in infos:
+                self.line = info.node.line  # for a RecursionError on a very deep tree
                 walk(info.node.body, acc)
             calls[name] = acc & set(self.funcs)
         state: dict[str, int] = {}
@@ -157,6 +168,7 @@ class Compiler(Emitter):
         ctx.scopes = [self.global_scope]
         self._cur_ctx = ctx
         for name, init, line in d.items:
+            self.line = line
             self.check_new_name(name, line, self.global_scope)
             if init is None:
                 val = self.zero(d.type)
@@ -180,6 +192,7 @@ class Compiler(Emitter):
         scope: dict[str, Sym] = {}
         ctx.scopes = [self.global_scope, scope]
         prev_ctx, self._cur_ctx = self._cur_ctx, ctx
+        self.line = f.line
         try:
             args: list[str] = []
             head: list[str] = []
@@ -215,6 +228,7 @@ class Compiler(Emitter):
                 self.emit_function_end(ctx)
         finally:
             self._cur_ctx = prev_ctx
+        self.callgraph[info.pyname] = (f.name, f.line, len(ctx.lines) + 1, ctx.callees)
         return [f"    def {info.pyname}({', '.join(args)}):"] + ctx.lines
 
     def ret_names(self, ctx: Ctx) -> list[str]:
@@ -264,6 +278,7 @@ class Compiler(Emitter):
                 ctx.scopes.pop()
 
     def statement(self, s, ctx: Ctx) -> bool:
+        self.line = s.line
         if isinstance(s, Block):
             return self.block(s, ctx)
         if isinstance(s, Decl):
@@ -515,7 +530,7 @@ class Compiler(Emitter):
                                 f"{b.type}", e.line)
             x, y = a.comps[0], b.comps[0]
             if not isinstance(x, str) and not isinstance(y, str):
-                return Value("bool", [bool(eval(f"{x!r} {op} {y!r}"))])  # two constants
+                return Value("bool", [bool(_COMPARE[op](x, y))])  # two constants (IEEE)
             return Value("bool", [self.tmp(ctx, f"({_py(x)} {op} {_py(y)})")])
         if op in ("==", "!="):
             if a.type != b.type:
@@ -561,7 +576,7 @@ class Compiler(Emitter):
                                 f"defined: {have}", e.line)
         return builtin(self, name, arg_vals, e.line, ctx)
 
-    def specialise(self, info: FuncInfo, vals: list[Value]) -> FuncInfo:
+    def specialise(self, info: FuncInfo, vals: list[Value], line: int) -> FuncInfo:
         """The copy of ``info`` with its constant ``in`` arguments folded (partial
         evaluation: ``dot(N, v)`` inside a helper called with ``N`` becomes ``v.z``)."""
         key_id = id(info.node)
@@ -576,6 +591,12 @@ class Compiler(Emitter):
         key = (info.pyname, tuple(sorted(consts.items())))
         spec = self.specials.get(key)
         if spec is None:
+            n = self._copies[key_id] = self._copies.get(key_id, 0) + 1
+            if n > budgets.MAX_COPIES_PER_FUNCTION or len(self.specials) >= budgets.MAX_COPIES:
+                raise GlslError(f"too many specialised copies of '{info.node.name}': calls with "
+                                f"constant arguments make a copy each (budget: "
+                                f"{budgets.MAX_COPIES_PER_FUNCTION} per function, "
+                                f"{budgets.MAX_COPIES} in all)", line)
             spec = FuncInfo(info.node, self.fresh(info.pyname.lstrip("_") + "_c"), info.sig,
                             consts)
             self.specials[key] = spec
@@ -584,7 +605,7 @@ class Compiler(Emitter):
 
     def user_call(self, info: FuncInfo, e: Call, vals: list[Value], ctx: Ctx,
                   statement: bool) -> Value:
-        info = self.specialise(info, vals)
+        info = self.specialise(info, vals, e.line)
         passed = []
         outs = []
         for k, ((qual, ty, pname), a, v) in enumerate(zip(info.node.params, e.args, vals,
@@ -601,6 +622,7 @@ class Compiler(Emitter):
             passed.append("(" + ", ".join(_py(c) for c in v.comps) + ")" if ty == "vec3"
                           else _py(v.comps[0]))
         call = f"{info.pyname}({', '.join(passed)})"
+        ctx.callees.append(info.pyname)
         rt = info.node.ret
         parts = []
         if rt == "vec3":
@@ -674,12 +696,17 @@ class Shader:
     fn: Any
     returns: str
     source: str
+    steps: int = 1  # lines run per value (the run-time budget; sets the evaluation's chunks)
 
 
 def compile_shader(src: str, uniforms: dict[str, str], first_line: int = 1) -> Shader:
     """Parse, check and translate ``src``; raises :class:`GlslError` with the line."""
     globs, funcs = parse(src, first_line)
-    source, returns = Compiler(globs, funcs, uniforms).compile()
+    c = Compiler(globs, funcs, uniforms)
+    try:
+        source, returns = c.compile()
+    except RecursionError:  # Python's stack: an expression of hundreds of operators
+        raise GlslError("the shader nests too deeply to translate", c.line) from None
     namespace = dict(RUNTIME)
     exec(compile(source, "<shader>", "exec"), namespace)  # noqa: S102 — our own generated code
-    return Shader(namespace["_shader"], returns, source)
+    return Shader(namespace["_shader"], returns, source, c.steps)

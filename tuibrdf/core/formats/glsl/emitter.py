@@ -10,15 +10,19 @@ fresh names, emits lines and does the arithmetic of components, folding constant
 from __future__ import annotations
 
 import math
+import operator
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
+from tuibrdf.core.formats.glsl.budgets import MAX_GENERATED_LINES
 from tuibrdf.core.formats.glsl.errors import GlslError
 from tuibrdf.core.formats.glsl.syntax import Func
 
 Comp = Any  # float | bool (compile-time constant) or str (a Python name)
+#: comparisons of two constants, folded as the runtime compares (IEEE: NaN compares false)
+_COMPARE = {"<": operator.lt, ">": operator.gt, "<=": operator.le, ">=": operator.ge}
 
 
 @dataclass
@@ -60,6 +64,7 @@ class Ctx:
     done: bool = False  # a masked return happened before this point
     grey: bool = True  # every return so far had equal components (vec3(x))
     outs: list = field(default_factory=list)  # [(param name, Sym)]
+    callees: list = field(default_factory=list)  # generated functions called, per call site
 
 
 def _py(x: Comp) -> str:
@@ -79,6 +84,8 @@ class Emitter:
 
     def __init__(self) -> None:
         self.counter = 0
+        self.n_lines = 0  # lines emitted, all functions together (a budget)
+        self.line = 1  # the shader's line being compiled (for the budget's error)
 
     # -- naming and emitting
     def fresh(self, stem: str = "t") -> str:
@@ -86,6 +93,12 @@ class Emitter:
         return f"_{stem}{self.counter}"
 
     def emit(self, ctx: Ctx, line: str) -> None:
+        self.n_lines += 1
+        if self.n_lines > MAX_GENERATED_LINES:
+            raise GlslError(f"the shader is too large to translate: over "
+                            f"{MAX_GENERATED_LINES:,} lines of generated code (budget; helpers "
+                            "count once per set of constant arguments they are called with)",
+                            self.line)
         ctx.lines.append(ctx.indent + line)
 
     def tmp(self, ctx: Ctx, code: str) -> str:

@@ -315,4 +315,9 @@ class Parser:
 
 
 def parse(src: str, first_line: int = 1) -> tuple[list[Decl], list[Func]]:
-    return Parser(tokenize(src, first_line)).program()
+    p = Parser(tokenize(src, first_line))
+    try:
+        return p.program()
+    except RecursionError:  # Python's stack, about 60 nested parentheses: a line, not a crash
+        raise GlslError("the shader nests too deeply (parentheses, blocks or ?:)",
+                        p.tok.line) from None
