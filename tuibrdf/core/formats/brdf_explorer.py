@@ -44,10 +44,9 @@ import numpy as np
 from tuibrdf.core.formats.files import UserFileError
 from tuibrdf.core.formats.glsl import BUILTIN_NAMES, RESERVED, GlslError, Shader, compile_shader
 from tuibrdf.core.numerics import shader_errstate
-from tuibrdf.core.params import Model, Param, unknown_message
+from tuibrdf.core.params import BOOL_CHOICES, Model, Param, unknown_message
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z_0-9]*$")
-BOOL_CHOICES = ("off", "on")
 
 
 @dataclass
