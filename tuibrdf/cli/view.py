@@ -35,9 +35,12 @@ from tuibrdf.cli.common import (
     unknown,
 )
 from tuibrdf.core.display import DISPLAY
+from tuibrdf.render import VIEWS
 
 COLORS = ("auto", "truecolor", "256", "none")
 FITS = ("abc", "sgd")
+#: views the viewer always shows beside the main one (not a --view of their own)
+SECTIONS = ("incidence", "perpendicular")
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -49,6 +52,9 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         help="set a parameter (repeatable); RGB as R,G,B; angles in degrees")
     add_theta_i(parser, default=DISPLAY.theta_i.default)
     add_phi_i(parser)
+    parser.add_argument("--view", metavar="NAME", default=None,
+                        help="start in this main view (v cycles them): " + ", ".join(
+                            v for v in VIEWS if v not in SECTIONS) + " (default: map)")
     parser.add_argument("--preset", metavar="NAME",
                         help="load a saved preset, or a seed comparison: diffuse, specular")
     parser.add_argument("--color", type=choices_type("color mode", COLORS), default="auto",
@@ -118,8 +124,8 @@ def build_state(args: argparse.Namespace):
 
     sides = material_sides(args)
     if sides is not None:
-        return ViewerState(sides=sides, theta_i=float(args.theta_i),
-                           phi_i=float(args.phi_i) % 360.0)
+        return with_view(ViewerState(sides=sides, theta_i=float(args.theta_i),
+                                     phi_i=float(args.phi_i) % 360.0), args)
     name = args.model or "lambert"
     tokens = list(args.param)
     if name.lower().endswith(".binary"):
@@ -173,6 +179,23 @@ def build_state(args: argparse.Namespace):
                 # then the whole file, as `eval` reads it (NaN and inf are found only there);
                 # the viewer's own load is then a cache hit
                 load_cached(side.values[p.name])
+    return with_view(state, args)
+
+
+def with_view(state, args: argparse.Namespace):
+    """``state`` in the main view ``--view`` names (it wins over a preset's); UsageError for a
+    name the viewer's ``v`` cycle does not have."""
+    from tuibrdf.state.viewer import MAIN_VIEWS
+
+    view = getattr(args, "view", None)
+    if view is None:
+        return state
+    if view in SECTIONS:
+        raise UsageError(f"--view {view}: the cross-sections are always shown beside the main "
+                         f"view; main views: {', '.join(MAIN_VIEWS)}")
+    if view not in MAIN_VIEWS:
+        raise UsageError(unknown("--view: unknown view", view, list(MAIN_VIEWS)))
+    state.view = view
     return state
 
 
