@@ -78,8 +78,8 @@ def test_cli_p_refuses_with_spellings(capsys):
 
 def test_preset_bool_values():
     for raw, want in [("1", "on"), ("0", "off"), ("true", "on"), ('"yes"', "on")]:
-        _, sides = from_toml(f'theta_i = 30.0\n[[sides]]\nmodel = "{WARD}"\n'
-                             f"params = {{ isotropic = {raw} }}\n")
+        sides = from_toml(f'theta_i = 30.0\n[[sides]]\nmodel = "{WARD}"\n'
+                             f"params = {{ isotropic = {raw} }}\n").sides
         assert sides[0].values["isotropic"] == want
 
 

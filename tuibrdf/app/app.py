@@ -33,6 +33,7 @@ from tuibrdf.core.views.hemimap import dir_to_uv, geometry
 from tuibrdf.core.views.sections import great_circle
 from tuibrdf.render import panes
 from tuibrdf.render.sections import angle_at
+from tuibrdf.state.bparams import save_bparams
 from tuibrdf.state.presets import (
     PresetError,
     apply_loaded,
@@ -277,7 +278,8 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
 
         def write(name: str) -> str:
             try:
-                return f"saved {save_preset(state, name)}"
+                path = save_preset(state, name)
+                return f"saved {path}" + save_bparams(state, path)
             except (PresetError, OSError) as e:
                 return f"not saved: {e}"
 

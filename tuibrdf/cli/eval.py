@@ -41,6 +41,9 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--cosine", action="store_true",
                         help="print f·cos θr (reflected intensity) instead of f")
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    parser.add_argument("--save-bparam", metavar="PATH",
+                        help="also write the parameters to a BRDF Explorer .bparam file (for "
+                             "a .brdf or .bparam model)")
 
 
 def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False,
@@ -61,6 +64,15 @@ def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False,
 
 def run(args: argparse.Namespace) -> int:
     model, params = resolve(args)
+    if args.save_bparam:
+        from tuibrdf.cli.common import UsageError
+        from tuibrdf.core.formats.bparam_write import write_bparam
+        from tuibrdf.core.formats.files import UserFileError
+
+        try:
+            write_bparam(model, params, args.save_bparam)
+        except UserFileError as e:
+            raise UsageError(str(e)) from None
     thetas = list(args.theta_i)
     many = len(thetas) > 1
     rows = []

@@ -164,10 +164,10 @@ def build_state(args: argparse.Namespace):
                              f"(available: {have})")
         if exists:
             try:
-                theta, sides = load_preset(args.preset)
+                loaded = load_preset(args.preset)
             except PresetError as e:
                 raise UsageError(str(e)) from None
-            apply_loaded(state, theta, sides)
+            apply_loaded(state, *loaded)
         else:
             msg = state.apply_preset(args.preset)
             if msg:
