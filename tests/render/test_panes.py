@@ -232,5 +232,5 @@ def test_cli_render_title_names_the_blue_channel(capsys):
 
     rc = main(["render", "gltf", "-p", "base_color=0.2,0.3,0.9", "--width", "64", "--height",
                "12", "--color", "none"])
-    title = capsys.readouterr().out.splitlines()[0]
+    title = capsys.readouterr().out.splitlines()[1]  # [0]: the context line
     assert rc == 0 and "(blue)" in title and "(B)" not in title, title

@@ -9,6 +9,7 @@ from rich.text import Text
 from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.views.frame import FrameResult
 from tuibrdf.render import VIEW_TITLES, panes
+from tuibrdf.render.text import phi_deg_text
 from tuibrdf.state.viewer import COMPARE_PRESETS, Side, ViewerState
 
 #: pane → (view, side)
@@ -51,7 +52,7 @@ def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
     line = Text()
     line.append(f"θi {s.theta_i:g}°", style="bold")
     if s.phi_i != DISPLAY.phi_i.default:
-        line.append(f" φi {s.phi_i:g}°", style="bold")
+        line.append(f" φi {phi_deg_text(s.phi_i)}°", style="bold")
     materials = tuple(x.material for x in s.sides)
     files = [f for side in s.sides for f in side_files(side) if f in loading]
     if files:

@@ -46,6 +46,7 @@ from tuibrdf.render.text import (
     RING_RGB,
     first_fitting,
     mark_legend,
+    phi_deg_text,
     title,
     where,
 )
@@ -325,10 +326,10 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
         if s0.peaks[0].theta_deg > HORIZON_DEG:
             # the section across a peak on the horizon is the horizon: it goes through the
             # peak's direction lowered to 89° instead, and says so
-            at = f"θ={th:g}° φ={round(ph) % 360:g}°"
+            at = f"θ={th:g}° φ={phi_deg_text(ph)}°"
             whats = [f"{name} through {at}, below the peak", f"{name} {at} below peak", name]
         else:
-            whats = [f"{name} through peak θ={round(th, 1):g}° φ={round(ph) % 360:g}°", name]
+            whats = [f"{name} through peak θ={round(th, 1):g}° φ={phi_deg_text(ph)}°", name]
     else:
         whats = [plane]
     if compare:
@@ -345,7 +346,8 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
                      (width_s, 1), (fn, 5)]
         else:
             parts = [(res.sides[0].material.label, 2), (f"θi={t:g}°", 3), (None, 0),
-                     (f"(φ {res.request.phi_i:g}°|{(res.request.phi_i + 180) % 360:g}°)", 4),
+                     (f"(φ {phi_deg_text(res.request.phi_i)}°|"
+                      f"{phi_deg_text(res.request.phi_i + 180)}°)", 4),
                      (fn, 1)]
     cap = caption_parts(caption)
     if look.channel != "rgb" and any(s.sections[key].ndim == 2 for s in res.sides):

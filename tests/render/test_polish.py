@@ -1,0 +1,62 @@
+"""Polish a daily user notices (issue 36): one φ convention in every title, one value and one
+curve where an RGB model's channels are equal, render titles that always carry model, θi and
+φi.  Expected texts come from the geometry (the mirror of the light at φi is at φi − 180°,
+written in (−180°, 180°])."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from tuibrdf.cli import main
+from tuibrdf.render.text import phi_deg_text
+
+
+@pytest.mark.parametrize("phi,want", [(0, "0"), (315, "-45"), (-45, "-45"), (180, "180"),
+                                      (-180, "180"), (540, "180"), (-0.4, "0"), (359.6, "0"),
+                                      (181, "-179")])
+def test_phi_text_is_in_minus_180_to_180(phi, want):
+    assert phi_deg_text(phi) == want
+
+
+def render_first_line(capsys, *args):
+    assert main(["render", *args, "--color", "none"]) == 0
+    return capsys.readouterr().out.splitlines()[1]  # [0]: the context line
+
+
+def test_map_and_section_titles_write_the_same_phi(capsys):
+    # the light at φi = 135°: the mirror direction, Phong's peak, is at φ = 135 − 180 = −45°
+    common = ["phong", "--phi-i", "135", "--theta-i", "40", "--width", "100", "--height", "8"]
+    phis = [re.findall(r"φ=(-?\d+)°", render_first_line(capsys, *common, "--view", v))
+            for v in ("map", "perpendicular")]
+    assert phis == [["-45"], ["-45"]]
+    inc = render_first_line(capsys, *common, "--view", "incidence")
+    assert "(φ 135°|-45°)" in inc
+
+
+@pytest.mark.parametrize("width", [12, 24, 40, 80, 160])
+@pytest.mark.parametrize("view", ["map", "incidence", "perpendicular", "albedo", "slice",
+                                  "overview"])
+def test_render_always_names_model_theta_i_and_phi_i(capsys, width, view):
+    assert main(["render", "cook-torrance", "--theta-i", "37", "--phi-i", "300", "--view", view,
+                 "--width", str(width), "--height", "8", "--color", "none"]) == 0
+    out = capsys.readouterr().out
+    head = " ".join(out.splitlines()[:3])  # at 12 columns the three words take three lines
+    # φi = 300° is written −60° (the one convention)
+    for word in ("cook-torrance", "θi=37°", "φi=-60°"):
+        assert word in head.replace(" ", ""), (word, head)
+    assert max(len(line) for line in out.splitlines()) <= width
+
+
+def test_overview_is_the_four_panes_and_all_still_works(capsys):
+    assert main(["render", "phong", "--view", "overview", "--width", "40", "--height", "8",
+                 "--color", "none"]) == 0
+    overview = capsys.readouterr().out
+    assert main(["render", "phong", "--view", "all", "--width", "40", "--height", "8",
+                 "--color", "none"]) == 0
+    assert capsys.readouterr().out == overview
+    # context line, then four panes of 8 rows with a blank line between them
+    assert len(overview.rstrip("\n").split("\n")) == 1 + 4 * 8 + 3
+    assert main(["render", "--help"]) == 0
+    assert "overview" in capsys.readouterr().out
