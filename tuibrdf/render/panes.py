@@ -79,6 +79,8 @@ class Look:
     charset: str = "braille"  # the sections and line plots (render/braille.py)
     #: the curves of an RGB model (sections, albedo): rgb (three) | lum | R | G | B
     channel: str = "rgb"
+    #: the 3D solid's and the sections' magnification (the viewer's mouse wheel)
+    zoom: float = 1.0
 
     @property
     def rgb(self) -> str:
@@ -315,7 +317,7 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
     t = res.request.theta_i
     canvas, caption = polar_canvas(curves, w, h - 1, log=look.log, color=look.color,
                                    theta_i_deg=t if plane == "incidence" else None, vmax=vmax,
-                                   charset=look.charset)
+                                   charset=look.charset, zoom=look.zoom)
     az = res.request.section_azimuth
     if plane == "perpendicular":
         s0 = res.sides[0]
@@ -394,7 +396,7 @@ def solid_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     index, pal = solid_image(side.solid, res.request.theta_i, w, 2 * (h - 1), rmax=sc.value,
                              phi_i_deg=res.request.phi_i,
                              cmap=look.cmap, log=look.log, azimuth_deg=look.azimuth,
-                             elevation_deg=look.elevation)
+                             elevation_deg=look.elevation, zoom=look.zoom)
     what = "f·cosθr·wo" if res.request.cosine else "f·wo"
     if look.log:
         what += f" (log, {LOG_DECADES:g} decades)"

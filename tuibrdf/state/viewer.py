@@ -37,6 +37,8 @@ method                what it does
 ``move_probe``        the probe on the map (Lambert coordinates; shown from the first move)
 ``set_probe``         the probe at a point of the map (a click on the map or a section)
 ``toggle_probe``      probe on / off
+``set_light``         θi and φi at once (a drag on the lit sphere or plane)
+``zoom_by``           the 3D solid's and the sections' zoom × a factor (the mouse wheel)
 ====================  =====================================================================
 """
 
@@ -56,6 +58,8 @@ CHANNEL_NAMES = {"rgb": "R, G and B", "lum": "luminance (Rec.709)", "R": "red on
 
 #: the main views ``v`` cycles through (the cross-sections are always shown beside them)
 MAIN_VIEWS = ("map", "solid", "albedo", "sphere", "plane", "slice", "theta-h", "theta-d")
+#: the mouse wheel's zoom of the 3D solid and the sections: smallest, largest
+ZOOM_RANGE = (0.125, 64.0)
 #: the half/difference views and the angle each one's ``d`` key steps
 FIXED_ANGLE = {"theta-h": "theta_d", "theta-d": "theta_h", "slice": "phi_d"}
 #: the probe's step on the map, in Lambert units (the disc's radius is √2)
@@ -211,6 +215,8 @@ class ViewerState:
     sqrt_h: bool = DISPLAY.sqrt_h
     #: the probe's Lambert coordinates on the map (None: hidden)
     probe: tuple[float, float] | None = None
+    #: the 3D solid's and the sections' magnification (the mouse wheel; 1: the peak fills it)
+    zoom: float = 1.0
     #: values last used for each model, so cycling away and back keeps them
     memory: dict[str, dict[str, Value]] = field(default_factory=dict)
 
@@ -502,6 +508,23 @@ class ViewerState:
         if not r <= SQRT2 + 1e-9:  # also refuses NaN
             return "that point is outside the hemisphere"
         self.probe = (float(u), float(v))
+        return None
+
+    def set_light(self, theta_deg: float, phi_deg: float) -> str | None:
+        """θi and φi at once (a drag on the lit sphere or plane): θi clamped to its range,
+        φi wrapped into [0°, 360°), both to 0.1° (a drag is not finer than that)."""
+        if not (theta_deg == theta_deg and phi_deg == phi_deg):  # refuses NaN
+            return "no light direction there"
+        self.theta_i = DISPLAY.theta_i.clamp(round(float(theta_deg), 1))
+        self.phi_i = round(float(phi_deg), 1) % 360.0
+        return None
+
+    def zoom_by(self, factor: float) -> str | None:
+        """The solid's and the sections' zoom × ``factor``, kept in [1/8, 64]."""
+        new = min(ZOOM_RANGE[1], max(ZOOM_RANGE[0], self.zoom * factor))
+        if new == self.zoom:
+            return f"zoom is already ×{new:g} (range ×{ZOOM_RANGE[0]:g} to ×{ZOOM_RANGE[1]:g})"
+        self.zoom = new
         return None
 
     def toggle_probe(self) -> str | None:
