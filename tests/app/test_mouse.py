@@ -138,3 +138,21 @@ async def test_section_clicks_off_the_axis_read_the_side_clicked(pane, side):
         for c in range(3):
             assert float(np.interp(t, SECTION_THETAS, drawn[:, c])) == pytest.approx(
                 f[c], rel=2e-2)
+
+
+async def test_click_on_the_albedo_curve_reads_a_there():
+    # Lambert: a(θi) = kd at every θi (∫ kd/π cos θr dω = kd); the θi read is the column's
+    # place between the axis's 0° and 90° ticks as drawn
+    app = make("lambert", "albedo", kd=0.6)
+    async with app.run_test(size=(120, 40)) as pilot:
+        await pilot.pause()
+        rows = ["".join(s.text for s in strip) for strip in app.query_one("#albedo")._strips]
+        axis = next(r for r in reversed(rows) if "└" in r)
+        ticks = [c for c, ch in enumerate(axis) if ch in "┬┴"]
+        x = ticks[0] + round(2 / 3 * (ticks[-1] - ticks[0]))  # ≈ 60°
+        await pilot.click("#albedo", offset=(x, 5))
+        await pilot.pause()
+        text = status(app)
+        theta = numbers_after(text, "a(θi")[0]
+        assert theta == pytest.approx(60.0, abs=90 / (ticks[-1] - ticks[0]))
+        assert numbers_after(text, " a")[0] == pytest.approx(0.6, rel=5e-3)

@@ -227,6 +227,12 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         if view == "extra":
             view = res.request.extra or ""
         pic = self.one(pane)
+        if view == "albedo":
+            text = pick.albedo_reading(res, ["".join(seg.text for seg in strip)
+                                             for strip in pic._strips], x)
+            if text is not None:
+                self._changed(text)
+            return
         got = pick.pick(res, view, PANES[pane][1], x, y, pic.size.width, pic.size.height)
         if got is not None:
             self._changed(pick.reading(res, got))

@@ -164,3 +164,25 @@ def reading(res: FrameResult, p: Pick) -> str:
         parts.append(f"{tag}f={values_text(f)} f·cos{p.cos_of}={values_text(f * max(cos, 0.0))}"
                      " sr⁻¹")
     return "  ".join(parts)
+
+
+def albedo_reading(res: FrameResult, rows: list[str], x: int) -> str | None:
+    """A click on the albedo plot at column ``x``: ``a(θi=47°)=0.71`` per side, θi from the
+    plot's own x axis as drawn (``rows``: the pane's text; the axis line's first and last
+    tick are 0° and 90°), None off the axis's span or before the curve is computed."""
+    from tuibrdf.core.views.frame import CURVE_THETAS
+
+    axis = next((r for r in reversed(rows) if "└" in r and "┘" in r), None)
+    ticks = [c for c, ch in enumerate(axis or "") if ch in "┬┴"]
+    if len(ticks) < 2 or not ticks[0] <= x <= ticks[-1]:
+        return None
+    theta = 90.0 * (x - ticks[0]) / (ticks[-1] - ticks[0])  # two ticks: a span > 0
+    parts = [f"a(θi={theta:.0f}°)"]
+    for k, side in enumerate(res.sides):
+        if side.curve is None:
+            return None
+        c = np.asarray(side.curve, dtype=float)
+        a = np.interp(theta, CURVE_THETAS, c) if c.ndim == 1 else np.array(
+            [np.interp(theta, CURVE_THETAS, c[:, j]) for j in range(c.shape[1])])
+        parts.append(f"{'AB'[k] + ': ' if len(res.sides) > 1 else ''}a={values_text(a)}")
+    return "  ".join(parts)
