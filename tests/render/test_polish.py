@@ -60,3 +60,27 @@ def test_overview_is_the_four_panes_and_all_still_works(capsys):
     assert len(overview.rstrip("\n").split("\n")) == 1 + 4 * 8 + 3
     assert main(["render", "--help"]) == 0
     assert "overview" in capsys.readouterr().out
+
+
+def test_a_grey_rgb_model_shows_one_value_and_one_curve(capsys):
+    # gltf with base_color 0.8 on every channel: R = G = B everywhere, so no channel to name,
+    # one albedo, one curve (no R/G/B legend); a coloured one keeps all three
+    def overview(color):
+        assert main(["render", "gltf", "-p", f"base_color={color}", "--view", "overview",
+                     "--width", "60", "--height", "10", "--color", "none"]) == 0
+        return capsys.readouterr().out
+
+    grey = overview("0.8")
+    assert "(red)" not in grey and "(Y)" not in grey
+    assert re.search(r"a\(θi=30°\) = 0\.\d+\s*$", grey, re.M)  # one number, no (r,g,b)
+    assert not re.search(r"^\S+ R\s*$|⠤⠤⠤ R", grey, re.M)  # no channel legend
+    coloured = overview("0.8,0.5,0.2")
+    assert "(red)" in coloured and "a(θi=30°) = (" in coloured
+    assert "R" in coloured and "G" in coloured
+
+
+def test_albedo_text_of_equal_channels_is_one_number():
+    from tuibrdf.render.panes import albedo_text
+
+    assert albedo_text((0.82, 0.82, 0.82)) == "0.82"
+    assert albedo_text((0.82, 0.8, 0.82)) == "(0.82,0.8,0.82)"

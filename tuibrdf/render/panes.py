@@ -164,6 +164,9 @@ def albedo_text(a, error=None) -> str:
     (the digits shown follow the error)."""
     if a is None:
         return "…"
+    if isinstance(a, tuple) and len(set(a)) == 1:
+        a = a[0]  # R = G = B (a grey model): one value
+        error = None if error is None else float(np.max(np.asarray(error, dtype=float)))
     vals = a if isinstance(a, tuple) else (a,)
     top = max(abs(float(x)) for x in vals)
     err = None if error is None else float(np.max(np.asarray(error, dtype=float)))

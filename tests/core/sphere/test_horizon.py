@@ -354,7 +354,7 @@ def test_unbounded_peak_is_said_in_the_cli_title():
     with contextlib.redirect_stdout(buf):
         assert main(["render", "sgd", "-p", "material=gold-metallic-paint", "--theta-i", "75",
                      "--width", "100", "--height", "18", "--color", "none"]) == 0
-    first = buf.getvalue().split("\n")[0]
+    first = buf.getvalue().split("\n")[1]  # [0]: the context line
     assert "f → ∞ toward the horizon (green)" in first and "scale: max θ≤89°" in first
     assert "2.83e+17" not in buf.getvalue()
 
