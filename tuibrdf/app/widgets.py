@@ -387,7 +387,7 @@ class ParamPanel(DrawnRows):
         rows = side.rows()
         selected = min(side.selected, len(rows) - 1)
         top, n = self._window(len(rows), max(selected, 0))
-        above, below = top, len(rows) - top - n
+        above, below = top, max(0, len(rows) - top - n)  # no rows: 0 below, not −1
         label = "AB"[side_index] + ": " if state.compare else ""
         name = side.spec.title
         if os.path.isabs(name):  # a model file without a title of its own: its file name
