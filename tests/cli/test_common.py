@@ -104,7 +104,7 @@ def test_view_has_no_color(monkeypatch, capsys):
 
     seen = []
     monkeypatch.setattr(view, "check_terminal", lambda: None)
-    monkeypatch.setattr(view, "open_viewer", lambda state, color: seen.append(color))
+    monkeypatch.setattr(view, "open_viewer", lambda state, color, *hint: seen.append(color))
     # view.run sets NO_COLOR itself: setenv first, so monkeypatch restores "unset" afterwards
     monkeypatch.setenv("NO_COLOR", "")
     monkeypatch.delenv("NO_COLOR")
@@ -151,7 +151,7 @@ def test_view_options_without_the_view_command(monkeypatch, capsys):
 
     seen = []
     monkeypatch.setattr(view, "check_terminal", lambda: None)
-    monkeypatch.setattr(view, "open_viewer", lambda state, color: seen.append(color))
+    monkeypatch.setattr(view, "open_viewer", lambda state, color, *hint: seen.append(color))
     # view.run sets NO_COLOR itself: setenv first, so monkeypatch restores "unset" afterwards
     monkeypatch.setenv("NO_COLOR", "")
     monkeypatch.delenv("NO_COLOR")

@@ -39,6 +39,10 @@ from tuibrdf.render import VIEWS
 
 COLORS = ("auto", "truecolor", "256", "none")
 FITS = ("abc", "sgd")
+#: what plain ``tuibrdf`` shows: a glossy lobe over a diffuse base (a flat Lambert disc
+#: taught nothing about lobes), with :data:`FIRST_HINT` on the status line
+FIRST_MODEL = "phong"
+FIRST_HINT = "←/→ move the light · ↑/↓ +/- a parameter · v next view · m next model · ? keys"
 #: views the viewer always shows beside the main one (not a --view of their own)
 SECTIONS = ("incidence", "perpendicular")
 
@@ -47,7 +51,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("model", nargs="?", default=None, metavar="MODEL|FILE",
                         help="model name (see 'tuibrdf models') or a file: .brdf, .bparam "
                              "(BRDF Explorer), .py (Python model), .bsdf (RGL), .binary (MERL) "
-                             "(default: lambert)")
+                             "(default: phong, a glossy lobe)")
     parser.add_argument("-p", "--param", action="append", default=[], metavar="NAME=VALUE",
                         help="set a parameter (repeatable); RGB as R,G,B; angles in degrees")
     add_theta_i(parser, default=DISPLAY.theta_i.default)
@@ -126,7 +130,7 @@ def build_state(args: argparse.Namespace):
     if sides is not None:
         return with_view(ViewerState(sides=sides, theta_i=float(args.theta_i),
                                      phi_i=float(args.phi_i) % 360.0), args)
-    name = args.model or "lambert"
+    name = args.model or FIRST_MODEL
     tokens = list(args.param)
     if name.lower().endswith(".binary"):
         if "merl" not in MODELS:
@@ -210,11 +214,11 @@ def check_terminal(stdin=None, stdout=None) -> None:
                              "in a pipe or a file: tuibrdf render)")
 
 
-def open_viewer(state, color: str | None) -> int:
+def open_viewer(state, color: str | None, message: str = "") -> int:
     """Run the Textual app (the only place Textual is imported); its exit status."""
     from tuibrdf.app.app import BrdfApp
 
-    app = BrdfApp(state, color=color)
+    app = BrdfApp(state, color=color, message=message)
     app.run()  # a crash: Textual restores the terminal, prints the error, sets return_code 1
     return app.return_code or 0
 
@@ -227,4 +231,6 @@ def run(args: argparse.Namespace) -> int:
     elif args.color != "auto":
         os.environ["TEXTUAL_COLOR_SYSTEM"] = "truecolor" if args.color == "truecolor" \
             else "256"
-    return open_viewer(state, None if args.color == "auto" else args.color) or 0
+    first = not (args.model or args.preset or args.material)
+    return open_viewer(state, None if args.color == "auto" else args.color,
+                       FIRST_HINT if first else "") or 0
