@@ -20,6 +20,7 @@ whose it is.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -360,9 +361,18 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
         # "section max" reads as a disagreement with the map's "(red)" peak
         cap[0] = (f"{cap[0][0]} ({CHANNEL_TAGS.get(look.channel, look.channel)})", 0)
     # narrower: "max 0.113" (the pane's title says it is a section) before any crop
-    short = [(cap[0][0].replace("section max", "max", 1), 0), *cap[1:]]
+    # the radial scale (max and circle spacing) is kept whole at every width (issue 36: at
+    # 80×24 the spacing went first): narrower, "max" and a shorter log note, then without
+    # the plane's name
+    cap = [(t, 0) for t, _ in cap]
+    short = [(t.replace("section max", "max", 1).replace(
+        "log, circles every decade below", "log, decades below"), 0) for t, _ in cap]
     variants = [[(what if s is None else s, r) for s, r in parts] + c
                 for c, what in [*((cap, x) for x in whats), (short, whats[-1])]]
+    bare = [(whats[-1] if s is None else s, 1 if s is None else r) for s, r in parts]
+    tiny = [(re.sub(r"^log, decades below .*", "log decades", t.replace(
+        "circles every", "circles")), 0) for t, _ in short]
+    variants += [bare + short, bare + tiny]
     return Group(first_fitting(variants, w), canvas)
 
 
