@@ -32,6 +32,7 @@ from tuibrdf.core.views.frame import FrameRequest, FrameResult, section_directio
 from tuibrdf.core.views.hemimap import dir_to_uv, geometry
 from tuibrdf.core.views.sections import great_circle
 from tuibrdf.render import panes, pick
+from tuibrdf.render.colormap import DEFAULT_LEVELS
 from tuibrdf.render.sections import angle_at
 from tuibrdf.state.bparams import save_bparams
 from tuibrdf.state.presets import (
@@ -49,8 +50,10 @@ from tuibrdf.state.viewer import ViewerState
 #: of any key it fell on; later ones scan only the objects made since (docs/benchmarks.md)
 FREEZE_S = 1.0
 FILE_POLL_S = 1.0  # how often a model file's mtime is checked (an edit redraws)
-#: colour levels of the maps: 32 keeps a full 160×48 map update near 50 KiB (docs/benchmarks.md)
-LEVELS = 32
+#: colour levels of the maps: 256, as `render` (32 showed false contours on smooth diffuse
+#: lobes); a full truecolor update of a 110×46 map of Oren-Nayar at 60° is ≈ 90 KB instead of
+#: ≈ 29 KB (256 colours: ≈ 20 KB either way), measured with render_view on this tree
+LEVELS = DEFAULT_LEVELS
 #: the actions of the viewer itself (not of a modal screen)
 VIEWER_ACTIONS = frozenset({"state", "save", "load_next", "help", "type_value", "type_theta"})
 
