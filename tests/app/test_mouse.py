@@ -101,7 +101,7 @@ async def test_click_on_the_sphere_reads_f_in_the_status_line():
 async def test_section_clicks_off_the_axis_read_the_side_clicked(pane, side):
     # Ward anisotropic (αx ≠ αy) with the section turned to ψ = 60°: the two sides of each
     # section differ, so a mirrored angle reads another value than the one drawn
-    params = {"alpha_x": 0.1, "alpha_y": 0.5}
+    params = {"alpha_x": 0.1, "alpha_y": 0.5, "Cd": (0.1, 0.2, 0.3), "Cs": (1.0, 0.5, 0.2)}
     state = ViewerState(sides=[Side.of(WARD, params)], theta_i=40.0, section_azimuth=60.0)
     app = BrdfApp(state, sync=True)
     async with app.run_test(size=(140, 40)) as pilot:

@@ -84,3 +84,36 @@ def test_albedo_text_of_equal_channels_is_one_number():
 
     assert albedo_text((0.82, 0.82, 0.82)) == "0.82"
     assert albedo_text((0.82, 0.8, 0.82)) == "(0.82,0.8,0.82)"
+
+
+def test_the_slice_scale_shows_the_specular_strip(capsys):
+    # Cook-Torrance (m = 0.2, f0 = 0.04): along θh = 0 at θd = 30° the specular value is
+    # F·D·G/(4 cos²θd) ≈ 0.04 · 7.96 / (4 · 0.75) ≈ 0.11 sr⁻¹ (D = 1/(π m²) at θh = 0), while
+    # at grazing θd the 1/cos blows up (10⁴ sr⁻¹).  The scale stops at θ ≤ 60° (the title
+    # says so), where the largest value is ≈ 0.55 (θd = 60°: F ≈ 0.06, 1/(4·0.25)), so the
+    # strip is drawn well above black even in linear scale
+    assert main(["render", "cook-torrance", "--view", "slice", "--width", "60", "--height",
+                 "20", "--color", "none"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert "(θ≤60°)" in lines[1]
+    rows = lines[2:18]  # 16 rows of θd from 90° (top) to 0°
+    row30 = rows[round((90 - 30) / 90 * 16)]
+    ramp = " .:-=+*#%@"
+    strip, far = ramp.index(row30[8]), ramp.index((row30 + " " * 60)[40])
+    assert strip >= 2 and strip > far  # the strip at θh ≈ 0 stands out
+
+
+async def test_the_viewer_slice_is_log_by_default_and_l_toggles_it():
+    from tuibrdf.app.app import BrdfApp
+    from tuibrdf.state.viewer import Side, ViewerState
+
+    app = BrdfApp(ViewerState(sides=[Side.of("cook-torrance")], view="slice"), sync=True)
+    async with app.run_test(size=(120, 40)) as pilot:
+        await pilot.pause()
+        title = "".join(s.text for s in app.query_one("#extra-a")._strips[0])
+        assert "log, 3 decades" in title
+        await pilot.press("l")
+        await pilot.pause()
+        assert app.state.slice_log is False and app.state.log is False
+        title = "".join(s.text for s in app.query_one("#extra-a")._strips[0])
+        assert "log" not in title

@@ -21,7 +21,7 @@ params = { kd = 0.0, ks = 0.08, n = 70.0 }
 LOOK = {"view": "sphere", "phi_i": 135.0, "section_azimuth": 30.0, "log": True,
         "cmap": "viridis", "channel": "G", "exposure": 4.0, "gamma": 1.8, "theta_d": 12.0,
         "theta_h": 7.0, "phi_d": 45.0, "azimuth": 10.0, "elevation": -20.0, "cosine": True,
-        "sqrt_h": False}
+        "sqrt_h": False, "slice_log": False}
 
 
 @pytest.fixture

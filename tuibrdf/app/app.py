@@ -149,7 +149,8 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
     def look(self) -> panes.Look:
         s = self.state
         return panes.Look(self.color_system(), s.cmap, s.log, LEVELS, "auto", s.azimuth,
-                          s.elevation, s.exposure, s.gamma, channel=s.channel, zoom=s.zoom)
+                          s.elevation, s.exposure, s.gamma, channel=s.channel, zoom=s.zoom,
+                          slice_log=s.slice_log)
 
     def color_system(self) -> str:
         if self._color:

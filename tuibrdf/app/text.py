@@ -66,7 +66,7 @@ def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
         for i in range(len(s.sides)):
             line.append(f"  {'AB'[i]}: a=…" if s.compare else "  a(θi) …")
     second = Text()
-    scale = "log (3 decades)" if s.log else "linear"
+    scale = "log (3 decades)" if (s.slice_log if s.view == "slice" else s.log) else "linear"
     second.append(f"{VIEW_TITLES[s.view]} · {scale} · {s.cmap}"
                   f"{' · f·cos θr' if s.cosine else ''}{view_settings(s)}", style="dim")
     if s.compare:

@@ -82,6 +82,8 @@ class Look:
     channel: str = "rgb"
     #: the 3D solid's and the sections' magnification (the viewer's mouse wheel)
     zoom: float = 1.0
+    #: the θh×θd slice's own scale (None: as ``log``; the viewer's default is log)
+    slice_log: bool | None = None
 
     @property
     def rgb(self) -> str:
@@ -367,12 +369,18 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
     cap = [(t, 0) for t, _ in cap]
     short = [(t.replace("section max", "max", 1).replace(
         "log, circles every decade below", "log, decades below"), 0) for t, _ in cap]
-    variants = [[(what if s is None else s, r) for s, r in parts] + c
-                for c, what in [*((cap, x) for x in whats), (short, whats[-1])]]
+    # the lobe's width whole first (then the longer wordings of where the plane passes)
+    width_first = [(s, 0 if s and s.startswith("FWHM") else r) for s, r in parts]
+    brief = [(t.replace("circles every", "circles"), r) for t, r in cap]
+    variants = [[(what if s is None else s, r) for s, r in first] + c
+                for first in (width_first, parts)
+                for c, what in [*((c, x) for x in whats for c in (cap, brief)),
+                                (short, whats[-1])]]
     bare = [(whats[-1] if s is None else s, 1 if s is None else r) for s, r in parts]
     tiny = [(re.sub(r"^log, decades below .*", "log decades", t.replace(
         "circles every", "circles")), 0) for t, _ in short]
-    variants += [bare + short, bare + tiny]
+    named = [(whats[-1] if s is None else s, r) for s, r in parts]
+    variants += [named + tiny, bare + short, bare + tiny]
     return Group(first_fitting(variants, w), canvas)
 
 
@@ -392,7 +400,9 @@ def extra_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Renderab
         f, valid, th, td = side.extra
         vmax = max(halfdiff_view.slice_scale(s.extra, req.phi_d) for s in res.sides)
         return halfdiff_view.slice_picture(name, f, valid, th, td, w, h, phi_d_deg=req.phi_d,
-                                           sqrt_h=req.sqrt_h, vmax=vmax, log=look.log,
+                                           sqrt_h=req.sqrt_h, vmax=vmax,
+                                           log=look.log if look.slice_log is None
+                                           else look.slice_log,
                                            cmap=look.cmap, levels=look.levels,
                                            rgb_mode=look.rgb_mode, color=look.color)
     vmax = max(halfdiff_view.line_scale(req.extra, s.extra, req) for s in res.sides)

@@ -72,7 +72,7 @@ STALE_SECONDS = 60.0
 #: :data:`DISPLAY` range, switches, and names from a list
 LOOK_NUMBERS = ("phi_i", "section_azimuth", "exposure", "gamma", "theta_d", "theta_h", "phi_d",
                 "azimuth", "elevation")
-LOOK_FLAGS = ("log", "cosine", "sqrt_h")
+LOOK_FLAGS = ("log", "cosine", "sqrt_h", "slice_log")
 LOOK_NAMES = {"view": MAIN_VIEWS, "cmap": CMAPS, "channel": tuple(CHANNEL_NAMES)}
 LOOK = (*LOOK_NAMES, *LOOK_NUMBERS, *LOOK_FLAGS)
 

@@ -18,7 +18,7 @@ method                what it does
 ``type_value``        the selected parameter typed as text (Enter or =)
 ``cycle_model``       next / previous model of the active side (files shown come back), θi kept
 ``cycle_view``        the main view: :data:`MAIN_VIEWS` in order, either way
-``toggle_log``        linear / log colour scale
+``toggle_log``        linear / log colour scale (in the slice view: the slice's own, log first)
 ``cycle_cmap``        next / previous colour map (:data:`~tuibrdf.render.CMAPS`)
 ``cycle_channel``     the curves of RGB models: all three → luminance → R → G → B
 ``toggle_cosine``     show f or f·cos θr
@@ -213,6 +213,9 @@ class ViewerState:
     theta_h: float = DISPLAY.theta_h.default
     phi_d: float = DISPLAY.phi_d.default
     sqrt_h: bool = DISPLAY.sqrt_h
+    #: the θh×θd slice's scale: log by default (in linear, Cook-Torrance's slice is black but
+    #: for the grazing blow-up: its specular strip at θh ≈ 0 cannot be seen)
+    slice_log: bool = True
     #: the probe's Lambert coordinates on the map (None: hidden)
     probe: tuple[float, float] | None = None
     #: the 3D solid's and the sections' magnification (the mouse wheel; 1: the peak fills it)
@@ -359,6 +362,9 @@ class ViewerState:
         return None
 
     def toggle_log(self) -> str | None:
+        if self.view == "slice":  # the slice has its own scale: log unless asked otherwise
+            self.slice_log = not self.slice_log
+            return None
         self.log = not self.log
         return None
 
