@@ -8,6 +8,7 @@ from rich.text import Text
 
 from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.views.frame import FrameResult
+from tuibrdf.core.views.negatives import negative_note
 from tuibrdf.render import VIEW_TITLES, panes
 from tuibrdf.render.text import phi_deg_text
 from tuibrdf.state.viewer import COMPARE_PRESETS, Side, ViewerState
@@ -61,6 +62,10 @@ def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
                                 frame.request.cosine, frame.request.phi_i) == (
                                     materials, s.theta_i, s.cosine, s.phi_i):
         line.append_text(panes.stats_text(frame, s.view, look, terse=max(0, terse - 1)))
+        for k, side in enumerate(frame.sides):  # a user model's sign slip, said once
+            note = negative_note(side.negative)
+            if note:
+                line.append(f"  {'AB'[k] + ': ' if s.compare else ''}{note}", style="bold red")
         line.append_text(probe_text(frame, terse))
     else:
         for i in range(len(s.sides)):

@@ -134,6 +134,9 @@ def picture(model, values, args: argparse.Namespace, color: str) -> str:
                   markup=False, emoji=False, legacy_windows=False, soft_wrap=False,
                   force_jupyter=False, force_interactive=False, _environ={})
     con.print(context_line(model, values, args), no_wrap=True, crop=True)
+    note = negative_line(model, values, args)
+    if note:  # a user model's sign slip would otherwise look like a dark material
+        con.print(note, no_wrap=True, crop=True)
     for i, view in enumerate(views):
         if i:
             con.print()
@@ -169,6 +172,15 @@ def context_line(model, values, args: argparse.Namespace) -> str:
 
     return "\n".join(textwrap.wrap(" ".join(need), args.width, break_long_words=True,
                                    break_on_hyphens=False))
+
+
+def negative_line(model, values, args: argparse.Namespace) -> str:
+    """``f < 0 in 12 % of directions, clamped to 0`` for a user model that goes negative at
+    this light, else ``""``."""
+    from tuibrdf.core.directions import incident
+    from tuibrdf.core.views.negatives import negative_note, negative_share
+
+    return negative_note(negative_share(model, values, incident(args.theta_i, args.phi_i)))
 
 
 #: stand-ins in a picture for a stream that cannot encode them (plot grids are dotted with ·)

@@ -200,6 +200,9 @@ class Model:
     #: what the model returns on the horizon, for docs and `tuibrdf models`
     horizon: str = ""
     notes: tuple[str, ...] = field(default=())
+    #: a user file's kernel *before* negative values are clamped to 0 (None: a built-in
+    #: model), for the note saying how much is clamped (:mod:`tuibrdf.core.negatives`)
+    raw_kernel: Callable[..., Any] | None = None
 
     def param(self, name: str) -> Param:
         for p in self.params:

@@ -208,7 +208,11 @@ def declare(path: str, params: list) -> tuple[tuple[Param, ...], dict[str, str]]
     return tuple(out), uniforms
 
 
-def _kernel(shader: Shader, params: tuple[Param, ...], *args, **values):
+def _kernel(shader: Shader, params: tuple[Param, ...], clamp: bool = True, /, *args,
+            **values):
+    """The shader on arrays of directions; ``clamp=False`` keeps negative values (the
+    model's ``raw_kernel``, for the note on how much is clamped).  Positional-only, so a
+    parameter may be called ``clamp``."""
     wi, wo = args
     uniforms = []
     for p in params:
@@ -227,7 +231,10 @@ def _kernel(shader: Shader, params: tuple[Param, ...], *args, **values):
                 f[..., k] = c
         else:
             f = np.array(np.broadcast_to(out, shape), dtype=float)
-        np.fmax(f, 0.0, out=f)  # negative → 0, and NaN → 0 (fmax ignores NaN)
+        if clamp:
+            np.fmax(f, 0.0, out=f)  # negative → 0, and NaN → 0 (fmax ignores NaN)
+        else:
+            np.putmask(f, np.isnan(f), 0.0)
         np.putmask(f, f == np.inf, 0.0)  # overflow → 0
     below = (wi[..., 2] < 0.0) | (wo[..., 2] < 0.0)
     if below.any():
@@ -245,7 +252,8 @@ def model_from_text(path: str, parsed: Parsed, title: str, name: str) -> Model:
         raise UserFileError(f"{path}: the shader nests too deeply to compile") from None
     rgb = shader.returns == "vec3"
     return Model(
-        name, title, params, partial(_kernel, shader, params), rgb=rgb, reciprocal=False,
+        name, title, params, partial(_kernel, shader, params, True), rgb=rgb, reciprocal=False,
+        raw_kernel=partial(_kernel, shader, params, False),
         summary=f"BRDF Explorer file {os.path.basename(path)}",
         horizon="the shader's value (0 below the horizon; NaN, inf, negatives → 0)",
         notes=("GLSL compiled to numpy; undefined operations as docs/reference/formats.md says",),
