@@ -373,9 +373,8 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
     width_first = [(s, 0 if s and s.startswith("FWHM") else r) for s, r in parts]
     brief = [(t.replace("circles every", "circles"), r) for t, r in cap]
     variants = [[(what if s is None else s, r) for s, r in first] + c
-                for first in (width_first, parts)
-                for c, what in [*((c, x) for x in whats for c in (cap, brief)),
-                                (short, whats[-1])]]
+                for first in (width_first, parts) for what in whats for c in (cap, brief)]
+    variants.append([(whats[-1] if s is None else s, r) for s, r in parts] + short)
     bare = [(whats[-1] if s is None else s, 1 if s is None else r) for s, r in parts]
     tiny = [(re.sub(r"^log, decades below .*", "log decades", t.replace(
         "circles every", "circles")), 0) for t, _ in short]
