@@ -271,7 +271,13 @@ of presses; from 0 the declared step starts them. Typed values (Enter or `=`) ar
 against the declared range and constraints (a decimal comma is read as a point); a choice
 among many (the 100 MERL materials) is a list filtered by what is typed.
 
-The probe can also be placed with a click on the map or on a section. Presets saved with `s`
+**The mouse.** A click on the map or a section places the probe there; a click on any other
+picture (lit sphere, lit plane, θh × θd slice, f(θh), f(θd), albedo curve) reads the value
+there on the status line: the direction or angles, f per channel and f·cos θ. A drag on the
+lit sphere puts the light where the sphere's normal under the pointer points (BRDF
+Explorer's gesture; off the sphere, on the horizon); a drag on the lit plane turns φi
+(across) and θi (up and down). A drag on the 3D solid orbits it; the wheel on the solid or a
+section zooms them (×1.25 a notch). Presets saved with `s`
 go to the platform's user configuration directory (`~/.config/tuibrdf/presets/` on Linux),
 one TOML file each ([formats.md](formats.md#presets)).
 """

@@ -32,7 +32,7 @@ def test_cli_reference_is_not_argparse_help():
     # the layout is gen_docs.py's own: no "options:" block, whose spacing differs by version
     text = (ROOT / "docs/reference/cli.md").read_text(encoding="utf-8")
     assert "options:" not in text and "usage:" not in text
-    assert "- `--theta-i DEG` (required): incidence angle θi" in text
+    assert "- `--theta-i DEG [DEG ...]` (required): incidence angles θi" in text
 
 
 def test_every_key_is_in_the_keys_reference():

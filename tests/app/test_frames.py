@@ -456,7 +456,9 @@ async def test_status_line_grows_and_shrinks_with_its_text():
     # wrap: it is cut with "…" (issue 12 item 10)
     from tuibrdf.state.viewer import Side, ViewerState
 
-    app = BrdfApp(ViewerState(sides=[Side.of("gltf")]), sync=True)
+    # a coloured base (the default is grey, whose channels read as one value: issue 36)
+    app = BrdfApp(ViewerState(sides=[Side.of("gltf", {"base_color": (0.9, 0.5, 0.2)})]),
+                  sync=True)
     async with app.run_test(size=(100, 30)) as pilot:
         await pilot.pause()
         st = app.query_one("#status")

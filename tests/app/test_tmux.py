@@ -39,12 +39,13 @@ def test_viewer_in_tmux(tmp_path):
                    env={k: v for k, v in os.environ.items() if k != "TMUX"})
     try:
         # the map's frame: title line (model, θi) and the colour bar's unit under the disc
-        first = wait_for(sock, lambda s: "lambert  θi=30°" in s and "sr⁻¹" in s)
+        # (plain tuibrdf opens on Phong, issue 36)
+        first = wait_for(sock, lambda s: "phong  θi=30°" in s and "sr⁻¹" in s)
         assert "θi 30°" in first
         assert "▀" in first or "▄" in first  # the disc's half-block edge
         subprocess.run(["tmux", "-L", sock, "send-keys", "-t", "t", "Right", "Right"],
                        check=True)
-        after = wait_for(sock, lambda s: "θi 32°" in s and "lambert  θi=32°" in s)
+        after = wait_for(sock, lambda s: "θi 32°" in s and "phong  θi=32°" in s)
         assert "θi 30°" not in after
         subprocess.run(["tmux", "-L", sock, "send-keys", "-t", "t", "q"], check=True)
     finally:
@@ -91,7 +92,7 @@ def test_enlarging_past_the_minimum_shows_the_viewer_each_time(tmp_path):
                         str(h)], check=True)
 
     def viewer(s):
-        return "Enlarge the window" not in s and "θi 30°" in s and "lambert" in s
+        return "Enlarge the window" not in s and "θi 30°" in s and "phong" in s
 
     try:
         wait_for(sock, lambda s: "59×17" in s and "Enlarge the window" in s)

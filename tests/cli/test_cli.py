@@ -140,6 +140,28 @@ def test_eval_outer_product_order(capsys):
     assert all(r[2] == pytest.approx(kd / math.pi, rel=1e-5) for r in rows)
 
 
+def test_eval_several_theta_i(capsys):
+    """``--theta-i 20 50``: θi slowest, then θr × φr, with a theta_i column; each value is the
+    modified Phong closed form kd/π + ks(n+2)/(2π)·cosⁿα, α the angle between wo and the mirror
+    of wi (both in the plane φ = 0/180°, so α = |θr − θi| for φr = 0)."""
+    kd, ks, n = 0.2, 0.5, 20.0
+    rc, out, _ = run(capsys, "eval", "phong", "-p", f"kd={kd}", "-p", f"ks={ks}", "-p", f"n={n}",
+                     "--theta-i", "20", "50", "--theta-r", "20", "50", "--phi-r", "0", "--json")
+    assert rc == 0
+    doc = json.loads(out)
+    assert doc["theta_i"] == [20, 50]
+    got = [(v["theta_i"], v["theta_r"], v["phi_r"], v["f"]) for v in doc["values"]]
+    assert [g[:3] for g in got] == [(20, 20, 0), (20, 50, 0), (50, 20, 0), (50, 50, 0)]
+    for ti, tr, _, f in got:
+        want = kd / math.pi + ks * (n + 2) / (2 * math.pi) * math.cos(math.radians(tr - ti)) ** n
+        assert f == pytest.approx(want, rel=1e-12)
+    rc, out, _ = run(capsys, "eval", "phong", "--theta-i", "20", "50", "--theta-r", "20",
+                     "--phi-r", "0")
+    lines = out.splitlines()
+    assert "theta_i=" not in lines[0] and lines[1].split()[:3] == ["theta_i", "theta_r", "phi_r"]
+    assert [r.split()[0] for r in lines[2:]] == ["20", "50"]
+
+
 def test_eval_cosine_multiplies_by_cos_theta_r(capsys):
     """Lambert with --cosine at θr = 60°: kd/π · cos 60° = kd/(2π)."""
     rc, out, _ = run(capsys, "eval", "lambert", "-p", "kd=1", "--theta-i", "0",

@@ -92,7 +92,7 @@ def _help(sub: str) -> str:
 
 
 def test_theta_i_help_is_singular_where_one_value_is_taken():
-    for sub in ("eval", "render", "view"):
+    for sub in ("render", "view"):  # eval takes several θi (issue 36)
         h = " ".join(_help(sub).split())
         assert "incidence angle θi in degrees" in h and "angle(s) θi" not in h, sub
     h = " ".join(_help("albedo").split())
@@ -104,7 +104,7 @@ def test_view_has_no_color(monkeypatch, capsys):
 
     seen = []
     monkeypatch.setattr(view, "check_terminal", lambda: None)
-    monkeypatch.setattr(view, "open_viewer", lambda state, color: seen.append(color))
+    monkeypatch.setattr(view, "open_viewer", lambda state, color, *hint: seen.append(color))
     # view.run sets NO_COLOR itself: setenv first, so monkeypatch restores "unset" afterwards
     monkeypatch.setenv("NO_COLOR", "")
     monkeypatch.delenv("NO_COLOR")
@@ -122,7 +122,7 @@ def test_peak_azimuth_is_in_the_half_open_range(capsys):
         rc, out, _ = run(capsys, "render", model, "-p", p, "--theta-i", "60", "--width", "40",
                          "--height", "12", "--color", "none")
         assert rc == 0
-        head = out.splitlines()[0]
+        head = out.splitlines()[1]  # [0]: the context line
         assert "φ=180°" in head and "φ=-180°" not in head, head
 
 
@@ -151,7 +151,7 @@ def test_view_options_without_the_view_command(monkeypatch, capsys):
 
     seen = []
     monkeypatch.setattr(view, "check_terminal", lambda: None)
-    monkeypatch.setattr(view, "open_viewer", lambda state, color: seen.append(color))
+    monkeypatch.setattr(view, "open_viewer", lambda state, color, *hint: seen.append(color))
     # view.run sets NO_COLOR itself: setenv first, so monkeypatch restores "unset" afterwards
     monkeypatch.setenv("NO_COLOR", "")
     monkeypatch.delenv("NO_COLOR")

@@ -101,7 +101,7 @@ def test_render_albedo_plot_flags_only_a_model_that_gains_energy(capsys):
                      *common)
     assert rc == 0 and "not energy-conserving" not in out
     rc, out, _ = run(capsys, "render", "ggx", "-p", "kd=1", "-p", "f0=0.5", *common)
-    assert rc == 0 and "not energy-conserving" in out.splitlines()[0]
+    assert rc == 0 and "not energy-conserving" in out.splitlines()[1]
 
 
 # -- render ---------------------------------------------------------------------------------
@@ -171,11 +171,12 @@ def test_render_all_stacks_the_four_views(capsys):
                      "m=0.07", "--theta-i", "60", "--view", "all", "--color", "none")
     assert rc == 0
     lines = out.splitlines()
-    titles = [lines[k] for k in range(0, len(lines), 25)]  # 24 rows a view, a blank line
+    # after the context line, 24 rows a view and a blank line
+    titles = [lines[k] for k in range(1, len(lines), 25)]
     assert len(titles) == 4
     assert "peak 6.14" in titles[0] and "incidence" in titles[1]
     assert "through peak" in titles[2] and "a(θi=60°)" in titles[3]
-    assert len(out.splitlines()) == 4 * 24 + 3  # four 80×24 views, blank lines between
+    assert len(out.splitlines()) == 1 + 4 * 24 + 3  # context, four 80×24 views, blank lines
 
 
 def test_render_auto_color(capsys, monkeypatch):

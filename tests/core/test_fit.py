@@ -176,7 +176,7 @@ def test_fit_saves_a_comparison_preset_for_the_viewer(files, tmp_path, monkeypat
     out, err = capsys.readouterr()
     assert rc == 0, err
     assert "tuibrdf view --preset gltf-fit" in out
-    theta, sides = load_preset("gltf-fit")
+    theta, sides, _ = load_preset("gltf-fit")
     assert [s.model for s in sides] == ["merl", "gltf"]
     assert sides[0].values["file"] == str(files["gltf"].resolve())
     assert sides[1].values["roughness"] == pytest.approx(GLTF["roughness"], rel=1e-3)

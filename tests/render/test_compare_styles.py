@@ -9,7 +9,8 @@ from tuibrdf.render.panes import signed_text
 
 
 def test_each_side_has_its_own_marker_and_legend_entries():
-    rgb = np.column_stack([np.linspace(0, 1, 5)] * 3)
+    # three different channels (equal ones read as one grey curve, issue 36)
+    rgb = np.column_stack([np.linspace(0, 1, 5), np.linspace(0, 0.5, 5), np.linspace(0, 0.2, 5)])
     scalar = np.linspace(0, 2, 5)
     # compare mode's default ("rgb") shows an RGB side's luminance: six curves in one plot
     # cannot be read (issue 32)

@@ -74,8 +74,10 @@ def test_plain_output_and_deterministic():
 
 def test_rgb_model_gives_channel_curves():
     m = MODELS["gltf"]
-    curves = section_curves(m, m.resolve({}), 20, "incidence")
+    curves = section_curves(m, m.resolve({"base_color": (0.9, 0.5, 0.2)}), 20, "incidence")
     assert [c[0] for c in curves] == ["R", "G", "B"]
+    # a grey one (the default base colour, R = G = B): one curve (issue 36)
+    assert len(section_curves(m, m.resolve({"base_color": (0.8,) * 3}), 20, "incidence")) == 1
 
 
 def test_both_planes_share_one_scale_and_the_perpendicular_goes_through_the_peak():

@@ -213,7 +213,7 @@ def test_preset_round_trip_restores_every_value(config):
     path = presets.save_preset(s, "mine")
     assert path == config / "tuibrdf" / "presets" / "mine.toml"
     assert [p.name for p in path.parent.iterdir()] == ["mine.toml"]  # no temporary left
-    theta, sides = presets.load_preset("mine")
+    theta, sides, _ = presets.load_preset("mine")
     assert theta == 61.0
     assert [(x.model, x.values) for x in sides] == [(x.model, x.values) for x in s.sides]
 

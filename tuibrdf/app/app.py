@@ -32,8 +32,10 @@ from tuibrdf.core.directions import from_degrees
 from tuibrdf.core.views.frame import FrameRequest, FrameResult, section_directions
 from tuibrdf.core.views.hemimap import dir_to_uv, geometry
 from tuibrdf.core.views.sections import great_circle
-from tuibrdf.render import panes
+from tuibrdf.render import panes, pick
+from tuibrdf.render.colormap import DEFAULT_LEVELS
 from tuibrdf.render.sections import angle_at
+from tuibrdf.state.bparams import save_bparams
 from tuibrdf.state.presets import (
     PresetError,
     apply_loaded,
@@ -49,8 +51,10 @@ from tuibrdf.state.viewer import ViewerState
 #: of any key it fell on; later ones scan only the objects made since (docs/benchmarks.md)
 FREEZE_S = 1.0
 FILE_POLL_S = 1.0  # how often a model file's mtime is checked (an edit redraws)
-#: colour levels of the maps: 32 keeps a full 160×48 map update near 50 KiB (docs/benchmarks.md)
-LEVELS = 32
+#: colour levels of the maps: 256, as `render` (32 showed false contours on smooth diffuse
+#: lobes); a full truecolor update of a 110×46 map of Oren-Nayar at 60° is ≈ 90 KB instead of
+#: ≈ 29 KB (256 colours: ≈ 20 KB either way), measured with render_view on this tree
+LEVELS = DEFAULT_LEVELS
 #: the actions of the viewer itself (not of a modal screen)
 VIEWER_ACTIONS = frozenset({"state", "save", "load_next", "help", "type_value", "type_theta",
                             "write_figures", "checks"})
@@ -147,7 +151,8 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
     def look(self) -> panes.Look:
         s = self.state
         return panes.Look(self.color_system(), s.cmap, s.log, LEVELS, "auto", s.azimuth,
-                          s.elevation, s.exposure, s.gamma, channel=s.channel)
+                          s.elevation, s.exposure, s.gamma, channel=s.channel, zoom=s.zoom,
+                          slice_log=s.slice_log)
 
     def color_system(self) -> str:
         if self._color:
@@ -218,8 +223,45 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
                 if w is not None:
                     uv = dir_to_uv(w)
         if uv is None:
+            self._read(pane, view, x, y)
             return
         self._changed(self.state.set_probe(float(uv[0]), float(uv[1])))
+
+    def _read(self, pane: str, view: str, x: int, y: int) -> None:
+        """A click on any other picture: its readout in the status line."""
+        res = self.frame
+        if view == "extra":
+            view = res.request.extra or ""
+        pic = self.one(pane)
+        if view == "albedo":
+            text = pick.albedo_reading(res, ["".join(seg.text for seg in strip)
+                                             for strip in pic._strips], x)
+            if text is not None:
+                self._changed(text)
+            return
+        got = pick.pick(res, view, PANES[pane][1], x, y, pic.size.width, pic.size.height)
+        if got is not None:
+            self._changed(pick.reading(res, got))
+
+    def picture_dragged(self, pane: str, x: int, y: int, dx: int, dy: int) -> None:
+        """A drag: on the lit sphere the light goes where the sphere's normal under the
+        pointer points; on the lit plane right/left turns φi and up/down θi; on the 3D
+        solid the camera orbits (azimuth, elevation), 3° a cell."""
+        res, s = self.frame, self.state
+        if res is None or pane not in PANES:
+            return
+        view = PANES[pane][0]
+        if view == "extra" and s.view == "sphere" and res.request.extra_px is not None:
+            self._changed(s.set_light(*pick.light_at(x, y, res.request.extra_px)))
+        elif view == "extra" and s.view == "plane":
+            self._changed(s.set_light(s.theta_i - 2.0 * dy, s.phi_i + 2.0 * dx))
+        elif view == "solid":
+            self._changed(s.rotate(-3.0 * dx, 3.0 * dy))
+
+    def picture_scrolled(self, pane: str, steps: int) -> None:
+        """The wheel on the 3D solid or a section: zoom in (up) or out, ×1.25 a notch."""
+        if PANES.get(pane, ("",))[0] in ("solid", "incidence", "perpendicular"):
+            self._changed(self.state.zoom_by(1.25 ** steps))
 
     # -- actions -----------------------------------------------------------------------------
     def action_state(self, method: str, args: tuple = ()) -> None:
@@ -295,7 +337,8 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
 
         def write(name: str) -> str:
             try:
-                return f"saved {save_preset(state, name)}"
+                path = save_preset(state, name)
+                return f"saved {path}" + save_bparams(state, path)
             except (PresetError, OSError) as e:
                 return f"not saved: {e}"
 

@@ -299,7 +299,7 @@ class FrameDelivery:
                                                  look.color, res.complete, look.channel),
                "extra": (req.materials, req.extra_key, look)}.get(view)
         key = (pane, w, h, key or (what, req.section_azimuth, look.color, look.log,
-                                   look.channel))
+                                   look.channel, look.zoom))
         return key, w, h
 
     def _draw(self, pane: str, res: FrameResult) -> None:

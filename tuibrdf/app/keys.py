@@ -25,6 +25,9 @@ class Key:
     help: str  # help screen and command palette
     display: str | None = None  # how the key is written (default: the first key name)
     footer: bool = False
+    #: keys the footer shows together with one label (``← → θi``): a footer that fits 60
+    #: columns whole
+    group: str | None = None
 
     @property
     def shown(self) -> str:
@@ -38,8 +41,10 @@ def _s(method: str, *args: object) -> str:
 
 
 KEYS: tuple[Key, ...] = (
-    Key("left", _s("step_theta", -1), "θi−", "θi −1°  (shift+← −10°)", "←", footer=True),
-    Key("right", _s("step_theta", 1), "θi+", "θi +1°  (shift+→ +10°)", "→", footer=True),
+    Key("left", _s("step_theta", -1), "θi−", "θi −1°  (shift+← −10°)", "←", footer=True,
+        group="θi"),
+    Key("right", _s("step_theta", 1), "θi+", "θi +1°  (shift+→ +10°)", "→", footer=True,
+        group="θi"),
     Key("shift+left", _s("step_theta", -10), "θi −10°", "θi −10°", "shift+←"),
     Key("shift+right", _s("step_theta", 10), "θi +10°", "θi +10°", "shift+→"),
     Key("greater_than_sign", _s("step_phi_i", 15), "φi+", "light azimuth φi +15° (default 180°)",
@@ -48,12 +53,14 @@ KEYS: tuple[Key, ...] = (
     Key("up", _s("select", -1), "param ↑", "previous parameter", "↑"),
     Key("down", _s("select", 1), "param ↓", "next parameter", "↓"),
     Key("plus,right_square_bracket", _s("step_param", 1), "inc",
-        "selected parameter + step (also ]); roughness, exponents: ×1.1", "+", footer=True),
+        "selected parameter + step (also ]); roughness, exponents: ×1.1", "+", footer=True,
+        group="step"),
     Key("minus,left_square_bracket", _s("step_param", -1), "dec",
-        "selected parameter − step (also [); roughness, exponents: ÷1.1", "-", footer=True),
+        "selected parameter − step (also [); roughness, exponents: ÷1.1", "-", footer=True,
+        group="step"),
     Key("enter,equals_sign", "type_value", "type",
         "type a value for the selected parameter (range shown; a list to filter for choices)",
-        "=", footer=True),
+        "="),  # (not in the footer: it fits 60 columns whole)
     Key("t", "type_theta", "type θi", "type θi in degrees"),
     Key("right_curly_bracket", _s("step_param", 1, True), "+coarse",
         "selected parameter + coarse step (×2 for roughness, exponents)", "}"),
@@ -96,8 +103,7 @@ KEYS: tuple[Key, ...] = (
     Key("c", _s("toggle_compare"), "compare", "compare two models (B starts as A)", footer=True),
     Key("tab", _s("switch_side"), "side", "compare: keys act on A or B"),
     Key("p", _s("next_preset"), "preset",
-        "next seed comparison (diffuse, specular, then back to your own settings)",
-        footer=True),
+        "next seed comparison (diffuse, specular, then back to your own settings)"),
     Key("s", "save", "save", "save θi and parameters as a preset (TOML file)"),
     Key("P", "load_next", "load preset",
         "load the next saved preset (also: tuibrdf view --preset NAME)"),
@@ -121,7 +127,9 @@ RELAYOUT = frozenset({"cycle_model", "cycle_view", "toggle_compare", "switch_sid
 #: ``BrdfApp.check_action`` refuses them and the key goes on to that screen as before; quit
 #: stays an ordinary binding (q closes the help screen, and types a q in a text field).
 BINDINGS = [Binding(k.keys, k.action, k.short, show=k.footer, key_display=k.display,
-                    priority=k.action != "quit") for k in KEYS]
+                    priority=k.action != "quit",
+                    group=Binding.Group(k.group, compact=True) if k.group else None)
+            for k in KEYS]
 
 
 #: the help screen's key column

@@ -17,7 +17,8 @@ class HelpScreen(ModalScreen):
     BINDINGS = [Binding("escape,question_mark,q", "dismiss", "close")]
     DEFAULT_CSS = """
     HelpScreen { align: center middle; }
-    HelpScreen > VerticalScroll { width: 64; max-height: 90%; border: round $accent;
+    HelpScreen > VerticalScroll { width: 64; max-width: 100%; max-height: 90%;
+                                  border: round $accent;
                                   background: $surface; padding: 0 1; height: auto; }
     """
 

@@ -8,7 +8,9 @@ from rich.text import Text
 
 from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.views.frame import FrameResult
+from tuibrdf.core.views.negatives import negative_note
 from tuibrdf.render import VIEW_TITLES, panes
+from tuibrdf.render.text import phi_deg_text
 from tuibrdf.state.viewer import COMPARE_PRESETS, Side, ViewerState
 
 #: pane → (view, side)
@@ -51,7 +53,7 @@ def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
     line = Text()
     line.append(f"θi {s.theta_i:g}°", style="bold")
     if s.phi_i != DISPLAY.phi_i.default:
-        line.append(f" φi {s.phi_i:g}°", style="bold")
+        line.append(f" φi {phi_deg_text(s.phi_i)}°", style="bold")
     materials = tuple(x.material for x in s.sides)
     files = [f for side in s.sides for f in side_files(side) if f in loading]
     if files:
@@ -60,13 +62,17 @@ def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
                                 frame.request.cosine, frame.request.phi_i) == (
                                     materials, s.theta_i, s.cosine, s.phi_i):
         line.append_text(panes.stats_text(frame, s.view, look, terse=max(0, terse - 1)))
+        for k, side in enumerate(frame.sides):  # a user model's sign slip, said once
+            note = negative_note(side.negative)
+            if note:
+                line.append(f"  {'AB'[k] + ': ' if s.compare else ''}{note}", style="bold red")
         line.append_text(probe_text(frame, terse))
         line.append_text(energy_text(frame))
     else:
         for i in range(len(s.sides)):
             line.append(f"  {'AB'[i]}: a=…" if s.compare else "  a(θi) …")
     second = Text()
-    scale = "log (3 decades)" if s.log else "linear"
+    scale = "log (3 decades)" if (s.slice_log if s.view == "slice" else s.log) else "linear"
     second.append(f"{VIEW_TITLES[s.view]} · {scale} · {s.cmap}"
                   f"{' · f·cos θr' if s.cosine else ''}{view_settings(s)}", style="dim")
     if s.compare:

@@ -185,12 +185,54 @@ class Picture(Rows):
         if request is not None and self.display:
             request()
 
+    #: where the button went down (None: not pressed here) and whether it moved since
+    _press: tuple[int, int] | None = None
+    _dragged = False
+
     def on_click(self, event) -> None:
-        """A click on a map or a section moves the probe there (the app decides)."""
+        """A click reads the picture there (the app decides: the probe on a map or a section,
+        a readout elsewhere); the end of a drag is not a click."""
+        if self._dragged:
+            self._dragged = False
+            return
         offset = event.get_content_offset(self)
         clicked = getattr(self.app, "picture_clicked", None)
         if offset is not None and clicked is not None:
             clicked(self.pane, offset.x, offset.y)
+
+    def on_mouse_down(self, event) -> None:
+        offset = event.get_content_offset(self)
+        if offset is not None:
+            self._press, self._dragged = (offset.x, offset.y), False
+            self.capture_mouse()  # the drag goes on outside the pane
+
+    def on_mouse_move(self, event) -> None:
+        """A drag (button held): the app moves the light (lit views) or turns the solid."""
+        if self._press is None or not event.button:
+            return
+        offset = event.get_content_offset_capture(self)
+        if (offset.x, offset.y) == self._press:
+            return
+        dx, dy = offset.x - self._press[0], offset.y - self._press[1]
+        self._press, self._dragged = (offset.x, offset.y), True
+        dragged = getattr(self.app, "picture_dragged", None)
+        if dragged is not None:
+            dragged(self.pane, offset.x, offset.y, dx, dy)
+
+    def on_mouse_up(self, event) -> None:
+        self._press = None
+        self.release_mouse()
+
+    def on_mouse_scroll_up(self, event) -> None:
+        self._scrolled(+1)
+
+    def on_mouse_scroll_down(self, event) -> None:
+        self._scrolled(-1)
+
+    def _scrolled(self, steps: int) -> None:
+        scrolled = getattr(self.app, "picture_scrolled", None)
+        if scrolled is not None:
+            scrolled(self.pane, steps)
 
 
 class QuietStatic(Static):
@@ -345,7 +387,7 @@ class ParamPanel(DrawnRows):
         rows = side.rows()
         selected = min(side.selected, len(rows) - 1)
         top, n = self._window(len(rows), max(selected, 0))
-        above, below = top, len(rows) - top - n
+        above, below = top, max(0, len(rows) - top - n)  # no rows: 0 below, not −1
         label = "AB"[side_index] + ": " if state.compare else ""
         name = side.spec.title
         if os.path.isabs(name):  # a model file without a title of its own: its file name

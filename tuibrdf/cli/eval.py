@@ -4,6 +4,8 @@ The light is at ``(θi, φi)``, φi = 180° unless ``--phi-i`` moves it (SPEC §
 direction is ``(θr = θi, φr = φi − 180°)``: ``φr = 0`` by default.
 Several ``--theta-r`` and ``--phi-r`` values give their **outer product**, θr varying slowest:
 ``--theta-r 0 30 --phi-r 0 180`` prints the four rows (0, 0), (0, 180), (30, 0), (30, 180).
+Several ``--theta-i`` values (BRDF Explorer's habit of comparing incidences) repeat that for
+each θi, θi slowest, with a ``theta_i`` column.
 Values are in sr⁻¹ (no cosine factor; ``--cosine`` multiplies by cos θr), printed with
 ``%.6g`` in the table and at full precision in JSON.
 """
@@ -29,7 +31,7 @@ from tuibrdf.core.display import DISPLAY
 
 def add_args(parser: argparse.ArgumentParser) -> None:
     add_model_args(parser)
-    add_theta_i(parser)
+    add_theta_i(parser, many=True)
     add_phi_i(parser)
     parser.add_argument("--theta-r", type=theta_r_deg, nargs="+", required=True, metavar="DEG",
                         help="viewing polar angle(s) θr in degrees, in [0, 90]")
@@ -39,6 +41,9 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--cosine", action="store_true",
                         help="print f·cos θr (reflected intensity) instead of f")
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    parser.add_argument("--save-bparam", metavar="PATH",
+                        help="also write the parameters to a BRDF Explorer .bparam file (for "
+                             "a .brdf or .bparam model)")
 
 
 def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False,
@@ -59,33 +64,49 @@ def values(model, params, theta_i: float, theta_r, phi_r, cosine: bool = False,
 
 def run(args: argparse.Namespace) -> int:
     model, params = resolve(args)
-    f = values(model, params, args.theta_i, args.theta_r, args.phi_r, args.cosine, args.phi_i)
-    rows = [(tr, pr, f[a, b]) for a, tr in enumerate(args.theta_r)
-            for b, pr in enumerate(args.phi_r)]
+    if args.save_bparam:
+        from tuibrdf.cli.common import UsageError
+        from tuibrdf.core.formats.bparam_write import write_bparam
+        from tuibrdf.core.formats.files import UserFileError
+
+        try:
+            write_bparam(model, params, args.save_bparam)
+        except UserFileError as e:
+            raise UsageError(str(e)) from None
+    thetas = list(args.theta_i)
+    many = len(thetas) > 1
+    rows = []
+    for ti in thetas:
+        f = values(model, params, ti, args.theta_r, args.phi_r, args.cosine, args.phi_i)
+        rows += [(ti, tr, pr, f[a, b]) for a, tr in enumerate(args.theta_r)
+                 for b, pr in enumerate(args.phi_r)]
     quantity = "f*cos(theta_r)" if args.cosine else "f"
     if args.json:
         doc = {
             "model": model.name,
             "params": json_params(params),
-            "theta_i": args.theta_i,
+            "theta_i": thetas if many else thetas[0],
             "phi_i": args.phi_i,
             "quantity": quantity,
             "unit": "1/sr",
             "rgb": model.rgb,
-            "values": [{"theta_r": tr, "phi_r": pr, "f": v.tolist() if model.rgb else float(v)}
-                       for tr, pr, v in rows],
+            "values": [{**({"theta_i": ti} if many else {}), "theta_r": tr, "phi_r": pr,
+                        "f": v.tolist() if model.rgb else float(v)} for ti, tr, pr, v in rows],
         }
         print_json(doc)
         return 0
-    print(f"# {model.name}  {fmt_params(params)}  theta_i={fmt_number(args.theta_i)}"
+    ti_text = "" if many else f"  theta_i={fmt_number(thetas[0])}"
+    print(f"# {model.name}  {fmt_params(params)}{ti_text}"
           + (f"  phi_i={fmt_number(args.phi_i)}" if args.phi_i != DISPLAY.phi_i.default else ""))
     cols = ["f_R", "f_G", "f_B"] if model.rgb else ["f"]
     if args.cosine:
         cols = [c + "*cos" for c in cols]
-    print(" ".join([f"{'theta_r':>8}", f"{'phi_r':>8}"] + [f"{c:>12}" for c in cols])
+    first = [f"{'theta_i':>8}"] if many else []
+    print(" ".join(first + [f"{'theta_r':>8}", f"{'phi_r':>8}"] + [f"{c:>12}" for c in cols])
           + "  [1/sr]")
-    for tr, pr, v in rows:
+    for ti, tr, pr, v in rows:
         vals = v.tolist() if model.rgb else [float(v)]
-        print(" ".join([f"{fmt_number(tr):>8}", f"{fmt_number(pr):>8}"]
+        ti_col = [f"{fmt_number(ti):>8}"] if many else []
+        print(" ".join(ti_col + [f"{fmt_number(tr):>8}", f"{fmt_number(pr):>8}"]
                        + [f"{fmt_number(x):>12}" for x in vals]))
     return 0

@@ -10,8 +10,10 @@ incidence, ``--section-azimuth`` turns it), ``solid`` (3D photometric solid seen
 ``--azimuth``, ``--elevation``), ``albedo`` (a(θi) over 0–90°), ``sphere`` and ``plane`` (the
 material lit from θi, ``--exposure``, ``--gamma``), ``slice`` (θh × θd image at ``--phi-d``,
 ``--linear-theta-h``), ``theta-h`` (f against θh at ``--theta-d``, ``--phi-d``), ``theta-d`` (f
-against θd at ``--theta-h``, ``--phi-d``), or ``all``: map, both cross-sections and the albedo
-curve one below the other, each ``W × H`` cells, with a blank line between them.
+against θd at ``--theta-h``, ``--phi-d``), or ``overview`` (``all`` is its older name): map, both
+cross-sections and the albedo curve one below the other, each ``W × H`` cells, with a blank line
+between them.  A first line always names the model, θi and φi (then the parameters, as the
+width allows), whatever each view's own title has room for.
 
 Determinism: the size never comes from the terminal (default 80×24), and the console is built
 with every setting Rich would otherwise read from the environment (width, colour system,
@@ -45,8 +47,9 @@ from tuibrdf.render import CMAPS, MIN_HEIGHT, MIN_WIDTH, VIEWS
 if TYPE_CHECKING:
     from typing import Any
 
-#: what ``--view all`` draws
+#: what ``--view overview`` draws (``all``: its older name, still accepted)
 ALL = ("map", "incidence", "perpendicular", "albedo")
+OVERVIEW = ("overview", "all")
 COLORS = ("auto", "truecolor", "256", "none")
 MAX_SIZE = 1000
 
@@ -55,11 +58,11 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     add_model_args(parser, optional=True)
     add_theta_i(parser, default=DISPLAY.theta_i.default)
     add_phi_i(parser)
-    views = (*VIEWS, "all")
-    parser.add_argument("--view", type=choices_type("view", views), default="map",
-                        metavar="|".join(views),
-                        help="what to draw (default: map); all = map, both cross-sections "
-                             "and the albedo curve")
+    views = (*VIEWS, OVERVIEW[0])
+    parser.add_argument("--view", type=choices_type("view", (*views, *OVERVIEW[1:])),
+                        default="map", metavar="|".join(views),
+                        help="what to draw (default: map); overview = map, both "
+                             "cross-sections and the albedo curve (all: the same)")
     parser.add_argument("--width", type=int_in("width", MIN_WIDTH, MAX_SIZE), default=80,
                         metavar="W", help=f"width in cells (default 80, {MIN_WIDTH} to "
                                           f"{MAX_SIZE})")
@@ -137,12 +140,16 @@ def picture(model, values, args: argparse.Namespace, color: str, other=None) -> 
     from tuibrdf.render.pair import render_pair
     from tuibrdf.render.views import render_view
 
-    views = ALL if args.view == "all" else (args.view,)
+    views = ALL if args.view in OVERVIEW else (args.view,)
     buf = io.StringIO()
     con = Console(file=buf, width=args.width, color_system=None if color == "none" else color,
                   force_terminal=color != "none", no_color=False, highlight=False,
                   markup=False, emoji=False, legacy_windows=False, soft_wrap=False,
                   force_jupyter=False, force_interactive=False, _environ={})
+    con.print(context_line(model, values, args), no_wrap=True, crop=True)
+    note = negative_line(model, values, args)
+    if note:  # a user model's sign slip would otherwise look like a dark material
+        con.print(note, no_wrap=True, crop=True)
     for i, view in enumerate(views):
         if i:
             con.print()
@@ -160,6 +167,34 @@ def picture(model, values, args: argparse.Namespace, color: str, other=None) -> 
     if color == "none":  # for logs and docs: no trailing spaces
         text = "\n".join(line.rstrip() for line in text.split("\n"))
     return text
+
+
+def context_line(model, values, args: argparse.Namespace) -> str:
+    """``phong  θi=40°  φi=180°  kd=0.2 ks=0.5 n=20``: what every picture shows, whole at
+    any width (the parameters go first when the line is too long)."""
+    from tuibrdf.cli.common import fmt_params
+    from tuibrdf.core.conventions import fmt_number
+    from tuibrdf.core.material import Material
+    from tuibrdf.render.text import fit_parts, phi_deg_text
+
+    need = [Material(model, values).label, f"θi={fmt_number(args.theta_i)}°",
+            f"φi={phi_deg_text(args.phi_i)}°"]
+    line = fit_parts([*((s, 0) for s in need), (fmt_params(values), 1)], args.width)
+    if all(s in line for s in need):
+        return line
+    import textwrap  # narrower than the three: on as many lines as they take, never cut
+
+    return "\n".join(textwrap.wrap(" ".join(need), args.width, break_long_words=True,
+                                   break_on_hyphens=False))
+
+
+def negative_line(model, values, args: argparse.Namespace) -> str:
+    """``f < 0 in 12 % of directions, clamped to 0`` for a user model that goes negative at
+    this light, else ``""``."""
+    from tuibrdf.core.directions import incident
+    from tuibrdf.core.views.negatives import negative_note, negative_share
+
+    return negative_note(negative_share(model, values, incident(args.theta_i, args.phi_i)))
 
 
 #: stand-ins in a picture for a stream that cannot encode them (plot grids are dotted with ·)

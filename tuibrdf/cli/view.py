@@ -36,20 +36,30 @@ from tuibrdf.cli.common import (
     unknown,
 )
 from tuibrdf.core.display import DISPLAY
+from tuibrdf.render import VIEWS
 
 COLORS = ("auto", "truecolor", "256", "none")
 FITS = ("abc", "sgd")
+#: what plain ``tuibrdf`` shows: a glossy lobe over a diffuse base (a flat Lambert disc
+#: taught nothing about lobes), with :data:`FIRST_HINT` on the status line
+FIRST_MODEL = "phong"
+FIRST_HINT = "←/→ move the light · ↑/↓ +/- a parameter · v next view · m next model · ? keys"
+#: views the viewer always shows beside the main one (not a --view of their own)
+SECTIONS = ("incidence", "perpendicular")
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("model", nargs="?", default=None, metavar="MODEL|FILE",
                         help="model name (see 'tuibrdf models') or a file: .brdf, .bparam "
                              "(BRDF Explorer), .py (Python model), .bsdf (RGL), .binary (MERL) "
-                             "(default: lambert)")
+                             "(default: phong, a glossy lobe)")
     parser.add_argument("-p", "--param", action="append", default=[], metavar="NAME=VALUE",
                         help="set a parameter (repeatable); RGB as R,G,B; angles in degrees")
     add_theta_i(parser, default=DISPLAY.theta_i.default)
     add_phi_i(parser)
+    parser.add_argument("--view", metavar="NAME", default=None,
+                        help="start in this main view (v cycles them): " + ", ".join(
+                            v for v in VIEWS if v not in SECTIONS) + " (default: map)")
     parser.add_argument("--preset", metavar="NAME",
                         help="load a saved preset, or a seed comparison: diffuse, specular")
     parser.add_argument("--color", type=choices_type("color mode", COLORS), default="auto",
@@ -141,9 +151,9 @@ def _build_state(args: argparse.Namespace):
 
     sides = material_sides(args)
     if sides is not None:
-        return ViewerState(sides=sides, theta_i=float(args.theta_i),
-                           phi_i=float(args.phi_i) % 360.0)
-    name = args.model or "lambert"
+        return with_view(ViewerState(sides=sides, theta_i=float(args.theta_i),
+                                     phi_i=float(args.phi_i) % 360.0), args)
+    name = args.model or FIRST_MODEL
     tokens = list(args.param)
     if name.lower().endswith(".binary"):
         if "merl" not in MODELS:
@@ -181,10 +191,10 @@ def _build_state(args: argparse.Namespace):
                              f"(available: {have})")
         if exists:
             try:
-                theta, sides = load_preset(args.preset)
+                loaded = load_preset(args.preset)
             except PresetError as e:
                 raise UsageError(str(e)) from None
-            apply_loaded(state, theta, sides)
+            apply_loaded(state, *loaded)
         else:
             msg = state.apply_preset(args.preset)
             if msg:
@@ -196,6 +206,23 @@ def _build_state(args: argparse.Namespace):
                 # then the whole file, as `eval` reads it (NaN and inf are found only there);
                 # the viewer's own load is then a cache hit
                 load_cached(side.values[p.name])
+    return with_view(state, args)
+
+
+def with_view(state, args: argparse.Namespace):
+    """``state`` in the main view ``--view`` names (it wins over a preset's); UsageError for a
+    name the viewer's ``v`` cycle does not have."""
+    from tuibrdf.state.viewer import MAIN_VIEWS
+
+    view = getattr(args, "view", None)
+    if view is None:
+        return state
+    if view in SECTIONS:
+        raise UsageError(f"--view {view}: the cross-sections are always shown beside the main "
+                         f"view; main views: {', '.join(MAIN_VIEWS)}")
+    if view not in MAIN_VIEWS:
+        raise UsageError(unknown("--view: unknown view", view, list(MAIN_VIEWS)))
+    state.view = view
     return state
 
 
@@ -219,13 +246,14 @@ def web_driver() -> bool:
     return module == "textual.drivers.web_driver"
 
 
-def open_viewer(state, color: str | None, output_dir: str | None = None) -> int:
+def open_viewer(state, color: str | None, message: str = "",
+                output_dir: str | None = None) -> int:
     """Run the Textual app (the only place Textual is imported); its exit status."""
     from pathlib import Path
 
     from tuibrdf.app.app import BrdfApp
 
-    app = BrdfApp(state, color=color)
+    app = BrdfApp(state, color=color, message=message)
     if output_dir is not None:
         app.output_dir = Path(output_dir).absolute()  # a later cd does not move it
     app.run()  # a crash: Textual restores the terminal, prints the error, sets return_code 1
@@ -248,6 +276,8 @@ def run(args: argparse.Namespace) -> int:
     elif args.color != "auto":
         os.environ["TEXTUAL_COLOR_SYSTEM"] = "truecolor" if args.color == "truecolor" \
             else "256"
-    # only when given: open_viewer(state, color) stays the call without it
+    first = not (args.model or args.preset or args.material)
+    # output_dir only when given: open_viewer(state, color, message) without it
     kw = {} if args.output_dir is None else {"output_dir": args.output_dir}
-    return open_viewer(state, None if args.color == "auto" else args.color, **kw) or 0
+    return open_viewer(state, None if args.color == "auto" else args.color,
+                       FIRST_HINT if first else "", **kw) or 0

@@ -12,7 +12,9 @@ kind      value                             notes
 float     a real in ``[min, max]``          ``unit == "deg"`` is converted to radians
                                             before it reaches a kernel
 rgb       three reals in ``[min, max]``     one panel row per channel
-choice    one of ``choices``                cycled with +/- in the UI
+choice    one of ``choices``                cycled with +/- in the UI; a *bool* is the
+                                            choice ``off``/``on`` (:data:`BOOL_CHOICES`),
+                                            which also accepts 0/1, true/false, yes/no
 path      a file path                       the MERL file
 ========  ================================  =========================================
 """
@@ -28,6 +30,24 @@ from typing import Any
 from tuibrdf.core.conventions import fmt_number
 
 Value = float | tuple[float, float, float] | str
+
+#: a bool parameter is the choice ``off``/``on``; :func:`parse_bool` reads the other spellings
+BOOL_CHOICES = ("off", "on")
+_BOOL_WORDS = {"0": "off", "1": "on", "off": "off", "on": "on", "false": "off", "true": "on",
+               "no": "off", "yes": "on"}
+
+
+def parse_bool(value: Any) -> str | None:
+    """``"on"``/``"off"`` for any spelling of a switch (0/1, true/false, on/off, yes/no, any
+    case, Python ``True``/``False`` and the ints/floats 0 and 1), else None — the one parser
+    for CLI ``-p``, the Python API, presets and typed values."""
+    if isinstance(value, bool):
+        return "on" if value else "off"
+    if isinstance(value, int | float):
+        return "on" if value == 1 else "off" if value == 0 else None
+    if isinstance(value, str):
+        return _BOOL_WORDS.get(value.strip().lower())
+    return None
 
 
 @dataclass(frozen=True)
@@ -61,6 +81,8 @@ class Param:
 
     def range_text(self) -> str:
         """The valid values, as every error message and listing shows them."""
+        if self.is_bool:
+            return "on/off (also 1/0, true/false, yes/no)"
         if self.kind == "choice":
             return self.choices_doc or "one of " + ", ".join(self.choices)
         if self.kind == "path":
@@ -104,8 +126,14 @@ class Param:
             raise ValueError(bad)
         return v
 
+    @property
+    def is_bool(self) -> bool:
+        return self.kind == "choice" and self.choices == BOOL_CHOICES
+
     def choice(self, value: Any) -> str | None:
         """The canonical choice ``value`` names (case-insensitive, aliases mapped), or None."""
+        if self.is_bool:
+            return parse_bool(value)
         if not isinstance(value, str):
             return None
         v = value.lower()
@@ -119,7 +147,9 @@ class Param:
         where = f"{model}: " if model else ""
         names = [*self.choices, *(a for a, _ in self.aliases)]
         msg = unknown_message(f"{where}{self.name}: unknown choice", value, names)
-        if self.choices_doc:
+        if self.is_bool:
+            msg = msg[: msg.index("; valid: ")] + f"; valid: {self.range_text()}"
+        elif self.choices_doc:
             msg = msg[: msg.index("; valid: ")] + f"; valid: {self.choices_doc}"
         return msg
 
@@ -174,6 +204,9 @@ class Model:
     #: **kernel_params) -> (wo, pdf)`` and ``pdf(wi, wo, **kernel_params)``
     #: (:mod:`tuibrdf.core.brdf.sampling`; ``tuibrdf check`` runs its χ² test)
     sampler: Any = None
+    #: a user file's kernel *before* negative values are clamped to 0 (None: a built-in
+    #: model), for the note saying how much is clamped (:mod:`tuibrdf.core.negatives`)
+    raw_kernel: Callable[..., Any] | None = None
 
     def param(self, name: str) -> Param:
         for p in self.params:

@@ -39,7 +39,7 @@ from tuibrdf.core.conventions import fmt_value, luminance
 from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.numerics import snapped_floor, snapped_rint
 from tuibrdf.render import CMAPS
-from tuibrdf.render.halfblock import TRANSPARENT, HalfBlockImage
+from tuibrdf.render.halfblock import TRANSPARENT, HalfBlockImage, register_ramp
 
 RGB_MODES: tuple[str, ...] = ("color", "luminance")
 DEFAULT_LEVELS = 256
@@ -202,8 +202,11 @@ def _palette(name: str, levels: int) -> np.ndarray:
 
 
 def palette(name: str, levels: int = DEFAULT_LEVELS) -> np.ndarray:
-    """``(levels, 3)`` uint8 palette of map ``name`` (cached, read-only)."""
-    return _palette(check_cmap(name), check_levels(levels))
+    """``(levels, 3)`` uint8 palette of map ``name`` (cached, read-only), registered as a ramp
+    (256 colours: lightness never falls, :func:`~.halfblock.ramp_to_xterm`)."""
+    pal = _palette(check_cmap(name), check_levels(levels))
+    register_ramp(pal)
+    return pal
 
 
 @dataclass(frozen=True)

@@ -46,6 +46,9 @@ def channel_curves(label: str, values: np.ndarray, channel: str = "rgb"
     ``[("R", r), ("G", g), ("B", b)]``, ``lum`` the Rec.709 luminance, or one of R, G, B."""
     if values.ndim != 2:
         return [(label, values)]
+    if values.shape[-1] == 3 and np.array_equal(values[:, 0], values[:, 1]) and \
+            np.array_equal(values[:, 0], values[:, 2]):
+        return [(label, values[:, 0])]  # a grey model (R = G = B): one curve, its own name
     if channel == "lum":
         from tuibrdf.core.conventions import luminance
 

@@ -21,7 +21,9 @@ Colour systems (``rows(system)``):
 ===========  ================================================================================
 truecolor    24-bit colours, as given
 256          the palette is first mapped to the xterm colours 16–255 (nearest, squared RGB
-             distance), *then* runs are found, so neighbours landing on one index merge
+             distance; a colour map's ramp nearest in OKLab with its lightness never
+             falling, :func:`ramp_to_xterm`), *then* runs are found, so neighbours landing
+             on one index merge
 none         plain text: one character per cell from :data:`ASCII_RAMP`, by the mean Rec.709
              luma of its two pixels, so the picture stays readable in a log file
 ===========  ================================================================================
@@ -107,6 +109,62 @@ def to_xterm(rgb: np.ndarray) -> np.ndarray:
     cand = XTERM[16:].astype(np.int64)
     d = ((rgb[..., None, :] - cand) ** 2).sum(axis=-1)
     return (16 + np.argmin(d, axis=-1)).astype(np.int64)
+
+
+def oklab(rgb: np.ndarray) -> np.ndarray:
+    """OKLab ``(L, a, b)`` of 8-bit sRGB colours ``(..., 3)`` (Ottosson 2020: sRGB decoded to
+    linear, the LMS matrix, a cube root, the Lab matrix); L ≈ perceived lightness in [0, 1]."""
+    c = np.asarray(rgb, dtype=float) / 255.0
+    lin = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+    lms = np.cbrt(lin @ _OK_M1.T)
+    return lms @ _OK_M2.T
+
+
+_OK_M1 = np.array([[0.4122214708, 0.5363325363, 0.0514459929],
+                   [0.2119034982, 0.6806995451, 0.1073969566],
+                   [0.0883024619, 0.2817188376, 0.6299787005]])
+_OK_M2 = np.array([[0.2104542553, 0.7936177850, -0.0040720468],
+                   [1.9779984951, -2.4285922050, 0.4505937099],
+                   [0.0259040371, 0.7827717662, -0.8086757660]])
+_XTERM_LAB = oklab(XTERM[16:])
+#: colour-map ramps (:func:`register_ramp`) → their xterm indices, lightness never falling
+_RAMPS: dict[bytes, np.ndarray] = {}
+
+
+def ramp_to_xterm(ramp: np.ndarray) -> np.ndarray:
+    """xterm indices (16–255) for an ordered colour ramp: each entry the nearest colour in
+    OKLab among those at least as light as the previous entry's choice, so the ramp never
+    steps back in lightness (nearest in RGB, viridis' dark blues went through colour 60, a
+    grey-lilac lighter than its neighbours: a false contour around every lobe)."""
+    lab = oklab(ramp)
+    out = np.empty(len(lab), dtype=np.int64)
+    floor = -np.inf
+    for i, c in enumerate(lab):
+        d = ((_XTERM_LAB - c) ** 2).sum(axis=-1)
+        d[_XTERM_LAB[:, 0] < floor - 1e-12] = np.inf  # darker than the last choice: not allowed
+        j = int(np.argmin(d))
+        out[i], floor = 16 + j, _XTERM_LAB[j, 0]
+    return out
+
+
+def register_ramp(ramp: np.ndarray) -> None:
+    """Declare ``ramp`` (``(L, 3)`` uint8, dark to light) a colour map's palette: a picture whose
+    palette begins with it is drawn in 256 colours with :func:`ramp_to_xterm`."""
+    key = np.ascontiguousarray(ramp, dtype=np.uint8).tobytes()
+    if key not in _RAMPS:
+        _RAMPS[key] = ramp_to_xterm(ramp)
+
+
+def xterm_indices(palette: np.ndarray) -> np.ndarray:
+    """The xterm colours a palette is drawn with in 256 colours: a registered ramp's
+    (:func:`register_ramp`) for the entries it begins with, :func:`to_xterm` for the rest
+    (the ring, marks, an RGB picture's colours)."""
+    pal = np.ascontiguousarray(palette, dtype=np.uint8)
+    for key, xi in _RAMPS.items():
+        n = len(xi)
+        if len(pal) >= n and pal[:n].tobytes() == key:
+            return np.concatenate([xi, to_xterm(pal[n:])]) if len(pal) > n else xi
+    return to_xterm(pal)
 
 
 def luma(rgb: np.ndarray) -> np.ndarray:
@@ -328,7 +386,7 @@ class HalfBlockImage:
 
     def _color_codes(self, top, bottom, system):
         if system == "256":
-            xi = np.append(to_xterm(self.palette), -1)  # index -1 picks the appended -1
+            xi = np.append(xterm_indices(self.palette), -1)  # index -1 picks the appended -1
             top, bottom = xi[top], xi[bottom]
             base = 257
             colors: list = list(range(256))

@@ -86,7 +86,8 @@ def axis_line(width: int, positions: list[float], labels: list[str], name: str) 
     return Text(head + "".join(line).rstrip(), no_wrap=True, overflow="crop")
 
 
-def scale_note(f: np.ndarray, valid: np.ndarray, vmax: float) -> list[list[tuple[str, int]]]:
+def scale_note(f: np.ndarray, valid: np.ndarray, vmax: float,
+               limit_deg: float = SCALE_LIMIT_DEG) -> list[list[tuple[str, int]]]:
     """Title parts, in wordings from the longest: ``max 0.65 sr⁻¹``, or when grazing values
     clip ``scale 0.65 sr⁻¹ (θ≤85°)`` and (less important) ``max 1e+32``.  A clipped scale is
     kept (without its unit in a narrow view) rather than dropped: a curve leaving the top of
@@ -94,7 +95,7 @@ def scale_note(f: np.ndarray, valid: np.ndarray, vmax: float) -> list[list[tuple
     v = f[valid] if f.ndim == valid.ndim else f[valid].max(axis=-1)
     peak = float(v.max()) if v.size else 0.0
     if peak > vmax * (1 + 1e-9):
-        top, limit = fmt_value(vmax), f"(θ≤{SCALE_LIMIT_DEG:g}°)"
+        top, limit = fmt_value(vmax), f"(θ≤{limit_deg:g}°)"
         rest = (f"max {fmt_value(peak)}", 3)
         return [[(f"scale {top} sr⁻¹ {limit}", 0), rest], [(f"scale {top} {limit}", 0), rest],
                 [(f"scale {top} sr⁻¹ {limit}", 1), rest]]
@@ -106,10 +107,17 @@ def slice_pixels(width: int, height: int) -> tuple[int, int]:
     return int(width) - MARGIN, 2 * (int(height) - 4)
 
 
+#: the slice's colour scale stops at the largest value with wi and wo within this of the
+#: normal: a grazing blow-up (Cook-Torrance's 1/cos, 10⁴ sr⁻¹ at θd → 90°) would otherwise
+#: leave the specular strip at θh ≈ 0 black; the title names the limit when it clips
+SLICE_LIMIT_DEG = 60.0
+
+
 def slice_scale(extra: tuple, phi_d_deg: float) -> float:
-    """The colour scale's top of a slice ``(f, valid, θh, θd)`` (:func:`scale_max`)."""
+    """The colour scale's top of a slice ``(f, valid, θh, θd)`` (:func:`scale_max` within
+    :data:`SLICE_LIMIT_DEG`)."""
     f, _, th, td = extra
-    return scale_max(f, th[None, :], td[:, None], phi_d_deg)
+    return scale_max(f, th[None, :], td[:, None], phi_d_deg, SLICE_LIMIT_DEG)
 
 
 def slice_picture(name: str, f: np.ndarray, valid: np.ndarray, th: np.ndarray, td: np.ndarray,
@@ -147,8 +155,9 @@ def slice_picture(name: str, f: np.ndarray, valid: np.ndarray, th: np.ndarray, t
     bar_cmap = "grey" if (data.ndim == 3 and rgb_mode == "color") else cmap
     bar = colorbar(col.scale, bar_cmap, int(width), levels=levels, color_system=color)
     head = first_fitting([[(name, 2), (f"θh×θd at φd={phi_d_deg:g}°", 0), *note,
+                           (f"log, {LOG_DECADES:g} decades" if log else "", 1),
                            ("√θh axis" if sqrt_h else "linear θh", 3)]
-                          for note in scale_note(f, valid, vmax)], int(width))
+                          for note in scale_note(f, valid, vmax, SLICE_LIMIT_DEG)], int(width))
     return Group(head, LeftLabelled(image, labels, color), axis, bar)
 
 

@@ -20,6 +20,7 @@ whose it is.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -53,6 +54,7 @@ from tuibrdf.render.text import (
     RING_RGB,
     first_fitting,
     mark_legend,
+    phi_deg_text,
     title,
     where,
 )
@@ -87,6 +89,10 @@ class Look:
     charset: str = "braille"  # the sections and line plots (render/braille.py)
     #: the curves of an RGB model (sections, albedo): rgb (three) | lum | R | G | B
     channel: str = "rgb"
+    #: the 3D solid's and the sections' magnification (the viewer's mouse wheel)
+    zoom: float = 1.0
+    #: the θh×θd slice's own scale (None: as ``log``; the viewer's default is log)
+    slice_log: bool | None = None
 
     @property
     def rgb(self) -> str:
@@ -170,6 +176,9 @@ def albedo_text(a, error=None) -> str:
     (the digits shown follow the error)."""
     if a is None:
         return "…"
+    if isinstance(a, tuple) and len(set(a)) == 1:
+        a = a[0]  # R = G = B (a grey model): one value
+        error = None if error is None else float(np.max(np.asarray(error, dtype=float)))
     vals = a if isinstance(a, tuple) else (a,)
     top = max(abs(float(x)) for x in vals)
     err = None if error is None else float(np.max(np.asarray(error, dtype=float)))
@@ -373,7 +382,7 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
     t = res.request.theta_i
     canvas, caption = polar_canvas(curves, w, h - 1, log=look.log, color=look.color,
                                    theta_i_deg=t if plane == "incidence" else None, vmax=vmax,
-                                   charset=look.charset)
+                                   charset=look.charset, zoom=look.zoom)
     az = res.request.section_azimuth
     if plane == "perpendicular":
         s0 = res.sides[0]
@@ -384,10 +393,10 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
         if s0.peaks[0].theta_deg > HORIZON_DEG:
             # the section across a peak on the horizon is the horizon: it goes through the
             # peak's direction lowered to 89° instead, and says so
-            at = f"θ={th:g}° φ={round(ph) % 360:g}°"
+            at = f"θ={th:g}° φ={phi_deg_text(ph)}°"
             whats = [f"{name} through {at}, below the peak", f"{name} {at} below peak", name]
         else:
-            whats = [f"{name} through peak θ={round(th, 1):g}° φ={round(ph) % 360:g}°", name]
+            whats = [f"{name} through peak θ={round(th, 1):g}° φ={phi_deg_text(ph)}°", name]
     else:
         whats = [plane]
     if compare:
@@ -404,7 +413,8 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
                      (width_s, 1), (fn, 5)]
         else:
             parts = [(res.sides[0].material.label, 2), (f"θi={t:g}°", 3), (None, 0),
-                     (f"(φ {res.request.phi_i:g}°|{(res.request.phi_i + 180) % 360:g}°)", 4),
+                     (f"(φ {phi_deg_text(res.request.phi_i)}°|"
+                      f"{phi_deg_text(res.request.phi_i + 180)}°)", 4),
                      (fn, 1)]
     cap = caption_parts(caption)
     shown = "lum" if compare and look.channel == "rgb" else look.channel  # (side_curves)
@@ -413,9 +423,23 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
         # "section max" reads as a disagreement with the map's "(red)" peak
         cap[0] = (f"{cap[0][0]} ({CHANNEL_TAGS.get(shown, shown)})", 0)
     # narrower: "max 0.113" (the pane's title says it is a section) before any crop
-    short = [(cap[0][0].replace("section max", "max", 1), 0), *cap[1:]]
-    variants = [[(what if s is None else s, r) for s, r in parts] + c
-                for c, what in [*((cap, x) for x in whats), (short, whats[-1])]]
+    # the radial scale (max and circle spacing) is kept whole at every width (issue 36: at
+    # 80×24 the spacing went first): narrower, "max" and a shorter log note, then without
+    # the plane's name
+    cap = [(t, 0) for t, _ in cap]
+    short = [(t.replace("section max", "max", 1).replace(
+        "log, circles every decade below", "log, decades below"), 0) for t, _ in cap]
+    # the lobe's width whole first (then the longer wordings of where the plane passes)
+    width_first = [(s, 0 if s and s.startswith("FWHM") else r) for s, r in parts]
+    brief = [(t.replace("circles every", "circles"), r) for t, r in cap]
+    variants = [[(what if s is None else s, r) for s, r in first] + c
+                for first in (width_first, parts) for what in whats for c in (cap, brief)]
+    variants.append([(whats[-1] if s is None else s, r) for s, r in parts] + short)
+    bare = [(whats[-1] if s is None else s, 1 if s is None else r) for s, r in parts]
+    tiny = [(re.sub(r"^log, decades below .*", "log decades", t.replace(
+        "circles every", "circles")), 0) for t, _ in short]
+    named = [(whats[-1] if s is None else s, r) for s, r in parts]
+    variants += [named + tiny, bare + short, bare + tiny]
     return Group(first_fitting(variants, w), canvas)
 
 
@@ -440,7 +464,9 @@ def extra_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Renderab
         f, valid, th, td = side.extra
         vmax = max(halfdiff_view.slice_scale(s.extra, req.phi_d) for s in res.sides)
         return halfdiff_view.slice_picture(name, f, valid, th, td, w, h, phi_d_deg=req.phi_d,
-                                           sqrt_h=req.sqrt_h, vmax=vmax, log=look.log,
+                                           sqrt_h=req.sqrt_h, vmax=vmax,
+                                           log=look.log if look.slice_log is None
+                                           else look.slice_log,
                                            cmap=look.cmap, levels=look.levels,
                                            rgb_mode=look.rgb_mode, color=look.color)
     vmax = max(halfdiff_view.line_scale(req.extra, s.extra, req) for s in res.sides)
@@ -460,7 +486,7 @@ def solid_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     index, pal = solid_image(side.solid, res.request.theta_i, w, 2 * (h - 1), rmax=rmax,
                              phi_i_deg=res.request.phi_i,
                              cmap=look.cmap, log=look.log, azimuth_deg=look.azimuth,
-                             elevation_deg=look.elevation)
+                             elevation_deg=look.elevation, zoom=look.zoom)
     what = "f·cosθr·wo" if res.request.cosine else "f·wo"
     if look.log:
         what += f" (log, {LOG_DECADES:g} decades)"

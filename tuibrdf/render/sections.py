@@ -134,9 +134,11 @@ def polar_canvas(
     color: str = "truecolor",
     vmax: float | None = None,
     charset: str = "braille",
+    zoom: float = 1.0,
 ) -> tuple[BrailleCanvas, str]:
     """The polar plot of ``curves`` (:data:`.curves.Curve`) on a ``width × height`` canvas;
-    returns ``(canvas, caption)``."""
+    returns ``(canvas, caption)``.  ``zoom`` > 1 magnifies about the origin (what leaves the
+    window is clipped; the caption says ×zoom)."""
     own = max((float(np.max(c[2])) for c in curves), default=0.0)
     vmax = max(own, vmax or 0.0)
     vmax = vmax if vmax > 0 else 1.0  # an all-zero curve still gets a unit circle
@@ -149,7 +151,10 @@ def polar_canvas(
         guides = list(step * np.arange(1, int(np.floor(vmax / step + 1e-9)) + 1))
         rmax = max(vmax, guides[-1] if guides else vmax)
         caption = f"section max {fmt_value(own)} · circles every {fmt_value(step)}"
-    xr, y0, y1 = plot_window(width, height, rmax)
+    if zoom != 1.0:  # after the maximum: the circle spacing goes first in a narrow title
+        first, sep, rest = caption.partition(" · ")
+        caption = f"{first} · zoom ×{zoom:.3g}{sep}{rest}"
+    xr, y0, y1 = plot_window(width, height, rmax / zoom)  # zoom ≥ 1/8 (ViewerState.zoom_by)
     canvas = BrailleCanvas(width, height, (-xr, xr), (y0, y1), color=color, charset=charset)
     canvas.layer(GUIDE, "sparse", ".")  # layer 0
     canvas.owner[...] = guide_dots(width, height, xr, y0, y1, rmax, tuple(guides))

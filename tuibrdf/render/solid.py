@@ -127,8 +127,10 @@ def solid_image(
     azimuth_deg: float = DISPLAY.azimuth.default,
     elevation_deg: float = DISPLAY.elevation.default,
     phi_i_deg: float = DISPLAY.phi_i.default,
+    zoom: float = 1.0,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """``(index (px_h, px_w), palette)`` of the shaded solid (the light's guide at θi, φi).
+    """``(index (px_h, px_w), palette)`` of the shaded solid (the light's guide at θi, φi),
+    magnified ``zoom`` times about the picture's centre (what leaves it is clipped).
 
     ``values``: :func:`tuibrdf.core.views.frame.solid_values` (at the samples, then at the face
     corners; RGB values are drawn by their luminance); ``rmax``: the radius scale, the frame's
@@ -177,7 +179,7 @@ def solid_image(
     # scale stays put while the view rotates: base circle y ∈ ±r|sin el|, normal tip 1.1·r·cos el
     se, ce = abs(np.sin(np.radians(elevation_deg))), np.cos(np.radians(elevation_deg))
     lo, hi = min(-se, 1.1 * ce) * scale_r, max(se, 1.1 * ce) * scale_r
-    k = min(px_w / (2.3 * scale_r), px_h / (1.05 * (hi - lo)))
+    k = zoom * min(px_w / (2.3 * scale_r), px_h / (1.05 * (hi - lo)))
     cols = snapped_floor(px_w / 2 + xyz[:, 0] * k).astype(np.int64)
     rows = snapped_floor(px_h / 2 - (xyz[:, 1] - (lo + hi) / 2) * k).astype(np.int64)
     ok = (cols >= 0) & (cols < px_w) & (rows >= 0) & (rows < px_h)

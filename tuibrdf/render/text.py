@@ -77,5 +77,10 @@ def mark_legend(color: str) -> str:
 def where(theta_deg: float, phi_deg: float) -> str:
     """``θ=62° φ=0°``: whole degrees, as ints so a tiny negative φ never reads ``-0°``; φ in
     (−180°, 180°], the one convention of every picture and the CLI."""
-    ph = round(phi_deg)
-    return f"θ={round(theta_deg)}° φ={ph + 360 if ph <= -180 else ph}°"
+    return f"θ={round(theta_deg)}° φ={phi_deg_text(phi_deg)}°"
+
+
+def phi_deg_text(phi_deg: float) -> str:
+    """An azimuth as every title writes it: whole degrees in (−180°, 180°] (315° is −45°)."""
+    ph = round(phi_deg) % 360
+    return str(ph - 360 if ph > 180 else ph)

@@ -8,10 +8,18 @@ read from there and from where earlier versions saved them on every system,
 the same directory on Linux), so no preset is lost; a name in both is the new one.  Files are
 read with :mod:`tomllib` and written atomically (a temporary file in the same directory, then
 :func:`os.replace`), so a crash never leaves half a preset behind.  A
-preset holds θi and one or two sides (two in compare mode)::
+preset holds θi, the look (:data:`LOOK`: the main view, φi, ψ, log scale, colour map,
+channel, exposure, gamma, the fixed angles, the solid's camera) and one or two sides (two in
+compare mode)::
 
     # tuibrdf preset
     theta_i = 45.0
+
+    [look]
+    view = "sphere"
+    phi_i = 180.0
+    log = true
+    ...
 
     [[sides]]
     model = "phong"
@@ -23,7 +31,9 @@ reader checks that the path is a regular file of at most :data:`MAX_BYTES` befor
 400-digit integer, 600-deep nesting, a 5 000-digit number) is a message, not an exception.
 Saving and listing remove temporary files that a killed save left behind (``.NAME.*.partial``,
 older than :data:`STALE_SECONDS`); a failed save (read-only or full disk, the presets path is
-a file) is a :class:`PresetError` too.
+a file) is a :class:`PresetError` too.  A preset without ``[look]`` (saved by an earlier
+version) loads as before: θi and the sides, the rest of the look left as it is; a look key
+this version does not know is ignored (a newer version's preset still loads).
 
 Nothing here blocks for long, but it does touch the disk: a caller with an event loop runs
 :func:`load_preset` and :func:`save_preset` in a worker thread.
@@ -38,13 +48,14 @@ import re
 import tempfile
 import time
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.formats.files import read_regular
 from tuibrdf.core.registry import get_model
+from tuibrdf.render import CMAPS
 from tuibrdf.state import sandbox
-from tuibrdf.state.viewer import Side, ViewerState
+from tuibrdf.state.viewer import CHANNEL_NAMES, MAIN_VIEWS, Side, ViewerState
 
 NAME_RE = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]{0,63}$")
 
@@ -56,6 +67,24 @@ MAX_BYTES = 64 * 1024
 TMP_SUFFIX = ".partial"
 #: a temporary file older than this is left over from a killed save (a save takes milliseconds)
 STALE_SECONDS = 60.0
+
+
+#: the look a preset remembers: :class:`ViewerState` attributes; numbers with their
+#: :data:`DISPLAY` range, switches, and names from a list
+LOOK_NUMBERS = ("phi_i", "section_azimuth", "exposure", "gamma", "theta_d", "theta_h", "phi_d",
+                "azimuth", "elevation")
+LOOK_FLAGS = ("log", "cosine", "sqrt_h", "slice_log")
+LOOK_NAMES = {"view": MAIN_VIEWS, "cmap": CMAPS, "channel": tuple(CHANNEL_NAMES)}
+LOOK = (*LOOK_NAMES, *LOOK_NUMBERS, *LOOK_FLAGS)
+
+
+class Preset(NamedTuple):
+    """A loaded preset: θi, the sides, and the look (empty for a preset saved before looks
+    were: then the viewer's look is left as it is)."""
+
+    theta_i: float
+    sides: list[Side]
+    look: dict[str, Any] = {}
 
 
 class PresetError(ValueError):
@@ -172,7 +201,8 @@ def _key(k: str) -> str:
 
 
 def to_toml(state: ViewerState) -> str:
-    lines = ["# tuibrdf preset", f"theta_i = {_toml_value(state.theta_i)}"]
+    lines = ["# tuibrdf preset", f"theta_i = {_toml_value(state.theta_i)}", "", "[look]"]
+    lines += [f"{k} = {_toml_value(getattr(state, k))}" for k in LOOK]
     for side in state.sides:
         params = ", ".join(f"{_key(k)} = {_toml_value(v)}" for k, v in side.values.items())
         lines += ["", "[[sides]]", f"model = {_toml_value(side.model)}",
@@ -242,8 +272,9 @@ def _unlink_quietly(path: str) -> None:
 
 
 # -- reading ------------------------------------------------------------------------------
-def from_toml(text: str, where: str = "preset") -> tuple[float, list[Side]]:
-    """Parse and validate a preset: ``(theta_i, sides)``.  Raises :class:`PresetError`."""
+def from_toml(text: str, where: str = "preset") -> Preset:
+    """Parse and validate a preset: ``(theta_i, sides, look)``.  Raises
+    :class:`PresetError`."""
     import tomllib  # ≈ 20 ms (its regular expressions): when a preset is read, not at start
 
     try:
@@ -283,7 +314,33 @@ def from_toml(text: str, where: str = "preset") -> tuple[float, list[Side]]:
             sides.append(Side(model.name, model.resolve(params)))
         except (ValueError, OverflowError) as e:  # OverflowError: float() of a 400-digit int
             raise PresetError(f"{where}: {_one_line(str(e))}") from None
-    return float(theta), sides
+    return Preset(float(theta), sides, _look(data.get("look", {}), where))
+
+
+def _look(raw: Any, where: str) -> dict[str, Any]:
+    """The ``[look]`` table, validated: each key's value in its range or list."""
+    if not isinstance(raw, dict):
+        raise PresetError(f"{where}: look must be a table")
+    look: dict[str, Any] = {}
+    for k, v in raw.items():
+        if k in LOOK_NAMES:
+            if v not in LOOK_NAMES[k]:
+                raise PresetError(f"{where}: look.{k} = {_one_line(repr(v), 40)} is invalid: "
+                                  f"expected one of {', '.join(LOOK_NAMES[k])}")
+        elif k in LOOK_FLAGS:
+            if not isinstance(v, bool):
+                raise PresetError(f"{where}: look.{k} = {_one_line(repr(v), 40)} is invalid: "
+                                  "expected true or false")
+        elif k in LOOK_NUMBERS:
+            s = getattr(DISPLAY, k)
+            if isinstance(v, bool) or not isinstance(v, int | float) or not s.accepts(v):
+                raise PresetError(f"{where}: look.{k} = {_one_line(repr(v), 40)} is invalid: "
+                                  f"expected a number in {s.range_text()}")
+            v = float(v) % 360.0 if k == "phi_i" else float(v)  # φi as the viewer keeps it
+        else:
+            continue  # a newer version's setting: ignored
+        look[k] = v
+    return look
 
 
 def _one_line(text: str, limit: int = 300) -> str:
@@ -292,8 +349,8 @@ def _one_line(text: str, limit: int = 300) -> str:
     return text if len(text) <= limit else text[:limit] + "…"
 
 
-def load_preset(name: str) -> tuple[float, list[Side]]:
-    """``(theta_i, sides)`` of the saved preset ``name`` (:func:`find_preset`: the new
+def load_preset(name: str) -> Preset:
+    """``(theta_i, sides, look)`` of the saved preset ``name`` (:func:`find_preset`: the new
     directory first); raises :class:`PresetError` (one line naming the file) for a missing,
     non-regular, oversized, undecodable or malformed file.  Never blocks on a FIFO."""
     path = find_preset(name)
@@ -310,8 +367,12 @@ def load_preset(name: str) -> tuple[float, list[Side]]:
     return from_toml(text, str(path))
 
 
-def apply_loaded(state: ViewerState, theta_i: float, sides: list[Side]) -> None:
-    """Put a loaded preset into ``state`` (compare mode iff it has two sides)."""
+def apply_loaded(state: ViewerState, theta_i: float, sides: list[Side],
+                 look: dict[str, Any] | None = None) -> None:
+    """Put a loaded preset into ``state`` (compare mode iff it has two sides; its look, what
+    it has of one)."""
+    for k, v in (look or {}).items():
+        setattr(state, k, v)
     state.theta_i = theta_i
     state.sides = sides
     state.active = 0

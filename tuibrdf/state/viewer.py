@@ -18,7 +18,7 @@ method                what it does
 ``type_value``        the selected parameter typed as text (Enter or =)
 ``cycle_model``       next / previous model of the active side (files shown come back), θi kept
 ``cycle_view``        the main view: :data:`MAIN_VIEWS` in order, either way
-``toggle_log``        linear / log colour scale
+``toggle_log``        linear / log colour scale (in the slice view: the slice's own, log first)
 ``cycle_cmap``        next / previous colour map (:data:`~tuibrdf.render.CMAPS`)
 ``cycle_channel``     the curves of RGB models: all three → luminance → R → G → B
 ``toggle_cosine``     show f or f·cos θr
@@ -37,6 +37,8 @@ method                what it does
 ``move_probe``        the probe on the map (Lambert coordinates; shown from the first move)
 ``set_probe``         the probe at a point of the map (a click on the map or a section)
 ``toggle_probe``      probe on / off
+``set_light``         θi and φi at once (a drag on the lit sphere or plane)
+``zoom_by``           the 3D solid's and the sections' zoom × a factor (the mouse wheel)
 ====================  =====================================================================
 """
 
@@ -58,6 +60,8 @@ CHANNEL_NAMES = {"rgb": "R, G and B", "lum": "luminance (Rec.709)", "R": "red on
 #: the main views ``v`` cycles through (the cross-sections are always shown beside them)
 MAIN_VIEWS = ("map", "solid", "albedo", "sphere", "plane", "slice", "theta-h", "theta-d",
               "energy")
+#: the mouse wheel's zoom of the 3D solid and the sections: smallest, largest
+ZOOM_RANGE = (0.125, 64.0)
 #: the half/difference views and the angle each one's ``d`` key steps
 FIXED_ANGLE = {"theta-h": "theta_d", "theta-d": "theta_h", "slice": "phi_d"}
 #: the probe's step on the map, in Lambert units (the disc's radius is √2)
@@ -215,8 +219,13 @@ class ViewerState:
     theta_h: float = DISPLAY.theta_h.default
     phi_d: float = DISPLAY.phi_d.default
     sqrt_h: bool = DISPLAY.sqrt_h
+    #: the θh×θd slice's scale: log by default (in linear, Cook-Torrance's slice is black but
+    #: for the grazing blow-up: its specular strip at θh ≈ 0 cannot be seen)
+    slice_log: bool = True
     #: the probe's Lambert coordinates on the map (None: hidden)
     probe: tuple[float, float] | None = None
+    #: the 3D solid's and the sections' magnification (the mouse wheel; 1: the peak fills it)
+    zoom: float = 1.0
     #: values last used for each model, so cycling away and back keeps them
     memory: dict[str, dict[str, Value]] = field(default_factory=dict)
 
@@ -361,6 +370,9 @@ class ViewerState:
         return None
 
     def toggle_log(self) -> str | None:
+        if self.view == "slice":  # the slice has its own scale: log unless asked otherwise
+            self.slice_log = not self.slice_log
+            return None
         self.log = not self.log
         return None
 
@@ -514,6 +526,23 @@ class ViewerState:
         if not r <= SQRT2 + 1e-9:  # also refuses NaN
             return "that point is outside the hemisphere"
         self.probe = (float(u), float(v))
+        return None
+
+    def set_light(self, theta_deg: float, phi_deg: float) -> str | None:
+        """θi and φi at once (a drag on the lit sphere or plane): θi clamped to its range,
+        φi wrapped into [0°, 360°), both to 0.1° (a drag is not finer than that)."""
+        if not (theta_deg == theta_deg and phi_deg == phi_deg):  # refuses NaN
+            return "no light direction there"
+        self.theta_i = DISPLAY.theta_i.clamp(round(float(theta_deg), 1))
+        self.phi_i = round(float(phi_deg), 1) % 360.0
+        return None
+
+    def zoom_by(self, factor: float) -> str | None:
+        """The solid's and the sections' zoom × ``factor``, kept in [1/8, 64]."""
+        new = min(ZOOM_RANGE[1], max(ZOOM_RANGE[0], self.zoom * factor))
+        if new == self.zoom:
+            return f"zoom is already ×{new:g} (range ×{ZOOM_RANGE[0]:g} to ×{ZOOM_RANGE[1]:g})"
+        self.zoom = new
         return None
 
     def toggle_probe(self) -> str | None:

@@ -244,8 +244,12 @@ def test_cook_torrance_peak_grows_and_passes_the_mirror_at_grazing():
 
 def test_peak_of_rgb_and_flat_models():
     m = get_model("gltf")
-    pks = find_peaks(m, m.resolve({"roughness": 0.3}), incident(45.0))
+    pks = find_peaks(m, m.resolve({"roughness": 0.3, "base_color": (0.9, 0.5, 0.2)}),
+                     incident(45.0))
     assert [p.label for p in pks] == ["Y", "R", "G", "B"]
+    # a grey one (R = G = B): no channel to name (issue 36)
+    pks = find_peaks(m, m.resolve({"roughness": 0.3, "base_color": (0.8,) * 3}), incident(45.0))
+    assert [p.label for p in pks] == ["", "", "", ""]
     # Lambert is flat: any direction is a peak, the value is kd/π
     assert peak("lambert", {"kd": 0.6}, 10.0).value == pytest.approx(0.6 / math.pi, rel=1e-12)
 

@@ -45,10 +45,9 @@ from tuibrdf.core.formats.files import UserFileError
 from tuibrdf.core.formats.glsl import BUILTIN_NAMES, RESERVED, GlslError, Shader, compile_shader
 from tuibrdf.core.formats.glsl.budgets import MAX_FILE_BYTES, chunk_size
 from tuibrdf.core.numerics import shader_errstate
-from tuibrdf.core.params import Model, Param, unknown_message
+from tuibrdf.core.params import BOOL_CHOICES, Model, Param, unknown_message
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z_0-9]*$")
-BOOL_CHOICES = ("off", "on")
 
 
 @dataclass
@@ -212,7 +211,11 @@ def declare(path: str, params: list) -> tuple[tuple[Param, ...], dict[str, str]]
     return tuple(out), uniforms
 
 
-def _kernel(shader: Shader, params: tuple[Param, ...], *args, **values):
+def _kernel(shader: Shader, params: tuple[Param, ...], clamp: bool = True, /, *args,
+            **values):
+    """The shader on arrays of directions; ``clamp=False`` keeps negative values (the
+    model's ``raw_kernel``, for the note on how much is clamped).  Positional-only, so a
+    parameter may be called ``clamp``."""
     wi, wo = args
     uniforms = []
     for p in params:
@@ -224,12 +227,12 @@ def _kernel(shader: Shader, params: tuple[Param, ...], *args, **values):
     n = math.prod(shape)
     step = chunk_size(shader.steps)
     if n <= step:
-        f = _run(shader, wi, wo, uniforms, shape)
+        f = _run(shader, wi, wo, uniforms, shape, clamp)
     else:  # the generated code's temporaries live until a call returns: bounded chunks
         wi_f = np.broadcast_to(wi, shape + (3,)).reshape(n, 3)
         wo_f = np.broadcast_to(wo, shape + (3,)).reshape(n, 3)
         f = np.concatenate([_run(shader, wi_f[k:k + step], wo_f[k:k + step], uniforms,
-                                 (min(step, n - k),)) for k in range(0, n, step)])
+                                 (min(step, n - k),), clamp) for k in range(0, n, step)])
         f = f.reshape(shape + f.shape[1:])
     below = (wi[..., 2] < 0.0) | (wo[..., 2] < 0.0)
     if below.any():
@@ -237,8 +240,9 @@ def _kernel(shader: Shader, params: tuple[Param, ...], *args, **values):
     return f
 
 
-def _run(shader: Shader, wi, wo, uniforms: list, shape: tuple) -> np.ndarray:
-    """The shader on directions of ``shape``, made usable (module docstring)."""
+def _run(shader: Shader, wi, wo, uniforms: list, shape: tuple, clamp: bool) -> np.ndarray:
+    """The shader on directions of ``shape``, made usable (module docstring); negative values
+    kept unless ``clamp``."""
     L = (wi[..., 0], wi[..., 1], wi[..., 2])
     V = (wo[..., 0], wo[..., 1], wo[..., 2])
     with shader_errstate():  # the user's arithmetic: IEEE, made finite below
@@ -249,7 +253,10 @@ def _run(shader: Shader, wi, wo, uniforms: list, shape: tuple) -> np.ndarray:
                 f[..., k] = c
         else:
             f = np.array(np.broadcast_to(out, shape), dtype=float)
-        np.fmax(f, 0.0, out=f)  # negative → 0, and NaN → 0 (fmax ignores NaN)
+        if clamp:
+            np.fmax(f, 0.0, out=f)  # negative → 0, and NaN → 0 (fmax ignores NaN)
+        else:
+            np.putmask(f, np.isnan(f), 0.0)
         np.putmask(f, f == np.inf, 0.0)  # overflow → 0
     return f
 
@@ -264,7 +271,8 @@ def model_from_text(path: str, parsed: Parsed, title: str, name: str) -> Model:
         raise UserFileError(f"{path}: the shader nests too deeply to compile") from None
     rgb = shader.returns == "vec3"
     return Model(
-        name, title, params, partial(_kernel, shader, params), rgb=rgb, reciprocal=False,
+        name, title, params, partial(_kernel, shader, params, True), rgb=rgb, reciprocal=False,
+        raw_kernel=partial(_kernel, shader, params, False),
         summary=f"BRDF Explorer file {os.path.basename(path)}",
         horizon="the shader's value (0 below the horizon; NaN, inf, negatives → 0)",
         notes=("GLSL compiled to numpy; undefined operations as docs/reference/formats.md says",),

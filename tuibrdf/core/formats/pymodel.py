@@ -101,7 +101,8 @@ def load_python_model(path: str, name: str) -> Model:
         model.resolve({p.name: p.default for p in model.params})
     except ValueError as e:
         raise UserFileError(f"{path}: the declared defaults are invalid: {e}") from None
-    return replace(model, name=name, kernel=_GuardedKernel(path, model.kernel, model.rgb),
+    guarded = _GuardedKernel(path, model.kernel, model.rgb)
+    return replace(model, name=name, kernel=guarded, raw_kernel=guarded.raw,
                    sampler=_sampler(path, module, model))
 
 
@@ -149,6 +150,10 @@ class _GuardedKernel:
         self.def_line = code.co_firstlineno if code is not None else None
 
     def __call__(self, wi, wo, **params):
+        return np.maximum(self.raw(wi, wo, **params), 0.0)  # negatives clamped, as built-ins
+
+    def raw(self, wi, wo, **params):
+        """The kernel's values checked (shape, finite) but not clamped: negatives kept."""
         try:
             out = self.kernel(wi, wo, **params)
         except KeyboardInterrupt:  # the user's Ctrl-C, not the file's error: it stops us
@@ -182,4 +187,4 @@ class _GuardedKernel:
                 f"{where}: the kernel returned {kind} ({n} of {f.size} values; first at "
                 f"wi={np.round(wi_b, 4).tolist()}, wo={np.round(wo_b, 4).tolist()}, "
                 f"params {params})")
-        return np.maximum(f, 0.0)  # negative values: clamped, as built-in models do
+        return f

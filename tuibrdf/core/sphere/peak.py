@@ -434,6 +434,9 @@ def find_peaks(model: Model, values: Mapping[str, Any], wi: np.ndarray, *,
             if v > val[c] + PEAK_TOL * abs(val[c]):
                 val[c], at[c] = v, _along(np.array([t]), h_mirror)[0]
     labels = ("",) if len(val) == 1 else ("Y", "R", "G", "B")
+    if len(val) == 4 and np.array_equal(sc[:, 1], sc[:, 2]) and np.array_equal(sc[:, 1],
+                                                                                sc[:, 3]):
+        labels = ("",) * 4  # a grey RGB model (R = G = B at every candidate): no channel to name
     return tuple(Peak(v, *_angles(w), lab) for v, w, lab in zip(val, at, labels, strict=True))
 
 

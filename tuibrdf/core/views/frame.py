@@ -189,6 +189,9 @@ class SideFrame:
     probe: tuple | None = None
     #: per column of ``peaks`` (:mod:`tuibrdf.core.sphere.horizon`); None: every peak is ordinary
     horizons: tuple[Horizon, ...] | None = None
+    #: the share of directions where a user model's unclamped value is negative
+    #: (:mod:`tuibrdf.core.views.negatives`); 0 for the built-in models
+    negative: float = 0.0
     #: :meth:`scale_for`'s answers: the map, the sections and the status line each ask
     _scales: dict[tuple[str, str], PeakScale | None] = field(
         default_factory=dict, init=False, compare=False, repr=False)
@@ -511,7 +514,10 @@ def _side(req: FrameRequest, m: Material, slow: bool,
         curve = _CURVES.peek((m, pi)) if req.curve else None
     a, a_err = albedo if albedo is not None else (None, None)
     c, c_err = curve if curve is not None else (None, None)
-    return SideFrame(m, peaks, sections, mp, solid, a, c, a_err, c_err, extra, probe, horizons)
+    from tuibrdf.core.views.negatives import negative_share
+
+    return SideFrame(m, peaks, sections, mp, solid, a, c, a_err, c_err, extra, probe, horizons,
+                     negative_share(m.model, m.values, req.wi))
 
 
 def compute_frame(req: FrameRequest, *, slow: bool = True,
