@@ -213,9 +213,9 @@ def declare(path: str, params: list) -> tuple[tuple[Param, ...], dict[str, str]]
 
 def _kernel(shader: Shader, params: tuple[Param, ...], clamp: bool = True, /, *args,
             **values):
-    """The shader on arrays of directions; ``clamp=False`` keeps negative values (the
-    model's ``raw_kernel``, for the note on how much is clamped).  Positional-only, so a
-    parameter may be called ``clamp``."""
+    """The shader on arrays of directions; ``clamp=False`` keeps negative values, NaN and inf
+    (the model's ``raw_kernel``: the note on how much is clamped, ``tuibrdf check``).
+    Positional-only, so a parameter may be called ``clamp``."""
     wi, wo = args
     uniforms = []
     for p in params:
@@ -255,9 +255,7 @@ def _run(shader: Shader, wi, wo, uniforms: list, shape: tuple, clamp: bool) -> n
             f = np.array(np.broadcast_to(out, shape), dtype=float)
         if clamp:
             np.fmax(f, 0.0, out=f)  # negative → 0, and NaN → 0 (fmax ignores NaN)
-        else:
-            np.putmask(f, np.isnan(f), 0.0)
-        np.putmask(f, f == np.inf, 0.0)  # overflow → 0
+            np.putmask(f, f == np.inf, 0.0)  # overflow → 0
     return f
 
 

@@ -102,7 +102,7 @@ def load_python_model(path: str, name: str) -> Model:
     except ValueError as e:
         raise UserFileError(f"{path}: the declared defaults are invalid: {e}") from None
     guarded = _GuardedKernel(path, model.kernel, model.rgb)
-    return replace(model, name=name, kernel=guarded, raw_kernel=guarded.raw,
+    return replace(model, name=name, kernel=guarded, raw_kernel=guarded.values,
                    sampler=_sampler(path, module, model))
 
 
@@ -154,6 +154,27 @@ class _GuardedKernel:
 
     def raw(self, wi, wo, **params):
         """The kernel's values checked (shape, finite) but not clamped: negatives kept."""
+        f = self.values(wi, wo, **params)
+        where = _where(self.path, self.def_line)
+        shape = f.shape
+        bad = ~np.isfinite(f)
+        if bad.any():
+            n = int(bad.sum())
+            k = np.unravel_index(int(np.flatnonzero(bad)[0]), f.shape)
+            d = k[:-1] if self.rgb else k
+            wi_b = np.broadcast_to(wi, shape[:len(d)] + (3,))[d] if d else np.asarray(wi)
+            wo_b = np.broadcast_to(wo, shape[:len(d)] + (3,))[d] if d else np.asarray(wo)
+            kind = "NaN" if np.isnan(f[k]) else "inf"
+            raise UserFileError(
+                f"{where}: the kernel returned {kind} ({n} of {f.size} values; first at "
+                f"wi={np.round(wi_b, 4).tolist()}, wo={np.round(wo_b, 4).tolist()}, "
+                f"params {params})")
+        return f
+
+    def values(self, wi, wo, **params):
+        """The kernel's values with their shape checked, nothing else: NaN, inf and negatives
+        kept (the model's ``raw_kernel``, which ``tuibrdf check`` examines); what the kernel
+        raises becomes a one-line error."""
         try:
             out = self.kernel(wi, wo, **params)
         except KeyboardInterrupt:  # the user's Ctrl-C, not the file's error: it stops us
@@ -175,16 +196,4 @@ class _GuardedKernel:
             kind = "RGB model: (..., 3)" if self.rgb else "scalar model: (...)"
             raise UserFileError(f"{where}: the kernel returned shape {f.shape} for directions "
                                 f"of shape {np.shape(wi)}: expected {shape} ({kind})") from None
-        bad = ~np.isfinite(f)
-        if bad.any():
-            n = int(bad.sum())
-            k = np.unravel_index(int(np.flatnonzero(bad)[0]), f.shape)
-            d = k[:-1] if self.rgb else k
-            wi_b = np.broadcast_to(wi, shape[:len(d)] + (3,))[d] if d else np.asarray(wi)
-            wo_b = np.broadcast_to(wo, shape[:len(d)] + (3,))[d] if d else np.asarray(wo)
-            kind = "NaN" if np.isnan(f[k]) else "inf"
-            raise UserFileError(
-                f"{where}: the kernel returned {kind} ({n} of {f.size} values; first at "
-                f"wi={np.round(wi_b, 4).tolist()}, wo={np.round(wo_b, 4).tolist()}, "
-                f"params {params})")
         return f

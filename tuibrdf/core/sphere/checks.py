@@ -132,32 +132,10 @@ def _satisfy(model: Model, values: dict, fixed: str) -> dict | None:
 
 
 def raw_kernel(model: Model) -> Callable[..., Any]:
-    """The model's kernel before any clamp: a ``.py`` file's own function, a ``.brdf``
-    shader's value with NaN, inf and negatives kept; a built-in's kernel as it is."""
-    from tuibrdf.core.formats import brdf_explorer, pymodel
-
-    k = model.kernel
-    if isinstance(k, pymodel._GuardedKernel):  # noqa: SLF001 — the loader's wrapper
-        return k.kernel
-    if isinstance(k, functools.partial) and k.func is brdf_explorer._kernel:  # noqa: SLF001
-        return functools.partial(_shader_raw, *k.args)
-    return k
-
-
-def _shader_raw(shader, params, wi, wo, **values):
-    """A ``.brdf`` shader's value (core/formats/brdf_explorer.py's kernel without its clamps)."""
-    from tuibrdf.core.numerics import shader_errstate
-
-    uniforms = [values[p.name] == "on" if p.kind == "choice" else values[p.name]
-                for p in params]
-    L = (wi[..., 0], wi[..., 1], wi[..., 2])
-    V = (wo[..., 0], wo[..., 1], wo[..., 2])
-    shape = np.broadcast_shapes(wi.shape[:-1], wo.shape[:-1])
-    with shader_errstate():
-        out = shader.fn(L, V, *uniforms)
-        if shader.returns == "vec3":
-            return np.stack([np.broadcast_to(c, shape) for c in out], axis=-1).astype(float)
-        return np.array(np.broadcast_to(out, shape), dtype=float)
+    """The model's kernel before any clamp (:attr:`Model.raw_kernel`: a ``.py`` file's values
+    checked for shape and finiteness, a ``.brdf`` shader's with NaN, inf and negatives kept);
+    a built-in's kernel as it is."""
+    return model.raw_kernel or model.kernel
 
 
 def _call(model: Model, kernel, kw: dict, wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
