@@ -211,7 +211,9 @@ def test_text_to_a_file_is_plain_and_ansi_has_colour(tmp_path):
     import re
 
     plain = re.sub(r"\x1b\[[0-9;]*m", "", ansi).splitlines()
-    assert len(plain) == len(text.splitlines()) == 12
+    # the context line (model, θi, φi), then the picture's 12 lines
+    assert len(plain) == len(text.splitlines()) == 1 + 12
+    assert plain[0].startswith("phong  θi=")
     assert "▀" in "".join(plain)
 
 
