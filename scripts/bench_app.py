@@ -72,8 +72,9 @@ class Term:
     """The app in a pty; ``rate`` limits reading (bytes/s, None = as fast as possible)."""
 
     def __init__(self, w: int, h: int, color: str, args: list[str],
-                 root: str | Path = ROOT) -> None:
-        """``root``: the tree whose viewer runs (``tuibrdf/`` in it)."""
+                 root: str | Path = ROOT, command: list[str] | None = None) -> None:
+        """``root``: the tree whose viewer runs (``tuibrdf/`` in it); ``command``: another
+        program to run instead of the viewer (``args`` and ``color`` are then unused)."""
         env = dict(os.environ, TERM="xterm-256color", PYTHONPATH=str(root))
         env.pop("NO_COLOR", None)
         if color == "truecolor":
@@ -84,8 +85,8 @@ class Term:
         pid, fd = pty.fork()
         if pid == 0:  # child
             os.chdir(root)
-            os.execvpe(sys.executable, [sys.executable, "-m", "tuibrdf", "view", *args,
-                                        "--color", color], env)
+            argv = command or [sys.executable, "-m", "tuibrdf", "view", *args, "--color", color]
+            os.execvpe(argv[0], argv, env)
         self.pid, self.fd = pid, fd
         fcntl.ioctl(fd, termios.TIOCSWINSZ, struct.pack("HHHH", h, w, 0, 0))
         self.buf = bytearray()

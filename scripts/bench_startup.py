@@ -3,6 +3,8 @@ pseudo-terminal, as ``scripts/bench_app.py`` measures it, repeated.
 
     python scripts/bench_startup.py [--runs 12] [--size 160x48] [--against REV] [--write-docs]
 
+Beside it, in every round, a minimal Textual app (one ``Static``, its text the marker waited
+for): the floor any Textual program starts from on this machine, and the ratio to it.
 ``--against REV`` starts git revision REV's viewer (``git archive``) too, the two trees one
 after the other in every round, so a slow spell of the machine falls on both.  The package's
 bytecode is written first (as an install or a first run writes it).  Prints the median and the
@@ -22,6 +24,28 @@ from bench_app import ROOT, Term
 from bench_help import fresh_bytecode
 from benchdoc import command_line, machine, write_section
 from revtree import extract
+
+#: the floor: a Textual app showing one line of text
+MINIMAL_APP = """
+from textual.app import App
+from textual.widgets import Static
+
+
+class Minimal(App):
+    def compose(self):
+        yield Static("minimal app ready")
+
+
+Minimal().run()
+"""
+
+
+def minimal_frame(script: str, w: int, h: int) -> float:
+    term = Term(w, h, "truecolor", [], command=[sys.executable, script])
+    try:
+        return term.until(b"minimal app ready") - term.t0
+    finally:
+        term.close()
 
 
 def first_frame(tree: str, w: int, h: int) -> float:
@@ -49,14 +73,20 @@ def main() -> int:
         for tree in trees.values():
             fresh_bytecode({k: v for k, v in os.environ.items()
                             if k != "PYTHONDONTWRITEBYTECODE"} | {"PYTHONPATH": tree})
-        times: dict[str, list[float]] = {name: [] for name in trees}
+        script = os.path.join(tmp, "minimal_app.py")
+        with open(script, "w", encoding="utf-8") as f:
+            f.write(MINIMAL_APP)
+        floor = "a minimal Textual app"
+        times: dict[str, list[float]] = {name: [] for name in [floor, *trees]}
         for _ in range(a.runs):
+            times[floor].append(minimal_frame(script, w, h))
             for name, tree in trees.items():
                 times[name].append(first_frame(tree, w, h))
+    base = statistics.median(times[floor])
     lines = [f"start-up to the first frame, {w}×{h}, {a.runs} runs each:", "",
-             "| tree | median ms | min ms |", "|---|---|---|"]
-    lines += [f"| {name} | {1e3 * statistics.median(t):.0f} | {1e3 * min(t):.0f} |"
-              for name, t in times.items()]
+             "| program | median ms | min ms | median / minimal app's |", "|---|---|---|---|"]
+    lines += [f"| {name} | {1e3 * statistics.median(t):.0f} | {1e3 * min(t):.0f} | "
+              f"{statistics.median(t) / base:.2f} |" for name, t in times.items()]
     print("\n".join(lines))
     if a.write_docs:
         doc = write_section("bench_startup", "\n".join(lines), command_line(),
