@@ -47,7 +47,7 @@ FILES = sorted(str(p.relative_to(ROOT)) for p in (ROOT / "tuibrdf/core/brdf").gl
 #: (the slow hypothesis stability suite only runs for the few mutants the fast tests miss)
 STAGES = [["tests/core/brdf/test_fitted.py", "tests/core/brdf/test_reference_values.py",
            "tests/core/brdf/test_models.py", "tests/core/brdf/test_materials.py",
-           "tests/core/brdf/test_kernel_paths.py"],
+           "tests/core/brdf/test_kernel_paths.py", "tests/core/brdf/test_precision.py"],
           ["tests/core/brdf/test_stability.py"]]
 DECLARATIONS = {"Param", "Model", "replace", "Constraint"}
 
