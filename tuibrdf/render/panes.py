@@ -27,7 +27,7 @@ import numpy as np
 from rich.console import Group, RenderableType
 from rich.text import Text
 
-from tuibrdf.core.conventions import decimals_for, fmt_value, luminance
+from tuibrdf.core.conventions import decimals_for, fmt_error, fmt_value, luminance
 from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.numerics import snapped_rint
 from tuibrdf.core.sphere.horizon import HORIZON_DEG, Horizon, PeakScale
@@ -172,7 +172,7 @@ def albedo_text(a, error=None) -> str:
     else:
         d = decimals_for(err)
         text = [f"{float(x):.{d}f}" for x in vals]
-        tail = f"±{err:.0e}"
+        tail = f"±{fmt_error(err, d)}"  # the estimate plus the rounding of the digits shown
     return ("(" + ",".join(text) + ")" if isinstance(a, tuple) else text[0]) + tail
 
 
