@@ -337,8 +337,7 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
     else:
         fn = "f·cosθr" if res.request.cosine else "f"
         if plane == "perpendicular":
-            v = res.sides[0].sections["peak"]
-            width_s = fwhm_text(SECTION_THETAS, luminance(v) if v.ndim == 2 else v)
+            width_s = fwhm_text(res.sides[0].sections["fwhm"])
             # the width across the lobe is the point of this view (issue 13 §1): it goes
             # before the model's name (which the panel shows) when the title is cropped
             parts = [(res.sides[0].material.label, 2), (f"θi={t:g}°", 4), (None, 0),
