@@ -112,6 +112,12 @@ def albedo_rule(model: Model, values: Mapping[str, Any],
     s, c = sincos_deg(np.append(thetas, check_phi_i(phi_i_deg)))
     st, ct = s[:-1], c[:-1]
     sp, cp = np.full(len(thetas), s[-1]), np.full(len(thetas), c[-1])
+    if hint is None and kernel is None:
+        from tuibrdf.core.sphere.measured_albedo import albedo_setup
+
+        measured = albedo_setup(model)  # a .bsdf file: its own f to the horizon
+        if measured is not None:
+            kernel, hint = measured
     hint = lobe(model, values, rtol) if hint is None else hint
 
     def f(wi, wo):
