@@ -131,9 +131,10 @@ class _AlphaBeta:
         c = np.abs(self.cos_dphi)
         cross = xi * yo - yi * xo
         den = s2i * s2o * (1.0 + c)
+        near = c > 0.5  # |Δφ| within 60° of 0° or 180°
         # den = 0 only at the normal (cos Δφ = 0 there, the other branch)
-        sin2_over = safe_div(cross * cross, den, (c > 0.5) & (den > 0.0))
-        return np.where(c > 0.5, sin2_over, 1.0 - c)
+        sin2_over = safe_div(cross * cross, den, near & (den > 0.0))
+        return np.where(near, sin2_over, 1.0 - c)
 
 
 def _polar(sin2: np.ndarray, z: np.ndarray):

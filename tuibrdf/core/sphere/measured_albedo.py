@@ -23,7 +23,9 @@ from tuibrdf.core.formats import rgl_bsdf
 from tuibrdf.core.params import Model
 from tuibrdf.core.sphere.lobes import Lobe
 
-#: Evaluations per incidence (~3 µs each on a loaded machine)
+#: Evaluations per incidence after which refinement stops: in effect the rule's first round
+#: (5,400–5,700 evaluations, 11,000–15,400 at θi ≥ 80° where the outer grading adds panels;
+#: ~0.5 µs each with the incidence's slices mixed once: 3–8 ms)
 RGL_MAX_EVALS = 4_000
 
 
