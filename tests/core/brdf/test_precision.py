@@ -212,3 +212,25 @@ def test_oren_nayar_one_minus_cos_dphi_near_0_and_180(t_i, t_o, dphi):
     want = oren_nayar_decimal(0.6, math.radians(40.0), wi, wo)
     for a, b in ((wi, wo), (wo, wi)):
         assert rel_err(value("oren-nayar", {"kd": 0.6, "sigma": 40.0}, a, b), want) < 1e-13
+
+
+@pytest.mark.parametrize("c", [4e-4, -0.2])
+def test_sharp_phong_lobe_far_out_and_outside(c):
+    """n = 65 (the sharp path): where S·wo = 4e-4 the lobe c⁶⁵ ≈ 1e-221 is still a value
+    (within its conditioning of 60 digits); where S·wo < 0 (outside the lobe) f is exactly
+    kd/π."""
+    wi = np.array(direction(40.0, 200.0))
+    axis = np.array([-wi[0], -wi[1], wi[2]])  # S, the mirror direction
+    perp = np.array([0.0, 0.0, 1.0]) - axis[2] * axis  # the normal's part ⟂ S: z > 0
+    perp /= np.linalg.norm(perp)
+    wo = c * axis + math.sqrt(1.0 - c * c) * perp
+    assert wo[2] > 0.0
+    wi, wo = as_directions(wi, "wi").tolist(), as_directions(wo, "wo").tolist()
+    if c < 0:
+        assert value("phong", {"kd": 0.2, "ks": 0.5, "n": 65.0}, wi, wo) == 0.2 / math.pi
+        return
+    lobe, _ = lobe_decimal("phong", 65.0, wi, wo)
+    got = value("phong", {"kd": 0.0, "ks": 1.0, "n": 65.0}, wi, wo) / (67.0 / (2 * math.pi))
+    # c = S·wo is a sum of terms ~0.5 that cancel to 4e-4: an ulp of the inputs moves it by
+    # ~1e-16, and c⁶⁵ by 65·1e-16/c relative: the bound is 8 ulp of that
+    assert lobe > D("1e-230") and rel_err(got, lobe) < 8 * EPS * 65.0 / c
