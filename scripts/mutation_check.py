@@ -47,7 +47,7 @@ FILES = sorted(str(p.relative_to(ROOT)) for p in (ROOT / "tuibrdf/core/brdf").gl
 #: (the slow hypothesis stability suite only runs for the few mutants the fast tests miss)
 STAGES = [["tests/core/brdf/test_fitted.py", "tests/core/brdf/test_reference_values.py",
            "tests/core/brdf/test_models.py", "tests/core/brdf/test_materials.py",
-           "tests/core/brdf/test_kernel_paths.py"],
+           "tests/core/brdf/test_kernel_paths.py", "tests/core/brdf/test_precision.py"],
           ["tests/core/brdf/test_stability.py"]]
 DECLARATIONS = {"Param", "Model", "replace", "Constraint"}
 
@@ -75,6 +75,15 @@ _D_FLOOR = ("where exp(−x) > 0, cos²θh ≥ 1.3e-3 and π m² cos⁴θh ≥ 5
             "1e-300·(1 ± 0.001) only acts where the numerator is 0, and 0/floor = 0")
 _BP_FILL = ("the divisor's fill where H is undefined: np.where(valid, …, 0.0) replaces the "
             "quotient there")
+_BRANCH = ("the threshold picks one of two forms equal in exact arithmetic, each within a few "
+           "ulp at the threshold (sin²Δφ/(1 + |cos Δφ|) or 1 − |cos Δφ| at |cos Δφ| = 1/2; "
+           "log1p(−(1 − c)) or log c at c = 1/2): moving it by 0.1 % changes values by rounding")
+_SHARP_FILL = ("fills where the other branch is taken (1 − c where c ≤ 1/2, c where c ≤ 0): "
+               "np.where(near, …) and np.where(inside, …, 0) replace what they give")
+_BP_ONE_MINUS = ("Blinn-Phong's 1 − N·H is read by sharp_lobe only where N·H > 0 (inside): the "
+                 "fills where H is undefined or N·H ≤ 0 (|h|, 1 − N·H, any value ≥ 1/2) and a "
+                 "mask N·H > ±0.001 (where it leaves the fill 1, sharp_lobe takes log c, the "
+                 "same value; where it divides, |h| + hz > 0) change no result")
 _TIR_FILL = ("a fill where total reflection holds (g² ≤ 0; also where (g + c)² is 0, which "
              "needs g = 0, i.e. total reflection): np.where(tir, 1.0, …) replaces it")
 _G1_FLAT = ("G1 − 1 = −Λ·expm1(c_g·t^k) for t ≤ 0.001 is above −3.3e-18 in every channel of "
@@ -152,6 +161,23 @@ EQUIVALENT: dict[str, str] = {
     f"{_DF}::disney_diffuse::1.0#2::-": _FLAT_TOP,
     f"{_MM}::ue4::0.0#0::+": "fill below the horizon, replaced by 0 in the result (g.above)",
     f"{_MM}::ue4::0.0#0::-": "fill below the horizon, replaced by 0 in the result (g.above)",
+    f"{_DF}::_AlphaBeta.one_minus_abs_cos_dphi::0.5#0::+": _BRANCH,
+    f"{_DF}::_AlphaBeta.one_minus_abs_cos_dphi::0.5#0::-": _BRANCH,
+    f"{_DF}::_AlphaBeta.one_minus_abs_cos_dphi::0.0#0::-": (
+        "den = sin²θi sin²θo (1 + |cos Δφ|) ≥ 0 is 0 only at the normal, where cos Δφ = 0 "
+        "takes the other branch: 'den > −0.001' selects no other element"),
+    f"{_PH}::sharp_lobe::0.5#0::+": _BRANCH,
+    f"{_PH}::sharp_lobe::0.5#0::-": _BRANCH,
+    f"{_PH}::sharp_lobe::0.0#1::+": _SHARP_FILL,
+    f"{_PH}::sharp_lobe::0.0#1::-": _SHARP_FILL,
+    f"{_PH}::sharp_lobe::1.0#0::+": _SHARP_FILL,
+    f"{_PH}::sharp_lobe::1.0#0::-": _SHARP_FILL,
+    f"{_PH}::blinn_phong::1.0#2::+": _BP_ONE_MINUS,
+    f"{_PH}::blinn_phong::1.0#2::-": _BP_ONE_MINUS,
+    f"{_PH}::blinn_phong::0.0#2::+": _BP_ONE_MINUS,
+    f"{_PH}::blinn_phong::0.0#2::-": _BP_ONE_MINUS,
+    f"{_PH}::blinn_phong::1.0#3::+": _BP_ONE_MINUS,
+    f"{_PH}::blinn_phong::1.0#3::-": _BP_ONE_MINUS,
     f"{_PH}::blinn_phong::1.0#1::+": _BP_FILL,
     f"{_PH}::blinn_phong::1.0#1::-": _BP_FILL,
     f"{_PH}::blinn_phong::0.0#1::-": (

@@ -8,6 +8,7 @@ import json
 import re
 import sys
 
+import numpy as np
 import pytest
 from rich.cells import cell_len
 
@@ -272,3 +273,29 @@ def test_auto_color_looks_at_stdout_as_it_is_at_the_call(monkeypatch):
             raise OSError("bad file descriptor")
 
     assert color_system("auto", {}, Broken()) == "none"
+
+
+@pytest.mark.parametrize("model, params", [("lambert", ["kd=0.7"]),
+                                           ("oren-nayar", ["sigma=30"]),
+                                           ("disney-diffuse", []), ("ggx", []),
+                                           ("phong", ["n=300"])])
+def test_albedo_printed_interval_holds_the_reference(capsys, model, params):
+    """Every row's printed interval (value as printed ± error as printed) holds the albedo of
+    the same rule run to 1e-12 (six orders tighter), and the printed error is at least the
+    rounding of the printed value (it printed 0.753864743041 ± 1e-15 for 0.75386474304118)."""
+    from tuibrdf.core.sphere.albedo import albedo_estimate
+
+    argv = ["albedo", model, *(x for p in params for x in ("-p", p)), "--theta-i",
+            "0", "33", "61", "80", "89.5"]
+    rc, out, _ = run(capsys, *argv)
+    assert rc == 0
+    rows = [ln.split() for ln in out.splitlines() if not ln.startswith("#")][1:]
+    pdict = dict(p.split("=") for p in params)
+    for r in rows:
+        theta, text, err = float(r[0]), r[1 : -2], float(r[-1])
+        ref = albedo_estimate(model, {k: float(v) for k, v in pdict.items()}, theta,
+                              rtol=1e-12, max_evals=10_000_000).value
+        for t, ref_c in zip(text, np.atleast_1d(ref), strict=True):
+            decimals = len(t.split(".")[1])
+            assert err >= 0.5 * 10.0 ** -decimals
+            assert abs(float(t) - ref_c) <= err, (model, theta, t, ref_c, err)

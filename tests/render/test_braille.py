@@ -187,11 +187,11 @@ def test_peak_section_view_title_and_width():
     assert "ψ=0° through peak" in lines[0] and "FWHM 13.8°" in lines[0]
 
 
-def test_fwhm_text_of_a_triangle():
-    # a triangle of half-width 10 has FWHM 10 exactly (linear between samples)
-    t = np.linspace(-20.0, 20.0, 41)
-    assert fwhm_text(t, np.maximum(0.0, 10.0 - np.abs(t))) == "FWHM 10.0°"
-    assert fwhm_text(t, np.ones_like(t)) == ""
+def test_fwhm_text():
+    # the core's width (tests/core/views/test_sections.py), one decimal from 1°, two below
+    assert fwhm_text(10.0) == "FWHM 10.0°"
+    assert fwhm_text(0.1234) == "FWHM 0.12°"
+    assert fwhm_text(float("nan")) == "" and fwhm_text(None) == ""
 
 
 @pytest.mark.parametrize("charset", ["braille", "ascii"])

@@ -2,8 +2,9 @@
 
 One row per ``--theta-i`` value (default: every 15° and 89°).  RGB models print one column per
 channel.  Each row carries the quadrature's estimate of its absolute error (``± 3e-10``; the
-largest of the channels) and shows the digits the error leaves (JSON: every digit and
-``"error"``).  A value above 1 by more than its error reflects more energy than arrives: the row
+largest of the channels, plus the printed value's own rounding, rounded up) and shows the
+digits the error leaves (JSON: every digit and ``"error"``, the estimate alone).  A value
+above 1 by more than its error reflects more energy than arrives: the row
 is flagged ``not energy-conserving`` (the JSON has ``"energy_conserving": false``); the test is
 :func:`tuibrdf.core.sphere.albedo.exceeds_one`.  The integral is
 :func:`tuibrdf.core.sphere.albedo.albedo_estimate_resolved` (adaptive Gauss–Kronrod about the
@@ -48,9 +49,7 @@ def albedos(model, params, thetas, phi_i: float = DISPLAY.phi_i.default):
 
 
 def run(args: argparse.Namespace) -> int:
-    import numpy as np
-
-    from tuibrdf.core.conventions import decimals_for
+    from tuibrdf.core.conventions import decimals_for, fmt_error
     from tuibrdf.core.sphere.albedo import exceeds_one
 
     model, params = resolve(args)
@@ -81,5 +80,5 @@ def run(args: argparse.Namespace) -> int:
         d = decimals_for(e)
         flag = "  > 1: not energy-conserving" if o else ""
         print(" ".join([f"{fmt_number(t):>8}"] + [f"{x:>{width}.{d}f}" for x in vals]
-                       + [f"± {float(np.max(e)):.0e}"]) + flag)
+                       + [f"± {fmt_error(e, d)}"]) + flag)
     return 0

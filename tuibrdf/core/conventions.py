@@ -58,3 +58,30 @@ def decimals_for(error) -> int:
     if e <= 0.0:  # log10 of 0: an exact value
         return MAX_DECIMALS
     return int(np.clip(-np.floor(np.log10(e)), 0, MAX_DECIMALS))
+
+
+def fmt_error(error, decimals: int) -> str:
+    """The error to print beside a value printed with ``decimals`` decimals: the estimate (the
+    largest of several channels) plus the printed value's own rounding, half a unit of its
+    last decimal, rounded *up* to one significant digit (``3e-10``), so that the interval
+    printed holds whatever the estimate holds (a value cut to 12 decimals is never printed
+    with ``± 1e-15``)."""
+    import math
+
+    import numpy as np
+
+    e = float(np.max(np.abs(np.asarray(error, dtype=float))))
+    if not np.isfinite(e):
+        return f"{e}"
+    e += 0.5 * 10.0 ** -decimals
+    exp = math.floor(math.log10(e))  # e ≥ half a unit of the last decimal > 0
+    # the leading digit rounded up, with a margin of 1e-9 against 10**exp's own rounding
+    m = math.ceil(e / 10.0 ** exp * (1.0 - 1e-12))
+    if m >= 10:
+        m, exp = 1, exp + 1
+    # 10**exp's rounding could leave m·10**exp an ulp below e: one more unit then
+    while m * 10.0 ** exp < e:
+        m += 1
+        if m >= 10:
+            m, exp = 1, exp + 1
+    return f"{m}e{exp:+03d}"

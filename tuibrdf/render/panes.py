@@ -28,7 +28,7 @@ import numpy as np
 from rich.console import Group, RenderableType
 from rich.text import Text
 
-from tuibrdf.core.conventions import decimals_for, fmt_value, luminance
+from tuibrdf.core.conventions import decimals_for, fmt_error, fmt_value, luminance
 from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.numerics import snapped_rint
 from tuibrdf.core.sphere.horizon import HORIZON_DEG, Horizon, PeakScale
@@ -190,7 +190,7 @@ def albedo_text(a, error=None) -> str:
     else:
         d = decimals_for(err)
         text = [f"{float(x):.{d}f}" for x in vals]
-        tail = f"±{err:.0e}"
+        tail = f"±{fmt_error(err, d)}"  # the estimate plus the rounding of the digits shown
     return ("(" + ",".join(text) + ")" if isinstance(a, tuple) else text[0]) + tail
 
 
@@ -405,8 +405,7 @@ def section_pane(res: FrameResult, plane: str, w: int, h: int, look: Look) -> Gr
     else:
         fn = "f·cosθr" if res.request.cosine else "f"
         if plane == "perpendicular":
-            v = res.sides[0].sections["peak"]
-            width_s = fwhm_text(SECTION_THETAS, luminance(v) if v.ndim == 2 else v)
+            width_s = fwhm_text(res.sides[0].sections["fwhm"])
             # the width across the lobe is the point of this view (issue 13 §1): it goes
             # before the model's name (which the panel shows) when the title is cropped
             parts = [(res.sides[0].material.label, 2), (f"θi={t:g}°", 4), (None, 0),

@@ -185,21 +185,11 @@ def polar_canvas(
     return canvas, caption
 
 
-def fwhm_text(t: np.ndarray, v: np.ndarray) -> str:
-    """``FWHM 6.6°`` of the part around the maximum (linear interpolation of the crossings),
-    or ``""`` for a flat or empty curve."""
-    vmax = float(np.max(v))
-    if vmax <= 0 or float(np.min(v)) >= 0.5 * vmax:
+def fwhm_text(width) -> str:
+    """``FWHM 6.6°`` (``FWHM 0.17°`` below 1°) of a width in degrees from the core
+    (:func:`tuibrdf.core.views.sections.fwhm`: the crossings on the function), or ``""`` for
+    none (NaN or None)."""
+    if width is None or not np.isfinite(float(width)):
         return ""
-    k = int(np.argmax(v))
-    half = 0.5 * vmax
-    i = k
-    while i > 0 and v[i - 1] >= half:
-        i -= 1
-    j = k
-    while j < len(v) - 1 and v[j + 1] >= half:
-        j += 1
-    # v[i-1] < half ≤ v[i]: the denominators are > 0
-    lo = t[0] if i == 0 else t[i - 1] + (half - v[i - 1]) * (t[i] - t[i - 1]) / (v[i] - v[i - 1])
-    hi = t[-1] if j == len(v) - 1 else t[j] + (half - v[j]) * (t[j + 1] - t[j]) / (v[j + 1] - v[j])
-    return f"FWHM {float(hi - lo):.1f}°"
+    w = float(width)
+    return f"FWHM {w:.2f}°" if w < 1.0 else f"FWHM {w:.1f}°"

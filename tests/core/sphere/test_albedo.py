@@ -126,7 +126,9 @@ def test_lambert_is_exact(theta, phi):
     # ∫ kd/π cos θ dω = kd for every incidence (the old mesh rule gave 0.799964 for 0.8)
     est = albedo_estimate("lambert", {"kd": 0.8}, theta, phi)
     assert est.value == pytest.approx(0.8, rel=1e-14)
-    assert est.error < 1e-12
+    # the estimate is rounding alone: |K − G| of ~1e-16 per node, ×END_SAFETY on the panels
+    # against the horizon
+    assert est.error < 1e-12 * adaptive.END_SAFETY
 
 
 @pytest.mark.parametrize("n", [1.0, 100.0, 1000.0, 10000.0])

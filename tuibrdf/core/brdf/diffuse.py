@@ -93,17 +93,28 @@ class _AlphaBeta:
 
     each symmetric in (wi, wo) to the last bit, so the model stays exactly reciprocal.  Each
     direction's terms are computed once (scalars for a single ``wi``).
+
+    Near the horizon the full model's back-scatter C2 = B (sin α − (2β/π)³) cancels (both terms
+    ≈ 1) and tan β ≈ 1/δ multiplies the cancellation back, so it is rewritten without either
+    difference: with δ = π/2 − β (from the components, see :func:`_polar`) and u = 2δ/π,
+
+        sin α − (1 − u)³ = −cos²α/(1 + sin α) + u (3 − 3u + u²)
+
+    (``c2_back``; sin α − 1 = −cos²α/(1 + sin α) and 1 − (1 − u)³ = 3u − 3u² + u³).
     """
 
     def __init__(self, wi: np.ndarray, wo: np.ndarray):
         xi, yi, zi = xyz(wi)
         xo, yo, zo = xyz(wo)
         s2i, s2o = xi * xi + yi * yi, xo * xo + yo * yo
-        ti, si, ci, tan_i = _polar(s2i, zi)
-        to, so, co, tan_o = _polar(s2o, zo)
+        ti, di, si, ci, tan_i = _polar(s2i, zi)
+        to, do, so, co, tan_o = _polar(s2o, zo)
         self.alpha = np.maximum(ti, to)
         self.beta = np.minimum(ti, to)
+        self.delta_beta = np.maximum(di, do)  # π/2 − β, from the components
+        self.cos_alpha = np.minimum(ci, co)
         self.cos_dphi = _cos_dphi(xi, yi, xo, yo, s2i, s2o)
+        self._parts = (xi, yi, xo, yo, s2i, s2o)
         # both on the horizon (β rounds to 90°): tan β and tan((α+β)/2) have no limit → value 0
         self.ok = both_above(zi, zo) & (self.beta < np.pi / 2)
         self.tan_beta = np.where(self.ok, np.minimum(tan_i, tan_o), 0.0)
@@ -112,23 +123,44 @@ class _AlphaBeta:
         self.tan_mean = safe_div(si + so, ci + co, self.ok)
 
 
+    def one_minus_abs_cos_dphi(self) -> np.ndarray:
+        """1 − |cos Δφ| without its cancellation as Δφ → 0° or 180° (there tan((α+β)/2) ≈ 1/ε
+        multiplies it near the horizon): sin²Δφ/(1 + |cos Δφ|) with sin Δφ from the cross
+        product of the horizontal components, for |cos Δφ| > 1/2."""
+        xi, yi, xo, yo, s2i, s2o = self._parts
+        c = np.abs(self.cos_dphi)
+        cross = xi * yo - yi * xo
+        den = s2i * s2o * (1.0 + c)
+        near = c > 0.5  # |Δφ| within 60° of 0° or 180°
+        # den = 0 only at the normal (cos Δφ = 0 there, the other branch)
+        sin2_over = safe_div(cross * cross, den, near & (den > 0.0))
+        return np.where(near, sin2_over, 1.0 - c)
+
+
 def _polar(sin2: np.ndarray, z: np.ndarray):
-    """``(θ, sin θ, cos θ, tan θ)`` of a direction from ``x² + y²`` and ``z``: sin and cos
-    divided by the length (≥ 0 for z ≥ 0).  The length is ``√(s² + z²)`` with s = √(x² + y²)
+    """``(θ, π/2 − θ, sin θ, cos θ, tan θ)`` of a direction from ``x² + y²`` and ``z``: sin
+    and cos divided by the length (≥ 0 for z ≥ 0).  θ and its complement come from one
+    ``atan2`` of the smaller component over the larger (an angle t ≤ π/4), the other one as
+    π/2 − t ≥ π/4: each is within an ulp or two of its own value, so the complement keeps its
+    relative precision near the horizon (π/2 − θ from a rounded θ would be off by 2e-16
+    absolute, 1e-7 relative at 1e-9 rad).  The length is ``√(s² + z²)`` with s = √(x² + y²)
     rather than ``hypot(s, z)`` (several times the time per element): the components of a
     direction are at most 1, so nothing overflows, an underflowing square is negligible beside
     the other, and ``√(s·s) = s`` exactly in binary64, so near the horizon (z² below half an ulp
     of s²) sin θ = s/s = 1 exactly, as with ``hypot``: the model is ill-conditioned there
     (C2 cancels), and an ulp of sin α would move it by 1e-8."""
     s = np.sqrt(sin2)  # a sum of squares: ≥ 0
-    theta = np.arctan2(s, z)
+    steep = s <= z  # θ ≤ π/4
+    t = np.arctan2(np.minimum(s, z), np.maximum(s, z))  # (0, 0) → 0: θ = 0 (below: never read)
+    theta = np.where(steep, t, np.pi / 2 - t)
+    comp = np.where(steep, np.pi / 2 - t, t)
     # the length of a direction is never 0 (≥ 1e-162 if not 0: a square root of a double);
     # were it, s = z = 0 divided by the floor gives 0
     r = np.maximum(np.sqrt(s * s + z * z), 1e-300)
     sn, cn = s / r, z / r
     # θ < π/2 as a double means c/s ≳ 1e-16, so s/c ≤ ~1e16; θ rounded to π/2 (c = 0 or c
     # tiny): tan θ = ∞, never the smaller tangent where ``ok`` holds
-    return theta, sn, cn, safe_div(sn, cn, theta < np.pi / 2, fill=np.inf)
+    return theta, comp, sn, cn, safe_div(sn, cn, theta < np.pi / 2, fill=np.inf)
 
 
 def oren_nayar(wi: np.ndarray, wo: np.ndarray, kd: float, sigma: float) -> np.ndarray:
@@ -139,11 +171,15 @@ def oren_nayar(wi: np.ndarray, wo: np.ndarray, kd: float, sigma: float) -> np.nd
     two_beta_pi = 2.0 * ab.beta / np.pi
     sin_alpha = ab.sin_alpha
     tb2 = two_beta_pi * two_beta_pi
-    # C2 = B sin α if cos Δφ ≥ 0, B (sin α − (2β/π)³) otherwise (sin α − 0 is sin α exactly)
-    c2 = b * (sin_alpha - np.where(cphi >= 0.0, 0.0, tb2 * two_beta_pi))
+    # C2 = B sin α if cos Δφ ≥ 0, B (sin α − (2β/π)³) otherwise, the latter without its
+    # cancellation near the horizon (see _AlphaBeta); 1 + sin α ≥ 1
+    u = 2.0 * ab.delta_beta / np.pi
+    c2_back = -ab.cos_alpha * ab.cos_alpha / (1.0 + sin_alpha) + u * (3.0 - 3.0 * u + u * u)
+    c2 = b * np.where(cphi >= 0.0, sin_alpha, c2_back)
     ab4 = 4.0 * ab.alpha * ab.beta / np.pi**2
     c3 = 0.125 * s2 / (s2 + 0.09) * (ab4 * ab4)
-    single = kd / np.pi * (a + c2 * cphi * ab.tan_beta + c3 * (1.0 - np.abs(cphi)) * ab.tan_mean)
+    side = ab.one_minus_abs_cos_dphi()  # 1 − |cos Δφ|
+    single = kd / np.pi * (a + c2 * cphi * ab.tan_beta + c3 * side * ab.tan_mean)
     inter = 0.17 * kd * kd / np.pi * s2 / (s2 + 0.13) * (1.0 - cphi * tb2)
     # the qualitative model goes negative near grazing back-scatter for σ ≳ 1 rad: clamp
     return np.where(ab.ok, np.maximum(single + inter, 0.0), 0.0)

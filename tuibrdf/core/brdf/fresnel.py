@@ -43,10 +43,13 @@ def _index_terms(f0: float) -> tuple[float, float]:
     n² − 1 = 4r/(1 − r)², written without the cancellation of n² − 1 (for f0 ≲ 1e-32, n²
     rounds to 1 and g would be 0 at grazing: 0/0); it is > 0 for f0 > 0, so g > 0 (no guard
     needed on the root) and c + g > 0, n² c + g > 0 below.  1 − r > 0 for f0 < 1 (no division
-    by zero) and n² ≤ 2e33 (no overflow) for the largest double below 1."""
+    by zero) and n² ≤ 2e33 (no overflow) for the largest double below 1.  1 − r is taken as
+    (1 − f0)/(1 + r): 1 − f0 is exact (Sterbenz) where 1 − √f0 would lose the digits of a
+    rounded root (a relative error of 2e-4 in n at f0 = 1 − 1e-12)."""
     r = math.sqrt(f0)
-    q = (1.0 + r) / (1.0 - r)
-    return q * q, 4.0 * r / ((1.0 - r) * (1.0 - r))
+    one_minus_r = (1.0 - f0) / (1.0 + r)
+    q = (1.0 + r) / one_minus_r
+    return q * q, 4.0 * r / (one_minus_r * one_minus_r)
 
 
 def fresnel_exact(cos_psi: np.ndarray, f0: float, clipped: bool = False) -> np.ndarray:
@@ -57,10 +60,18 @@ def fresnel_exact(cos_psi: np.ndarray, f0: float, clipped: bool = False) -> np.n
     if f0 >= 1.0:
         return np.ones_like(c)  # n = ∞: the index diverges; the limit is total reflection
     n2, n2m1 = _index_terms(f0)
-    g = np.sqrt(n2m1 + c * c)
-    rs = (c - g) / (c + g)
-    n2c = n2 * c
-    rp = (n2c - g) / (n2c + g)
+    c2 = c * c
+    g = np.sqrt(n2m1 + c2)
+    # the differences c − g and n²c − g cancel as n → 1 (tiny f0: an error ~ 1/(4√f0) ulp);
+    # with g² = n² − 1 + c² they are, exactly,
+    #   c − g = −(n² − 1)/(c + g),   n²c − g = (n⁴c² − g²)/(n²c + g)
+    #                                        = (n² − 1)((n² + 1)c² − 1)/(n²c + g)
+    # (the factor (n² + 1)c² − 1 is rp's own zero at Brewster's angle, not a cancellation of
+    # two approximations).  Denominators: c + g ≥ g > 0 and n²c + g > 0 (see _index_terms).
+    cg = c + g
+    rs = -n2m1 / (cg * cg)
+    n2cg = n2 * c + g
+    rp = n2m1 * ((n2 + 1.0) * c2 - 1.0) / (n2cg * n2cg)
     return 0.5 * (rs * rs + rp * rp)
 
 

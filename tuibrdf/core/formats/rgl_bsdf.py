@@ -479,9 +479,11 @@ def _phi2u(p):
     return (p + np.pi) / (2.0 * np.pi)
 
 
-def evaluate(data: RglData, wi: np.ndarray, wo: np.ndarray, clamp: bool = True) -> np.ndarray:
+def evaluate(data: RglData, wi: np.ndarray, wo: np.ndarray, clamp: bool = True,
+             floor: bool = True) -> np.ndarray:
     """RGB BRDF values (sr⁻¹, no cosine factor), shape ``(..., 3)``; negative values clamped to
-    0 unless ``clamp`` is False (module docstring)."""
+    0 unless ``clamp`` is False (module docstring).  ``floor=False``: the file's own f, its
+    f·cos θo divided by cos θo all the way to the horizon (the albedo integrates that)."""
     one_light = np.asarray(wi).size == 3  # one incidence for all (a map): mix slices once
     wi, wo = np.broadcast_arrays(np.asarray(wi, dtype=float), np.asarray(wo, dtype=float))
     shape = wi.shape[:-1]
@@ -520,7 +522,9 @@ def evaluate(data: RglData, wi: np.ndarray, wo: np.ndarray, clamp: bool = True) 
         num = data.ndf.eval(u_wm, data.ndf.corners([]))
         den = 4.0 * data.sigma.eval(u_wi, data.sigma.corners([]))
         out *= safe_div(num, den, den > 0)[:, None]  # σ = 0: no projected area, value 0
-    cos_o = np.maximum(wo[:, 2], COS_FLOOR)  # the data is f·cos θo (powitacq's eval)
+    # the data is f·cos θo (powitacq's eval); floor=False: cos θo itself, ≥ 1e-200 (no
+    # overflow; that close to the horizon the solid angle is nil)
+    cos_o = np.maximum(wo[:, 2], COS_FLOOR if floor else 1e-200)
     out /= cos_o[:, None]
     if clamp:
         out = np.maximum(out, 0.0)  # out-of-gamut spectra give negative RGB: shown as 0

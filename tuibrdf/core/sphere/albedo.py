@@ -112,17 +112,45 @@ def albedo_rule(model: Model, values: Mapping[str, Any],
     s, c = sincos_deg(np.append(thetas, check_phi_i(phi_i_deg)))
     st, ct = s[:-1], c[:-1]
     sp, cp = np.full(len(thetas), s[-1]), np.full(len(thetas), c[-1])
+    if hint is None and kernel is None:
+        from tuibrdf.core.sphere.measured_albedo import albedo_setup
+
+        measured = albedo_setup(model)  # a .bsdf file: its own f to the horizon
+        if measured is not None:
+            kernel, hint = measured
     hint = lobe(model, values, rtol) if hint is None else hint
 
     def f(wi, wo):
         return evaluate_resolved(model, values, wi, wo)
 
-    return integrator.integrate(kernel or f, hint.frame, integrator.cases(st, ct, sp, cp),
-                           scale=hint.scale, radial_breaks=hint.breaks,
-                           symmetric=hint.symmetric, rtol=rtol, atol=ATOL,
-                           max_evals=min(max_evals, hint.max_evals or max_evals),
-                           azimuth_breaks=hint.azimuths, horizon=hint.horizon,
-                           rings=hint.rings, outer_k7=hint.outer_k7)
+    def run(azimuths, sel=slice(None)):
+        return integrator.integrate(kernel or f, hint.frame,
+                                    integrator.cases(st[sel], ct[sel], sp[sel], cp[sel]),
+                                    scale=hint.scale, radial_breaks=hint.breaks,
+                                    symmetric=hint.symmetric, rtol=rtol, atol=ATOL,
+                                    max_evals=min(max_evals, hint.max_evals or max_evals),
+                                    azimuth_breaks=azimuths, horizon=hint.horizon,
+                                    rings=hint.rings, outer_k7=hint.outer_k7)
+
+    r = run(hint.azimuths)
+    if hint.second_layout is not None and np.any(ct < hint.second_layout):
+        # the integrand has kinks the hint does not place (lobes.Lobe.second_layout): these
+        # incidences again on a second outer layout; the difference joins the error
+        sel = np.flatnonzero(ct < hint.second_layout)
+        r2 = run(_shifted(hint.azimuths), sel)
+        r.error[sel] = np.maximum(r.error[sel], r2.error) + np.abs(r.value[sel] - r2.value)
+        r.evaluations[sel] += r2.evaluations
+    return r
+
+
+def _shifted(azimuths):
+    """Outer breakpoints between the usual ones: ψ = (2k + 1)π/16 besides ``azimuths``."""
+    extra = [(2 * k + 1) * np.pi / 16 for k in range(8)]
+
+    def out(st, ct):
+        return [*(azimuths(st, ct) if azimuths is not None else []), *extra]
+
+    return out
 
 
 def albedo_rule_counted(model: Model, values: Mapping[str, Any],

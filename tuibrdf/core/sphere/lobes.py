@@ -53,11 +53,21 @@ class Lobe(NamedTuple):
     rings: tuple[float, ...] = ()
     #: outer panels narrower than this (radians) use K7 (``integrator.integrate(outer_k7=...)``)
     outer_k7: float = 0.0
+    #: below this cos θi the integrand has kinks the hint does not place (Oren-Nayar's clamp
+    #: near grazing back-scatter): the albedo is integrated again on a second outer layout and
+    #: the difference joins the error estimate (None: never)
+    second_layout: float | None = None
 
 
 def _theta_i_break(st, ct, cpsi, rmax):
     """Oren-Nayar: max/min(θi, θo) kink at θo = θi (normal frame: ρ = θo)."""
     return [np.arctan2(st, ct)]
+
+
+#: Oren-Nayar (full) is clamped at 0 near grazing back-scatter for σ ≳ 1 rad (from this σ in
+#: degrees on), where θi is above 80° (this cos θi): its edges are not placed by the hint
+ON_CLAMP_SIGMA = 45.0
+ON_CLAMP_COS = float(np.cos(np.radians(80.0)))
 
 
 def _vcavity_breaks(st, ct, cpsi, rmax):
@@ -345,7 +355,9 @@ def _sgd_lobe(v: Mapping[str, Any], rtol: float) -> Lobe:
 #: for: a hint may leave out a panel end whose effect on the value is far below it.
 LOBE_HINTS: dict[str, Callable[[Mapping[str, Any], float], Lobe]] = {
     "lambert": lambda v, rtol: Lobe("normal", np.pi / 2),
-    "oren-nayar": lambda v, rtol: Lobe("normal", np.pi / 2, _theta_i_break),
+    "oren-nayar": lambda v, rtol: Lobe(
+        "normal", np.pi / 2, _theta_i_break,
+        second_layout=ON_CLAMP_COS if float(v["sigma"]) >= ON_CLAMP_SIGMA else None),
     "oren-nayar-simple": lambda v, rtol: Lobe("normal", np.pi / 2, _theta_i_break),
     "disney-diffuse": lambda v, rtol: Lobe("normal", np.pi / 2),
     "phong": lambda v, rtol: Lobe("mirror", _power_width(float(v["n"])), _mirror_kink),

@@ -20,8 +20,38 @@ from tuibrdf.core.registry import get_model
 from tuibrdf.core.sphere.albedo import albedo_curve_estimate_resolved
 
 THETAS = (0.0, 60.0)
-#: tighter than the viewer's default: the table is written once, with 6 digits
-RTOL = 1e-7
+#: tighter than the viewer's default: the table is written once, with 6 digits, each of them
+#: right (the estimate must not straddle a rounding boundary: :func:`rounded`)
+RTOL = 1e-10
+#: the tolerance of a second pass for a value whose estimate straddles a rounding boundary
+RTOL_TIGHT = 1e-13
+DIGITS = 6
+
+
+def rounded(value: float, error: float) -> str | None:
+    """``value`` to :data:`DIGITS` significant digits if every number within ``error`` of it
+    rounds the same way (each digit printed is then right), else None."""
+    text = f"{value:.{DIGITS}g}"
+    same = f"{value - error:.{DIGITS}g}" == text == f"{value + error:.{DIGITS}g}"
+    return text if same else None
+
+
+def fit_albedo_text(fit: str, material: str) -> list[str]:
+    """The stored texts of ``fit``'s albedos of ``material`` at :data:`THETAS` (RGB, flat):
+    each correctly rounded to :data:`DIGITS` digits, from the rule at :data:`RTOL`, again at
+    :data:`RTOL_TIGHT` where the first estimate straddles a rounding boundary."""
+    m = get_model(fit)
+    values = m.resolve({"material": material})
+    out = []
+    for rtol in (RTOL, RTOL_TIGHT):
+        est = albedo_curve_estimate_resolved(m, values, THETAS, rtol=rtol, max_evals=2_000_000)
+        v, e = np.asarray(est.value).ravel(), np.asarray(est.error).ravel()
+        err = np.broadcast_to(e, v.shape) if e.size == 1 else e
+        out = [rounded(float(x), float(y)) for x, y in zip(v, err, strict=True)]
+        if all(t is not None for t in out):
+            return out
+    raise ValueError(f"{fit} {material}: an albedo sits on a rounding boundary of "
+                     f"{DIGITS} digits within its error at rtol {RTOL_TIGHT:g}")
 
 
 def fit_albedo(fit: str, material: str, theta_i_deg: float | None = None) -> np.ndarray:
@@ -48,12 +78,14 @@ def stored_text() -> str:
         "# Directional albedo a(theta_i) = integral of f cos(theta_o) over the hemisphere, RGB,",
         "# of the ABC and SGD fits of each MERL material at theta_i = 0 and 60 degrees.",
         "# Computed (not from dj_brdf.h) by scripts/gen_material_albedo.py with the albedo",
-        f"# quadrature of tuibrdf/core/sphere/albedo.py at rtol {RTOL:g}; 6 digits.",
+        f"# quadrature of tuibrdf/core/sphere/albedo.py at rtol {RTOL:g} (or {RTOL_TIGHT:g} "
+        f"where",
+        f"# needed); {DIGITS} digits, each right (the error estimate decides the rounding).",
         "\t".join(("name", *COLUMNS)),
     ]
     for name in material_names():
-        vals = [v for m in ("abc", "sgd") for v in fit_albedo(m, name).ravel()]
-        lines.append("\t".join((name, *(f"{v:.6g}" for v in vals))))
+        lines.append("\t".join((name, *(t for m in ("abc", "sgd")
+                                          for t in fit_albedo_text(m, name)))))
     return "\n".join(lines) + "\n"
 
 

@@ -365,7 +365,7 @@ def _sections(m: Material, wi: np.ndarray, cosine: bool, center: np.ndarray,
               azimuth: float, phi_i: float = 180.0) -> dict[str, np.ndarray]:
     """Both planes through the normal and the great circle through ``center`` at section
     azimuth ``azimuth`` (:func:`tuibrdf.core.views.sections.great_circle`), in one kernel call."""
-    from tuibrdf.core.views.sections import great_circle
+    from tuibrdf.core.views.sections import fwhm, great_circle
 
     w, above = great_circle(center, SECTION_THETAS, azimuth)
     w = np.where(above[:, None], w, np.array([0.0, 0.0, 1.0]))  # below: any valid direction
@@ -374,6 +374,17 @@ def _sections(m: Material, wi: np.ndarray, cosine: bool, center: np.ndarray,
     n = len(SECTION_THETAS)
     out = {p: g[k * n:(k + 1) * n] for k, p in enumerate((*PLANES, "peak"))}
     out["peak"] = np.where(above[:, None] if g.ndim == 2 else above, out["peak"], 0.0)
+
+    def scalar(wo):  # the section's values (f or f·cos θr; the luminance for RGB), 0 below
+        x = np.asarray(f_or_f_cos(m.model, m.values, wi, wo, cosine), dtype=float)
+        x = luminance(x) if x.ndim == 2 else x
+        return np.where(wo[:, 2] >= 0.0, x, 0.0)
+
+    peak = out["peak"]
+    width = fwhm(scalar, center, azimuth, SECTION_THETAS,
+                 luminance(peak) if peak.ndim == 2 else peak)
+    # the FWHM across the lobe (degrees; NaN: none), on the function (see fwhm)
+    out["fwhm"] = np.array(np.nan if width is None else width)
     for v in out.values():
         v.setflags(write=False)
     return out

@@ -74,3 +74,48 @@ def great_circle(
     w = ct[..., None] * c + st[..., None] * u
     w = w / np.sqrt(np.sum(w * w, axis=-1))[..., None]  # |w| = 1 up to rounding: renormalise
     return w, w[..., 2] >= 0.0
+
+
+#: Bisection steps of :func:`fwhm` on each side (one kernel call each, both sides at once):
+#: the bracket is then 1°/4096; the crossing is interpolated linearly inside it
+FWHM_STEPS = 12
+
+
+def fwhm(fn, center: np.ndarray, azimuth_deg: float, t_deg: np.ndarray, v: np.ndarray,
+         steps: int = FWHM_STEPS) -> float | None:
+    """The full width at half maximum (degrees) of the lobe around the largest of the samples
+    ``v`` (scalar values at the signed angles ``t_deg`` along :func:`great_circle`'s section
+    through ``center`` at ``azimuth_deg``), its two half-maximum crossings found *on the
+    function* ``fn(w (n, 3)) → (n,)`` by bisection between the samples that bracket them,
+    then linear interpolation in the last bracket (a lobe narrower than the samples' spacing
+    has its own width, not the spacing's).  The maximum is the largest sample (the section
+    through the peak has it at t = 0).  A side that stays above half to the end of the
+    samples ends there; None for a flat, empty or non-positive curve."""
+    v = np.asarray(v, dtype=float)
+    t = np.asarray(t_deg, dtype=float)
+    if v.size == 0 or not np.all(np.isfinite(v)):
+        return None
+    vmax = float(np.max(v))
+    if vmax <= 0.0 or float(np.min(v)) >= 0.5 * vmax:
+        return None
+    k = int(np.argmax(v))
+    half = 0.5 * vmax
+    below = np.flatnonzero(v < half)
+    left, right = below[below < k], below[below > k]
+    # brackets: a (value ≥ half) and b (value < half) on each side; an open side (no sample
+    # below half) is the end sample, a = b
+    ia = np.array([left[-1] + 1 if len(left) else 0, right[0] - 1 if len(right) else len(v) - 1])
+    ib = np.array([left[-1] if len(left) else 0, right[0] if len(right) else len(v) - 1])
+    a, b, fa, fb = t[ia], t[ib], v[ia], v[ib]
+    for _ in range(steps if len(left) or len(right) else 0):
+        mid = 0.5 * (a + b)
+        w, _above = great_circle(center, mid, azimuth_deg)
+        fm = np.asarray(fn(w), dtype=float)
+        inside = fm >= half
+        a, fa = np.where(inside, mid, a), np.where(inside, fm, fa)
+        b, fb = np.where(inside, b, mid), np.where(inside, fb, fm)
+    # fa ≥ half > fb where a ≠ b: the denominator is > 0 there
+    open_side = a == b
+    frac = np.divide(fa - half, fa - fb, out=np.zeros(2), where=~open_side)
+    x = a + frac * (b - a)
+    return float(x[1] - x[0])
