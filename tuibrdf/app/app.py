@@ -231,6 +231,9 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
     def action_type_value(self) -> None:
         """Enter or =: type the selected parameter's value (a filtered list for choices)."""
         s = self.state
+        if (why := s.no_params()) is not None:
+            self._changed(why)
+            return
         row = s.row
         p = row.param
         current = fmt_number(s.row_value(row))

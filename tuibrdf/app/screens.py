@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from rich.text import Text
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical, VerticalScroll
@@ -80,11 +81,11 @@ class ValueScreen(ModalScreen[str | None]):
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Static(self.prompt, id="prompt")
+            yield Static(Text(self.prompt), id="prompt")  # a file's names: never markup
             yield Input(value="" if self.choices else self.current, id="value",
                         placeholder="type to filter" if self.choices else self.current)
             if self.choices:
-                yield OptionList(*self.choices, id="choices")
+                yield OptionList(*map(Text, self.choices), id="choices")
             yield Static("", id="error")
 
     def on_mount(self) -> None:
@@ -100,11 +101,11 @@ class ValueScreen(ModalScreen[str | None]):
         self.shown = [c for c in self.choices if typed in c.lower()]
         options = self.query_one(OptionList)
         options.clear_options()
-        options.add_options(self.shown)
+        options.add_options([Text(c) for c in self.shown])
         if self.shown:
             options.highlighted = 0
         self.query_one("#error", Static).update(
-            "" if self.shown else f"no name contains {typed!r}")
+            Text("" if self.shown else f"no name contains {typed!r}"))
 
     def action_move(self, delta: int) -> None:
         if self.choices and self.shown:
@@ -117,7 +118,7 @@ class ValueScreen(ModalScreen[str | None]):
             return
         error = self.apply(text)
         if error:
-            self.query_one("#error", Static).update(error)
+            self.query_one("#error", Static).update(Text(error))  # it quotes what was typed
         else:
             self.dismiss(text)
 

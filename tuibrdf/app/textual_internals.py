@@ -26,6 +26,11 @@ internal (Textual 8.2.8)                         what the viewer does with it
 ``LinuxDriver._writer_thread``                   output thread still has queued
 ``WriterThread._queue``                          (``app._driver._writer_thread._queue``)
 ``CommandPalette._action_command_list(action)``  :class:`SafeCommandPalette` overrides it
+``Parser.__init__()`` (textual._parser)          :class:`SafeXTermParser` re-runs it to start
+                                                 afresh after a malformed sequence
+``<driver module>.XTermParser``                  :func:`guard_input_parsing` replaces it with
+                                                 :class:`SafeXTermParser` in each driver module
+                                                 (Linux, inline, web) that reads it there
 ===============================================  ==================================================
 """
 
@@ -37,14 +42,16 @@ import io
 from collections.abc import Iterable
 
 from textual._compositor import ChopsUpdate, Compositor
+from textual._parser import Parser
+from textual._xterm_parser import XTermParser
 from textual.command import CommandPalette
 from textual.css.styles import RenderStyles
 from textual.geometry import Region
 from textual.screen import Screen
 from textual.widget import Widget
 
-__all__ = ["ChopsUpdate", "Compositor", "PARTIAL_PAINT", "SafeCommandPalette",
-           "checks", "install_compositor", "regions_to_spans", "styles_key",
+__all__ = ["ChopsUpdate", "Compositor", "PARTIAL_PAINT", "SafeCommandPalette", "SafeXTermParser",
+           "checks", "guard_input_parsing", "install_compositor", "regions_to_spans", "styles_key",
            "take_dirty_regions", "writer_backlog"]
 
 
@@ -97,6 +104,10 @@ def _other_checks() -> dict[str, bool]:
         "WriterThread._queue": callable(getattr(getattr(writer, "_queue", None), "qsize", None)),
         "CommandPalette._action_command_list(action)":
             _params(CommandPalette, "_action_command_list") == ["self", "action"],
+        "Parser.__init__()": _params(Parser, "__init__") == ["self"],
+        "<driver module>.XTermParser": all(
+            getattr(m, "XTermParser", None) in (XTermParser, SafeXTermParser)
+            for m in _driver_modules()) and bool(_driver_modules()),
     }
 
 
@@ -161,3 +172,54 @@ class SafeCommandPalette(CommandPalette):
             super()._action_command_list(action)
         except (KeyError, IndexError):
             pass
+
+
+def _driver_modules() -> list:
+    """The modules of Textual's drivers that make an ``XTermParser`` (those importable here)."""
+    import importlib
+
+    found = []
+    for name in ("linux_driver", "linux_inline_driver", "web_driver"):
+        try:
+            found.append(importlib.import_module(f"textual.drivers.{name}"))
+        except ImportError:  # (another platform's driver)
+            continue
+    return found
+
+
+class SafeXTermParser(XTermParser):
+    """Textual's terminal input parser, but a sequence it cannot parse is dropped, not fatal:
+    Textual 8.2 raises out of its input thread on, e.g., a kitty key ``ESC [ 1114112 u``
+    (``chr`` of a code point beyond U+10FFFF), which ends the app.  Input is fed one
+    character at a time; when the parser raises, it starts afresh with the next character
+    (what it had buffered of the bad sequence is dropped)."""
+
+    def feed(self, data: str):
+        if not data:  # end of input
+            try:
+                yield from super().feed(data)
+            except Exception:
+                pass
+            return
+        for ch in data:
+            try:
+                yield from super().feed(ch)
+            except Exception:
+                Parser.__init__(self)  # a fresh parse generator, no tokens, no timeout
+
+    def tick(self):
+        try:
+            yield from super().tick()
+        except Exception:
+            Parser.__init__(self)
+
+
+def guard_input_parsing() -> bool:
+    """Every Textual driver here parses terminal input with :class:`SafeXTermParser`;
+    whether it could be installed (Textual's drivers name ``XTermParser`` in their module)."""
+    done = False
+    for module in _driver_modules():
+        if getattr(module, "XTermParser", None) in (XTermParser, SafeXTermParser):
+            module.XTermParser = SafeXTermParser
+            done = True
+    return done

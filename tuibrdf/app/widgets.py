@@ -271,6 +271,7 @@ class ParamPanel(DrawnRows):
     """
 
     _for: tuple | None = None  # what the panel shows now (:meth:`show`)
+    _titles: tuple = ()  # the border's title and subtitle shown (plain text)
     max_rows: int | None = None  # how many parameter rows fit (None: all)
     _top = 0  # the first row shown when they do not all fit
 
@@ -345,7 +346,7 @@ class ParamPanel(DrawnRows):
         rows = side.rows()
         selected = min(side.selected, len(rows) - 1)
         top, n = self._window(len(rows), max(selected, 0))
-        above, below = top, len(rows) - top - n
+        above, below = top, max(0, len(rows) - top - n)  # (no rows: n is still 1)
         label = "AB"[side_index] + ": " if state.compare else ""
         name = side.spec.title
         if os.path.isabs(name):  # a model file without a title of its own: its file name
@@ -357,8 +358,9 @@ class ParamPanel(DrawnRows):
         title = f"{label}{name}{up}"
         subtitle = " · ".join(x for x in (f"↓ {below} more" if below else "",
                                           "m/M model" if active else "") if x)
-        if (self.border_title, self.border_subtitle) != (title, subtitle):
-            self.border_title, self.border_subtitle = title, subtitle
+        if self._titles != (title, subtitle):  # as Text: a file's name is never markup
+            self._titles = (title, subtitle)
+            self.border_title, self.border_subtitle = Text(title), Text(subtitle)
         # one label column for every row: as wide as the longest label (a .brdf file's
         # "clearcoatGloss"), within LABEL_WIDTH; a longer one ends in "…"
         lw = min(max((len(r.label) for r in rows), default=0), LABEL_WIDTH[1])
