@@ -15,16 +15,16 @@ from textual.app import App, ComposeResult, SystemCommand
 from textual.containers import Container, Horizontal, Vertical
 from textual.css.query import NoMatches
 from textual.widgets import Footer, Static
-from textual.worker import Worker
 
 from tuibrdf.app import keys
 from tuibrdf.app.frames import FrameDelivery
+from tuibrdf.app.guard import error_text, survives
 from tuibrdf.app.layout import CSS, arrange
 from tuibrdf.app.loading import MeasuredData
 from tuibrdf.app.paint import ViewerScreen
 from tuibrdf.app.screens import HelpScreen, SaveScreen, ValueScreen
 from tuibrdf.app.text import PANES
-from tuibrdf.app.textual_internals import SafeCommandPalette
+from tuibrdf.app.textual_internals import OneLineCrash, SafeCommandPalette, guard_input_parsing
 from tuibrdf.app.widgets import ParamPanel, Picture, QuietStatic, StatusLine
 from tuibrdf.core.conventions import fmt_number
 from tuibrdf.core.directions import from_degrees
@@ -69,7 +69,7 @@ def _read_preset(name: str):
         return str(e)
 
 
-class BrdfApp(FrameDelivery, MeasuredData, App):
+class BrdfApp(OneLineCrash, FrameDelivery, MeasuredData, App):
     """``BrdfApp(state, color=None)``; ``color`` ∈ truecolor/256/none overrides detection.
     ``sync=True`` (tests) computes every frame on the event loop, deterministically."""
 
@@ -80,6 +80,7 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
     def __init__(self, state: ViewerState | None = None, *, color: str | None = None,
                  message: str = "", sync: bool = False) -> None:
         super().__init__()
+        guard_input_parsing()  # a malformed escape sequence is dropped, not fatal
         self.sync = sync
         self.state = state or ViewerState()
         self._color = color
@@ -89,10 +90,9 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self.frames = 0  # how many results were shown (tests, benchmarks)
         self._loading: dict[str, float] = {}  # measured-data file → fraction read so far
         self._loaded = ""  # the saved preset `P` loaded last
-        self._worker: Worker | None = None  # the frame worker started last, and its request
-        self._worker_for: FrameRequest | None = None
         #: recent computing times of each kind of frame (frames.FrameDelivery._quick)
         self._costs: dict[tuple, list[float]] = {}
+        self._jobs: list = []  # the frame jobs whose thread has not ended (frames.FrameJob)
         self._changes = 0  # changes so far; only the last one queued updates the screen
         self._relayout = False  # a change since the last update may show other panes
         self._preset_names: list[str] = []  # the saved presets, for the command palette
@@ -119,16 +119,20 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         yield QuietStatic(id="toosmall")
         yield Footer(compact=True, show_command_palette=False)
 
+    @survives
     def on_mount(self) -> None:
         self._changed(self.message, relayout=True)
         self.set_interval(FILE_POLL_S, self._check_files)
+        self.app_resume_signal.subscribe(self, self._resumed)
         self.background(_list_presets, self._listed)
         if not self.sync:
             self.set_timer(FREEZE_S, gc.freeze)
 
+    @survives
     def on_resize(self, event) -> None:
         self._changed(self.message, relayout=True)
 
+    @survives
     def _check_files(self) -> None:
         """A model file edited on disk (mtime or size changed): re-read, redraw."""
         for side in self.state.sides:
@@ -174,6 +178,7 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self._changes += 1
         self.call_later(self._update, self._changes)
 
+    @survives
     def _update(self, change: int) -> None:
         """The layout if the change asked for it, then the frame (:meth:`refresh_frame`: the
         panels and the status line go with it, so one key costs one paint)."""
@@ -187,10 +192,26 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         except NoMatches:  # keys still queued while the app closes: no widgets left
             pass
 
+    @survives
+    async def run_action(self, action, default_namespace=None) -> bool:
+        """Textual's, but an error in the action is a message and the viewer goes on
+        (every key, palette command and binding of a dialog comes through here)."""
+        return await super().run_action(action, default_namespace)
+
+    def report_error(self, error: Exception, where: str) -> None:
+        """An error in the viewer's own code (:mod:`.guard`): a message on the status line;
+        the last picture stays and the viewer goes on."""
+        self.message = f"error in {where}: {error_text(error)} (the viewer goes on)"
+        try:
+            self._status()
+        except Exception:  # (no status line: closing, or the error is in drawing it)
+            pass
+
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         """While a modal screen (help, save, palette) is open, the viewer's keys wait."""
         return not (action in VIEWER_ACTIONS and len(self.screen_stack) > 1)
 
+    @survives
     def picture_clicked(self, pane: str, x: int, y: int) -> None:
         """A click at cell ``(x, y)`` of ``pane``: on a map or a section the probe goes to
         the direction drawn there (the status line then reads it)."""
@@ -220,14 +241,27 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self._changed(self.state.set_probe(float(uv[0]), float(uv[1])))
 
     # -- actions -----------------------------------------------------------------------------
+    @survives
     def action_state(self, method: str, args: tuple = ()) -> None:
         """A :class:`ViewerState` transition named in the key table."""
         message = getattr(self.state, method)(*args)
         self._changed(message, relayout=method in keys.RELAYOUT)
 
+    def action_interrupt(self) -> None:
+        """ctrl+c: quit with exit status 130, as Ctrl-C ends the other commands."""
+        self.exit(return_code=130)
+
+    def _resumed(self, app=None) -> None:
+        """Back from a suspension (SIGTSTP, then SIGCONT: ctrl+z and fg in a shell): the
+        terminal's screen was left, so everything is painted again."""
+        self.screen.refresh(repaint=True)
+        self.refresh(repaint=True, layout=True)
+
+    @survives
     def action_help(self) -> None:
         self.push_screen(HelpScreen())
 
+    @survives
     def action_type_value(self) -> None:
         """Enter or =: type the selected parameter's value (a filtered list for choices)."""
         s = self.state
@@ -246,6 +280,7 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self.push_screen(ValueScreen(prompt, current, s.type_value, p.choices),
                          partial(self._typed, row.label))
 
+    @survives
     def action_type_theta(self) -> None:
         s = self.state
         prompt = f"θi (angle of incidence, degrees)\nnow {s.theta_i:g}°; in [0, 90]°" \
@@ -253,6 +288,7 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         self.push_screen(ValueScreen(prompt, f"{s.theta_i:g}", s.type_theta),
                          partial(self._typed, "θi"))
 
+    @survives
     def _typed(self, label: str, text: str | None) -> None:
         self._changed(f"{label} = {text}" if text is not None else f"{label} unchanged",
                       relayout=True)
@@ -267,14 +303,20 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
             return
 
         def run() -> None:
-            result = work()
             try:
-                self.call_from_thread(done, result)
+                result = work()
+            except Exception as e:  # (else Python would print it over the screen)
+                call, args = self.report_error, (e, "background")
+            else:
+                call, args = done, (result,)
+            try:
+                self.call_from_thread(call, *args)
             except RuntimeError:  # the app has closed meanwhile
                 pass
 
         threading.Thread(target=run, name="tuibrdf-io", daemon=True).start()
 
+    @survives
     def action_save(self) -> None:
         state = self.state
 
@@ -293,13 +335,16 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
 
         self.push_screen(SaveScreen(), done)
 
+    @survives
     def _saved(self, message: str) -> None:
         self._changed(message)
         self.background(_list_presets, self._listed)
 
+    @survives
     def _listed(self, names: list[str]) -> None:
         self._preset_names = names
 
+    @survives
     def action_load_next(self) -> None:
         loaded = self._loaded
 
@@ -313,9 +358,11 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
 
         self.background(work, self._show_loaded)
 
+    @survives
     def load_and_show(self, name: str) -> None:
         self.background(lambda: (name, _read_preset(name)), self._show_loaded)
 
+    @survives
     def _show_loaded(self, result: tuple[str, object]) -> None:
         name, got = result
         if isinstance(got, str):  # why it cannot be loaded
@@ -333,6 +380,7 @@ class BrdfApp(FrameDelivery, MeasuredData, App):
         apply_loaded(self.state, *got)
         return None
 
+    @survives
     def action_command_palette(self) -> None:
         if self.use_command_palette and not SafeCommandPalette.is_open(self):
             self.push_screen(SafeCommandPalette(id="--command-palette"))

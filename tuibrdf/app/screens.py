@@ -9,6 +9,7 @@ from textual.containers import Vertical, VerticalScroll
 from textual.screen import ModalScreen
 from textual.widgets import Input, OptionList, Static
 
+from tuibrdf.app.guard import survives
 from tuibrdf.app.keys import help_text
 
 
@@ -48,6 +49,7 @@ class SaveScreen(ModalScreen[str | None]):
         if self.is_current:
             self.dismiss(result)
 
+    @survives
     def on_input_submitted(self, event: Input.Submitted) -> None:
         event.stop()
         self._close(event.value.strip() or None)
@@ -94,6 +96,7 @@ class ValueScreen(ModalScreen[str | None]):
             if self.current in self.choices:
                 options.highlighted = self.choices.index(self.current)
 
+    @survives
     def on_input_changed(self, event: Input.Changed) -> None:
         if not self.choices:
             return
@@ -107,12 +110,14 @@ class ValueScreen(ModalScreen[str | None]):
         self.query_one("#error", Static).update(
             Text("" if self.shown else f"no name contains {typed!r}"))
 
+    @survives
     def action_move(self, delta: int) -> None:
         if self.choices and self.shown:
             options = self.query_one(OptionList)
             h = options.highlighted if options.highlighted is not None else -1
             options.highlighted = max(0, min(len(self.shown) - 1, h + delta))
 
+    @survives
     def _submit(self, text: str) -> None:
         if not self.is_current:  # Enter Enter in one burst: the screen is already closing
             return
@@ -122,6 +127,7 @@ class ValueScreen(ModalScreen[str | None]):
         else:
             self.dismiss(text)
 
+    @survives
     def on_input_submitted(self, event: Input.Submitted) -> None:
         event.stop()
         text = event.value.strip()
@@ -131,6 +137,7 @@ class ValueScreen(ModalScreen[str | None]):
                 text = self.shown[options.highlighted]
         self._submit(text)
 
+    @survives
     def on_option_list_option_selected(self, event: OptionList.OptionSelected) -> None:
         event.stop()
         self._submit(str(event.option.prompt))

@@ -24,6 +24,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from functools import partial
 
 from tuibrdf.cli.common import (
     UsageError,
@@ -187,13 +188,85 @@ def check_terminal(stdin=None, stdout=None) -> None:
                              "in a pipe or a file: tuibrdf render)")
 
 
+#: the signals that end the viewer: the terminal is restored, then exit status 128 + n
+#: (SIGINT: 130, as Ctrl-C); SIGTSTP/SIGCONT are Textual's (suspend, resume: redrawn)
+TERMINATING = ("SIGINT", "SIGTERM", "SIGHUP", "SIGQUIT", "SIGUSR1", "SIGUSR2", "SIGALRM")
+#: what leaving Textual's application mode writes: the kitty keyboard protocol, mouse
+#: tracking, focus events and bracketed paste off, line wrap on, the main screen back, the
+#: cursor shown
+RESTORE = ("\x1b[<u\x1b[?1000l\x1b[?1003l\x1b[?1015l\x1b[?1006l\x1b[?1004l\x1b[?2004l"
+           "\x1b[?7h\x1b[?1049l\x1b[?25h")
+
+
+def _on_terminating_signal(saved, signum, frame) -> None:
+    """Restore the terminal (the modes Textual set, the tty's attributes from before) and
+    exit 128 + ``signum`` at once: nothing waits for the app or a frame's thread."""
+    try:
+        os.write(sys.__stdout__.fileno(), RESTORE.encode())
+    except (OSError, ValueError, AttributeError):  # the terminal is gone (SIGHUP)
+        pass
+    if saved is not None:
+        import termios
+
+        try:
+            termios.tcsetattr(sys.__stdin__.fileno(), termios.TCSANOW, saved)
+        except (termios.error, OSError, ValueError):
+            pass
+    os._exit(128 + signum)
+
+
+def catch_terminating_signals() -> dict:
+    """From here on, each of :data:`TERMINATING` restores the terminal and exits; returns
+    the handlers they had (for :func:`restore_signals`)."""
+    import signal
+
+    saved = None
+    try:
+        import termios
+    except ImportError:  # (Windows)
+        termios = None
+    if termios is not None:
+        try:
+            saved = termios.tcgetattr(sys.__stdin__.fileno())
+        except (termios.error, OSError, ValueError, AttributeError):  # not a tty (tests)
+            pass
+    before = {}
+    for name in TERMINATING:
+        if hasattr(signal, name):
+            n = getattr(signal, name)
+            before[n] = signal.signal(n, partial(_on_terminating_signal, saved))
+    return before
+
+
+def restore_signals(before: dict) -> None:
+    import signal
+
+    for n, handler in before.items():
+        signal.signal(n, handler if handler is not None else signal.SIG_DFL)
+
+
 def open_viewer(state, color: str | None) -> int:
-    """Run the Textual app (the only place Textual is imported); its exit status."""
+    """Run the Textual app (the only place Textual is imported); its exit status.  A crash:
+    Textual restores the terminal, the app prints one line and sets exit status 1.  A frame
+    still computing in a thread (a user's kernel that does not return) is not waited for:
+    the process ends without it (``os._exit``, after the terminal was restored)."""
     from tuibrdf.app.app import BrdfApp
 
     app = BrdfApp(state, color=color)
-    app.run()  # a crash: Textual restores the terminal, prints the error, sets return_code 1
-    return app.return_code or 0
+    before = catch_terminating_signals()
+    try:
+        app.run()
+    finally:
+        restore_signals(before)
+    code = app.return_code or 0
+    if app.stuck_jobs():
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
+        os._exit(code)
+    return code
 
 
 def run(args: argparse.Namespace) -> int:
