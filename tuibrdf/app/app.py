@@ -35,10 +35,13 @@ from tuibrdf.render import panes
 from tuibrdf.render.sections import angle_at
 from tuibrdf.state.presets import (
     PresetError,
+    PresetRunsCode,
     apply_loaded,
     list_presets,
     load_preset,
     preset_dir,
+    preset_path,
+    runs_code,
     save_preset,
 )
 from tuibrdf.state.viewer import ViewerState
@@ -61,12 +64,24 @@ def _list_presets() -> list[str]:
         return []
 
 
-def _read_preset(name: str):
-    """``(θi, sides)`` of a saved preset, or the message saying why it cannot be read."""
+def _read_preset(name: str, allow_code=()):
+    """``(θi, sides)`` of a saved preset, or the message saying why it cannot be read (a
+    :class:`PresetRunsCode` for one naming a Python file not in ``allow_code``)."""
     try:
-        return load_preset(name)
+        return load_preset(name, allow_code)
+    except PresetRunsCode as e:
+        return e
     except (PresetError, OSError) as e:
         return str(e)
+
+
+def _name_refused(name: str) -> str | None:
+    """Why ``name`` cannot be a preset's name (the save dialog then stays open), or None."""
+    try:
+        preset_path(name)
+    except PresetError as e:
+        return str(e)
+    return None
 
 
 class BrdfApp(OneLineCrash, FrameDelivery, MeasuredData, App):
@@ -333,7 +348,7 @@ class BrdfApp(OneLineCrash, FrameDelivery, MeasuredData, App):
             self._changed(f"saving preset {name} …")
             self.background(partial(write, name), self._saved)
 
-        self.push_screen(SaveScreen(), done)
+        self.push_screen(SaveScreen(_name_refused), done)
 
     @survives
     def _saved(self, message: str) -> None:
@@ -344,39 +359,59 @@ class BrdfApp(OneLineCrash, FrameDelivery, MeasuredData, App):
     def _listed(self, names: list[str]) -> None:
         self._preset_names = names
 
+    def _named_code(self) -> list[str]:
+        """The Python model files the user named this session (on the command line, or shown
+        since): a preset may load those; any other would run code nobody named."""
+        s = self.state
+        return [m for m in [*s.files, *(x.model for x in s.sides)] if runs_code(m)]
+
     @survives
     def action_load_next(self) -> None:
-        loaded = self._loaded
+        """P: the next saved preset, skipping those that would run a Python file the user
+        did not name (with a message saying so)."""
+        loaded, allowed = self._loaded, self._named_code()
 
-        def work() -> tuple[str, object]:
+        def work() -> tuple[str, object, str]:
             names = _list_presets()
             if not names:
-                return "", f"no saved presets in {preset_dir()} (s saves one)"
+                return "", f"no saved presets in {preset_dir()} (s saves one)", ""
             i = names.index(loaded) if loaded in names else -1
-            name = names[(i + 1) % len(names)]
-            return name, _read_preset(name)
+            skipped = []
+            for k in range(1, len(names) + 1):
+                name = names[(i + k) % len(names)]
+                got = _read_preset(name, allowed)
+                if not isinstance(got, PresetRunsCode):
+                    break
+                skipped.append(name)
+            else:
+                return "", (f"skipped {', '.join(skipped)}: each would run a Python file you "
+                            "did not name (tuibrdf view --preset NAME --trust loads one)"), ""
+            note = (f"; skipped {', '.join(skipped)}: would run a Python file you did not "
+                    "name (tuibrdf view --preset NAME --trust)") if skipped else ""
+            return name, got, note
 
         self.background(work, self._show_loaded)
 
     @survives
     def load_and_show(self, name: str) -> None:
-        self.background(lambda: (name, _read_preset(name)), self._show_loaded)
+        allowed = self._named_code()
+        self.background(lambda: (name, _read_preset(name, allowed), ""), self._show_loaded)
 
     @survives
-    def _show_loaded(self, result: tuple[str, object]) -> None:
-        name, got = result
-        if isinstance(got, str):  # why it cannot be loaded
-            self._changed(got)
+    def _show_loaded(self, result: tuple[str, object, str]) -> None:
+        name, got, note = result
+        if not isinstance(got, tuple):  # why it cannot be loaded
+            self._changed(str(got) + note)
             return
         apply_loaded(self.state, *got)
         self._loaded = name
-        self._changed(f"loaded preset {name}", relayout=True)
+        self._changed(f"loaded preset {name}{note}", relayout=True)
 
     def load(self, name: str) -> str | None:
         """Load a saved preset into the viewer now; a message if it cannot be."""
-        got = _read_preset(name)
-        if isinstance(got, str):
-            return got
+        got = _read_preset(name, self._named_code())
+        if not isinstance(got, tuple):
+            return str(got)
         apply_loaded(self.state, *got)
         return None
 

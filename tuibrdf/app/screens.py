@@ -29,19 +29,27 @@ class HelpScreen(ModalScreen):
 
 
 class SaveScreen(ModalScreen[str | None]):
-    """Asks for a preset name; Enter saves, Esc cancels."""
+    """Asks for a preset name; Enter saves, Esc cancels.  ``SaveScreen(refused)``:
+    ``refused(name)`` says why a name cannot be saved (or None); the message shows here and
+    the dialog stays open (what is typed next goes on into it, never to the viewer)."""
+
+    def __init__(self, refused=lambda name: None) -> None:
+        super().__init__()
+        self.refused = refused
 
     BINDINGS = [Binding("escape", "cancel", "cancel")]
     DEFAULT_CSS = """
     SaveScreen { align: center middle; }
     SaveScreen > Vertical { width: 50; height: auto; border: round $accent; background: $surface;
                             padding: 0 1; }
+    SaveScreen #error { color: $warning; }
     """
 
     def compose(self) -> ComposeResult:
         with Vertical():
             yield Static("Save preset as (Enter saves, Esc cancels):")
             yield Input(placeholder="name", id="name")
+            yield Static("", id="error")
 
     def _close(self, result: str | None) -> None:
         # keys that arrive together (Enter Enter) can ask twice before the screen is gone:
@@ -52,7 +60,12 @@ class SaveScreen(ModalScreen[str | None]):
     @survives
     def on_input_submitted(self, event: Input.Submitted) -> None:
         event.stop()
-        self._close(event.value.strip() or None)
+        name = event.value.strip()
+        why = self.refused(name) if name else None
+        if why:
+            self.query_one("#error", Static).update(Text(why))
+            return
+        self._close(name or None)
 
     def action_cancel(self) -> None:
         self._close(None)

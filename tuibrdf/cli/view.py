@@ -1,16 +1,17 @@
 """``tuibrdf view``: open the interactive viewer (also what plain ``tuibrdf`` does).
 
-``tuibrdf view [MODEL | FILE] [-p NAME=VALUE ...] [--theta-i DEG] [--phi-i DEG] [--preset NAME]
-[--color auto|truecolor|256|none | --no-color]`` (or ``--material NAME`` instead of the model,
-below).  A ``.binary`` path opens the measured MERL
-material (model ``merl`` with ``file=PATH``); a ``.brdf``, ``.bparam``, ``.py`` or ``.bsdf`` file
-opens through the model registry (:mod:`tuibrdf.core.formats.userfiles`).  ``--preset NAME`` loads a
-saved preset (``s`` in the viewer saves one) or, when no file has that name, one of the seed's
-comparisons (``diffuse``, ``specular``).  Everything is validated before Textual is imported (a
-MERL file is read whole, as ``eval`` reads it), so bad input is one line on stderr and exit
-status 2; so is a missing terminal (stdin and stdout must both be one).  ``--color`` and
-``NO_COLOR`` are handed to Textual through its environment variables (``TEXTUAL_COLOR_SYSTEM``,
-``NO_COLOR``).
+``tuibrdf view [MODEL | FILE] [-p NAME=VALUE ...] [--theta-i DEG] [--phi-i DEG] [--preset NAME
+[--trust]] [--color auto|truecolor|256|none | --no-color]`` (or ``--material NAME`` instead of
+the model, below).  A ``.py`` model file is Python code and runs; a preset that names one loads
+only if that file is named on the command line too, or with ``--trust``.  A ``.binary`` path
+opens the measured MERL material (model ``merl`` with ``file=PATH``); a ``.brdf``, ``.bparam``,
+``.py`` or ``.bsdf`` file opens through the model registry
+(:mod:`tuibrdf.core.formats.userfiles`).  ``--preset NAME`` loads a saved preset (``s`` in the
+viewer saves one) or, when no file has that name, one of the seed's comparisons (``diffuse``,
+``specular``).  Everything is validated before Textual is imported (a MERL file is read whole,
+as ``eval`` reads it), so bad input is one line on stderr and exit status 2; so is a missing
+terminal (stdin and stdout must both be one).  ``--color`` and ``NO_COLOR`` are handed to
+Textual through its environment variables (``TEXTUAL_COLOR_SYSTEM``, ``NO_COLOR``).
 
 ``--material NAME`` opens the published fit of a MERL material (``tuibrdf materials`` lists
 them): model ``abc`` (Löw et al. 2012), or ``sgd`` (Bagher et al. 2012) with ``--fit sgd``.
@@ -44,14 +45,20 @@ FITS = ("abc", "sgd")
 def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("model", nargs="?", default=None, metavar="MODEL|FILE",
                         help="model name (see 'tuibrdf models') or a file: .brdf, .bparam "
-                             "(BRDF Explorer), .py (Python model), .bsdf (RGL), .binary (MERL) "
+                             "(BRDF Explorer), .py (Python model: its code runs), .bsdf (RGL), "
+                             ".binary (MERL) "
                              "(default: lambert)")
     parser.add_argument("-p", "--param", action="append", default=[], metavar="NAME=VALUE",
                         help="set a parameter (repeatable); RGB as R,G,B; angles in degrees")
     add_theta_i(parser, default=DISPLAY.theta_i.default)
     add_phi_i(parser)
     parser.add_argument("--preset", metavar="NAME",
-                        help="load a saved preset, or a seed comparison: diffuse, specular")
+                        help="load a saved preset, or a seed comparison: diffuse, specular; "
+                             "a preset naming a .py model file runs that file's code, so it "
+                             "loads only if that file is also named here or with --trust")
+    parser.add_argument("--trust", action="store_true",
+                        help="let --preset load a preset that names a .py model file (its "
+                             "Python code runs) not named on the command line")
     parser.add_argument("--color", type=choices_type("color mode", COLORS), default="auto",
                         metavar="|".join(COLORS),
                         help="colours: auto (Textual detects; NO_COLOR respected), truecolor, "
@@ -158,8 +165,9 @@ def build_state(args: argparse.Namespace):
             raise UsageError(f"no preset named {args.preset!r} in {where_presets_are()} "
                              f"(available: {have})")
         if exists:
+            named = [name] if name.lower().endswith(".py") else []  # the user named it
             try:
-                theta, sides = load_preset(args.preset)
+                theta, sides = load_preset(args.preset, True if args.trust else named)
             except PresetError as e:
                 raise UsageError(str(e)) from None
             apply_loaded(state, theta, sides)

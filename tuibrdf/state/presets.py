@@ -61,6 +61,27 @@ class PresetError(ValueError):
     """A preset that cannot be saved or loaded (bad name, unreadable or malformed file)."""
 
 
+class PresetRunsCode(PresetError):
+    """A preset names a Python model file that the caller did not allow: loading it would
+    run that file's code (:func:`from_toml`'s ``allow_code``)."""
+
+    def __init__(self, message: str, files: list[str]) -> None:
+        super().__init__(message)
+        self.files = files
+
+
+def runs_code(model: str) -> bool:
+    """Whether loading model ``model`` (a preset's ``model = "…"``) runs a Python file."""
+    return model.lower().endswith(".py")
+
+
+def _allowed(model: str, allow_code) -> bool:
+    if allow_code is True:
+        return True
+    real = os.path.realpath(model)
+    return any(real == os.path.realpath(f) for f in (allow_code or ()))
+
+
 def preset_dir() -> Path:
     """Where presets are saved: the user's configuration directory for tuibrdf (platformdirs;
     ``appauthor=False``: no second ``tuibrdf`` level on Windows)."""
@@ -160,14 +181,19 @@ def _toml_value(v: Any) -> str:
             raise PresetError(f"cannot save a non-finite value {v!r}")
         return repr(v)
     if isinstance(v, str):
-        return json.dumps(v)  # a JSON string (\" \\ \uXXXX escapes) is a TOML basic string
+        if any("\ud800" <= c <= "\udfff" for c in v):  # (a file name that is not UTF-8)
+            raise PresetError(f"cannot save {v!r}: not valid Unicode text")
+        # a TOML basic string: JSON's escapes (\" \\ control characters as \uXXXX) and every
+        # other character as itself (JSON's ASCII form writes 😀 as a surrogate pair,
+        # \ud83d\ude00, which TOML refuses), DEL escaped too (TOML refuses it raw)
+        return json.dumps(v, ensure_ascii=False).replace("\x7f", "\\u007f")
     if isinstance(v, tuple | list):
         return "[" + ", ".join(_toml_value(x) for x in v) + "]"
     raise PresetError(f"cannot save a value of type {type(v).__name__}")
 
 
 def _key(k: str) -> str:
-    return k if re.match(r"^[A-Za-z0-9_-]+$", k) else json.dumps(k)
+    return k if re.match(r"^[A-Za-z0-9_-]+$", k) else _toml_value(k)
 
 
 def to_toml(state: ViewerState) -> str:
@@ -241,8 +267,12 @@ def _unlink_quietly(path: str) -> None:
 
 
 # -- reading ------------------------------------------------------------------------------
-def from_toml(text: str, where: str = "preset") -> tuple[float, list[Side]]:
-    """Parse and validate a preset: ``(theta_i, sides)``.  Raises :class:`PresetError`."""
+def from_toml(text: str, where: str = "preset",
+              allow_code=False) -> tuple[float, list[Side]]:
+    """Parse and validate a preset: ``(theta_i, sides)``.  Raises :class:`PresetError`; a
+    side whose model is a Python file (:func:`runs_code`) is loaded (its code run) only if
+    ``allow_code`` is True or names that file (an iterable of paths), else
+    :class:`PresetRunsCode` is raised before anything is loaded."""
     import tomllib  # ≈ 20 ms (its regular expressions): when a preset is read, not at start
 
     try:
@@ -265,10 +295,17 @@ def from_toml(text: str, where: str = "preset") -> tuple[float, list[Side]]:
     raw = data.get("sides")
     if not isinstance(raw, list) or not 1 <= len(raw) <= 2:
         raise PresetError(f"{where}: expected one or two [[sides]] tables")
-    sides = []
     for entry in raw:
         if not isinstance(entry, dict) or not isinstance(entry.get("model"), str):
             raise PresetError(f"{where}: each [[sides]] needs model = \"NAME\"")
+    code = [e["model"] for e in raw if runs_code(e["model"]) and
+            not _allowed(e["model"], allow_code)]
+    if code:
+        raise PresetRunsCode(f"{where}: loading it would run the Python file "
+                             f"{_one_line(code[0])}, not named by you: name that file too "
+                             "(tuibrdf view FILE --preset NAME) or add --trust", code)
+    sides = []
+    for entry in raw:
         params = entry.get("params", {})
         if not isinstance(params, dict):
             raise PresetError(f"{where}: params must be a table")
@@ -290,10 +327,12 @@ def _one_line(text: str, limit: int = 300) -> str:
     return text if len(text) <= limit else text[:limit] + "…"
 
 
-def load_preset(name: str) -> tuple[float, list[Side]]:
+def load_preset(name: str, allow_code=False) -> tuple[float, list[Side]]:
     """``(theta_i, sides)`` of the saved preset ``name`` (:func:`find_preset`: the new
     directory first); raises :class:`PresetError` (one line naming the file) for a missing,
-    non-regular, oversized, undecodable or malformed file.  Never blocks on a FIFO."""
+    non-regular, oversized, undecodable or malformed file, and :class:`PresetRunsCode` for
+    a preset that would run a Python file not allowed (``allow_code``, :func:`from_toml`).
+    Never blocks on a FIFO."""
     path = find_preset(name)
     try:
         text = read_regular(path, MAX_BYTES).decode("utf-8")
@@ -305,7 +344,7 @@ def load_preset(name: str) -> tuple[float, list[Side]]:
         raise PresetError(f"cannot read {path}: {_why(e)}") from None
     except UnicodeDecodeError as e:
         raise PresetError(f"cannot read {path}: not UTF-8 text (byte {e.start})") from None
-    return from_toml(text, str(path))
+    return from_toml(text, str(path), allow_code)
 
 
 def apply_loaded(state: ViewerState, theta_i: float, sides: list[Side]) -> None:
