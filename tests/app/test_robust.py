@@ -293,3 +293,23 @@ def test_view_preset_naming_a_python_file_needs_the_file_or_trust(tmp_path, conf
         assert state.side.model == py and state.theta_i == 20.0
     assert main(["view", "--preset", "code"]) == 2
     assert "--trust" in capsys.readouterr().err
+
+
+# -- a huge terminal ---------------------------------------------------------------------------
+async def test_a_huge_pane_draws_a_bounded_picture_centred_with_a_note():
+    from tuibrdf.app.widgets import MAX_PANE
+
+    app = make(Side.of("phong"))
+    async with app.run_test(size=(MAX_PANE[0] + 200, MAX_PANE[1] + 60)) as pilot:
+        await pilot.pause()
+        pic = app.query_one("#map-a")
+        pw, ph = pic.size.width, pic.size.height
+        assert ph > MAX_PANE[1]
+        cw, ch = min(pw, MAX_PANE[0]), MAX_PANE[1]
+        w, h = app.frame.request.map_px  # the frame's pixels: of the bounded picture
+        assert w <= cw and h <= 2 * ch
+        rows = ["".join(seg.text for seg in row) for row in pic._lines]
+        assert len(rows) == ph and all(len(r) == pw for r in rows)
+        top = (ph - (ch + 1)) // 2  # the picture and its note, centred
+        assert all(not r.strip() for r in rows[:top])
+        assert "(drawn at" in rows[top + ch] and f"this pane is {pw}×{ph}" in rows[top + ch]

@@ -123,3 +123,27 @@ def test_a_raw_byte_storm_leaves_the_viewer_running(tmp_path, env):
         assert restored_after_last_start(v.text())
     finally:
         v.close()
+
+
+def test_a_flood_of_window_size_changes_leaves_the_viewer_running(env):
+    import fcntl
+    import random
+    import struct
+
+    v = PtyViewer(["phong"], env=env)
+    try:
+        assert v.wait_for(lambda s: UP in s), v.text()[-500:]
+        rng = random.Random(31)
+        for _ in range(2000):  # sizes from tiny to huge, each announced by SIGWINCH
+            fcntl.ioctl(v.slave, termios.TIOCSWINSZ,
+                        struct.pack("HHHH", rng.randint(1, 300), rng.randint(1, 600), 0, 0))
+            v.signal(signal.SIGWINCH)
+        fcntl.ioctl(v.slave, termios.TIOCSWINSZ, struct.pack("HHHH", 30, 100, 0, 0))
+        v.signal(signal.SIGWINCH)
+        time.sleep(2.0)
+        assert v.proc.poll() is None, v.text()[-2000:]
+        v.send("q")
+        assert v.wait(60) == 0, v.text()[-2000:]
+        assert restored_after_last_start(v.text())
+    finally:
+        v.close()

@@ -35,6 +35,7 @@ from textual.timer import Timer
 from tuibrdf.app.guard import survives
 from tuibrdf.app.text import PANES, TERSE_FORMS, legend_text, status_text, visible_panes
 from tuibrdf.app.textual_internals import writer_backlog
+from tuibrdf.app.widgets import drawn_size
 from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
 from tuibrdf.core.views import frame as core_frame
@@ -155,8 +156,9 @@ class FrameDelivery:
         self._changed(self.message)
 
     def _pane_size(self, pane: str) -> tuple[int, int]:
+        """The size ``pane``'s picture is drawn at (at most ``widgets.MAX_PANE``)."""
         size = self.one(pane).size
-        return size.width, size.height
+        return drawn_size(size.width, size.height)
 
     def frame_request(self) -> FrameRequest:
         """What the visible panes show, from the state and the pane sizes."""
@@ -393,7 +395,7 @@ class FrameDelivery:
         drawn again only when this changes), and the size to draw it at; None when the pane is
         too small for it."""
         pic = self.one(pane)
-        w, h = pic.size.width, pic.size.height
+        w, h = drawn_size(pic.size.width, pic.size.height)
         view, k = PANES[pane]
         look, req = self.look, res.request
         if w < MIN_WIDTH or h < MIN_HEIGHT or (view in ("map", "diff") and not req.map_px) or (

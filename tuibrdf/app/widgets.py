@@ -159,6 +159,32 @@ class Rows(Widget):
         return [f for f in super().get_line_filters() if not isinstance(f, ANSIToTruecolor)]
 
 
+#: the largest picture the viewer draws, in cells (a pane larger than this, in a huge
+#: terminal, shows it centred with a note): the frame's pixels, and so its memory, are
+#: bounded whatever the terminal's size
+MAX_PANE = (400, 200)
+
+
+def drawn_size(width: int, height: int) -> tuple[int, int]:
+    """The size a picture is drawn at in a ``width × height`` pane (:data:`MAX_PANE`)."""
+    return min(width, MAX_PANE[0]), min(height, MAX_PANE[1])
+
+
+def centred(lines: list[list[Segment]], cw: int, width: int, height: int,
+            note: str) -> list[list[Segment]]:
+    """``lines`` (rows of ``cw`` cells) centred in ``height`` rows of ``width`` cells, the
+    ``note`` under them; the blank rows are one shared row."""
+    x0 = (width - cw) // 2
+    left, right = Segment(" " * x0, BLANK), Segment(" " * (width - cw - x0), BLANK)
+    rows = [[left, *line, right] for line in lines]
+    text = note[:width]
+    rows.append([Segment(text.center(width), BLANK)])
+    blank = [Segment(" " * width, BLANK)]
+    top = max(0, (height - len(rows)) // 2)
+    out = [blank] * top + rows
+    return (out + [blank] * (height - len(out)))[:height]
+
+
 class Picture(Rows):
     """A pane: the app renders its renderable once per change (:meth:`show`), not once per
     refresh."""
@@ -173,11 +199,17 @@ class Picture(Rows):
         self._shown: RenderableType | None = None
 
     def show(self, renderable: RenderableType, key: object = None) -> None:
-        """Show ``renderable``, drawn from ``key`` (None: from nothing the app names)."""
+        """Show ``renderable``, drawn from ``key`` (None: from nothing the app names); in a
+        pane larger than :data:`MAX_PANE` it is drawn at that size, centred, with a note."""
         w, h = self.size.width, self.size.height
         self.shown_for = key
         like, self._shown = self._shown, renderable
-        self._set(pane_lines(renderable, self.app.console, w, h, like), w, h)
+        cw, ch = drawn_size(w, h)
+        lines = pane_lines(renderable, self.app.console, cw, ch, like)
+        if (cw, ch) != (w, h):
+            lines = centred(lines, cw, w, h, f"(drawn at {cw}×{ch} cells: the largest "
+                                             f"picture the viewer draws; this pane is {w}×{h})")
+        self._set(lines, w, h)
 
     def on_resize(self, event) -> None:
         self.shown_for = None
