@@ -307,6 +307,7 @@ KEY_WHERE = {
     "load_next": "any view",
     "help": "any view",
     "quit": "any view",
+    "interrupt": "any view",
 }
 
 #: the action column where the key table's own words are the help screen's
