@@ -62,7 +62,7 @@ def test_bindings_footer_help_and_palette_come_from_one_table():
     for k in keys.KEYS:
         assert f"{k.shown:<12}{k.help}" in help_lines
     listed = {k.action for k in keys.palette_keys()}
-    assert listed == {k.action for k in keys.KEYS} - {"help", "quit"}
+    assert listed == {k.action for k in keys.KEYS} - {"help", "quit", "interrupt"}
     # every state action names a real transition
     for k in keys.KEYS:
         m = re.match(r"state\('(\w+)'", k.action)
@@ -334,7 +334,8 @@ async def test_key_mash_leaves_a_live_app_and_a_valid_state():
     # a seeded storm of table keys and printable characters (into the save dialog too);
     # quit keys left out, since quitting is what they do
     rng = random.Random(11)
-    table = [name for k in keys.KEYS if k.action != "quit" for name in k.keys.split(",")]
+    table = [name for k in keys.KEYS if k.action not in ("quit", "interrupt")
+             for name in k.keys.split(",")]
     printable = list("abcxyz0123._-") + ["enter", "escape", "backspace"]
     pool = table + printable
     app = BrdfApp(ViewerState(sides=[Side.of("phong")]))

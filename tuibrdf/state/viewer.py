@@ -12,6 +12,7 @@ method                what it does
 ``step_theta``        θi by ± degrees, clamped to [0°, 90°]
 ``set_theta``         θi set to a value in [0°, 90°] (a value out of range is refused)
 ``type_theta``        θi typed as text (key t)
+``no_params``         why the parameter keys cannot act (a model without parameters), or None
 ``select``            move the parameter cursor (wraps)
 ``step_param``        the selected parameter ± its step (or coarse step); a choice cycles
 ``reset_param``       the selected parameter back to its default
