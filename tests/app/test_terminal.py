@@ -147,3 +147,28 @@ def test_a_flood_of_window_size_changes_leaves_the_viewer_running(env):
         assert restored_after_last_start(v.text())
     finally:
         v.close()
+
+
+def test_the_screen_is_drawn_again_after_a_suspension(env):
+    # SIGTSTP (ctrl+z in a shell) leaves the alternate screen; SIGCONT (fg) comes back to a
+    # blank one: every pane must be sent again (not only what changed since)
+    import re
+
+    v = PtyViewer(["phong"], env=env)
+    try:
+        assert v.wait_for(lambda s: UP in s and "a(θi)" in s), v.text()[-500:]
+        time.sleep(1.0)
+        v.signal(signal.SIGTSTP)
+        assert v.wait_for(lambda s: s.rfind("\x1b[?1049l") > s.rfind("\x1b[?1049h"))
+        n = len(v.text())
+        v.signal(signal.SIGCONT)
+
+        def redrawn(s: str) -> bool:
+            plain = re.sub(r"\x1b\[[0-9;?]*[A-Za-z]", "", s[n:])
+            return all(w in plain for w in ("incidence", "perp.", "m/M model", "θi 30°"))
+
+        assert v.wait_for(redrawn), v.text()[n:][-1500:]
+        v.send("q")
+        assert v.wait(60) == 0
+    finally:
+        v.close()
