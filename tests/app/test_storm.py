@@ -89,3 +89,10 @@ async def test_storm_over_every_kind_of_model_and_view(kind, tmp_path):
     for k, view in enumerate(MAIN_VIEWS):
         fresh = [Side(s.material) for s in sides]
         await run_storm(fresh, view, seed=1000 * KINDS.index(kind) + k, n=150)
+
+
+@pytest.mark.parametrize("kind", ["py", "compare", "merl"])
+async def test_storm_with_frames_computed_in_threads(kind, tmp_path):
+    # as the viewer runs (not sync): a user file's frames in threads, the keys meanwhile
+    sides = files(tmp_path)[kind]
+    await run_storm(sides, "map", seed=7000 + KINDS.index(kind), n=300, sync=False)
