@@ -6,15 +6,17 @@ line, drawn from that one result.
 A request computed before is shown at once (the core caches results by request).  A frame of
 registered models only (:func:`built_in`: no model file, no measured data) is computed on the
 event loop, where the key is handled, unless frames of its kind took :data:`INLINE_S` of CPU
-time or more lately.  Every other frame is computed by :meth:`FrameDelivery.compute` in an
-exclusive thread worker (``@work(exclusive=True, thread=True)``): the newest request cancels
-the older ones, and a result that is no longer the current request is dropped, so the latest
-state always wins and its frame always arrives.  The worker posts the fast part (maps,
-sections, peak) as soon as it has it and the slow part (albedo, albedo curve) when done
-(:class:`FrameComputed`); a frame not there after :data:`PENDING_S` lets the panels and the
-status line go ahead of it.  So the kernel of a model read from a user's file (``.py``,
-``.brdf``, ``.bsdf``) or from measured data (MERL) never runs on the event loop (in sync
-mode, for tests, every frame does).
+time or more lately.  Every other frame is computed by :meth:`FrameDelivery.compute` in a
+daemon thread of its own (:class:`FrameJob`): the newest request cancels the older ones, and
+a result that is no longer the current request is dropped, so the latest state always wins
+and its frame always arrives.  The job posts the fast part (maps, sections, peak) as soon as
+it has it and the slow part (albedo, albedo curve) when done (:class:`FrameComputed`); a
+frame not there after :data:`PENDING_S` lets the panels and the status line go ahead of it.
+So the kernel of a model read from a user's file (``.py``, ``.brdf``, ``.bsdf``) or from
+measured data (MERL) never runs on the event loop (in sync mode, for tests, every frame
+does).  A user's kernel may never return: a frame still coming after :data:`SLOW_S` says
+"model too slow" (the last picture stays), at most :data:`MAX_JOBS` threads run at a time,
+and nothing waits for them at exit.
 
 A frame waits while Textual's output thread still has writes queued for the terminal (a slow
 link), and each pane is redrawn only when what it shows changed, through
