@@ -25,6 +25,11 @@ Saving and listing remove temporary files that a killed save left behind (``.NAM
 older than :data:`STALE_SECONDS`); a failed save (read-only or full disk, the presets path is
 a file) is a :class:`PresetError` too.
 
+A side whose model is a ``.py`` file would run that file's code when the preset is loaded:
+:func:`load_preset` refuses such a preset (:class:`PresetRunsCode`, before importing anything)
+unless the caller allows that file (``allow_code``: the files the user named, or True for
+``--trust``).  Strings are written as UTF-8 TOML strings, so any path round-trips (😀 too).
+
 Nothing here blocks for long, but it does touch the disk: a caller with an event loop runs
 :func:`load_preset` and :func:`save_preset` in a worker thread.
 """
