@@ -351,8 +351,8 @@ class FrameDelivery:
         took = monotonic() - self._asked_at
         if took < SLOW_S:
             return
-        self.message = (f"model too slow: {took:.0f} s for this frame so far; the picture "
-                        "shown is the last one computed (keys and q still work)")
+        self.message = (f"model too slow: {took:.0f} s so far for this frame; the last "
+                        "picture stays (q quits)")
         self._panels()
         self._status()
 
