@@ -112,6 +112,25 @@ def test_a_malformed_sequence_is_dropped_and_the_input_goes_on():
     assert got == ["a", "b", "c", "up", "d"]
 
 
+def test_a_paste_that_never_ends_is_dropped_and_keys_are_keys_again(monkeypatch):
+    import time
+
+    from textual import events
+
+    from tuibrdf.app.textual_internals import SafeXTermParser
+
+    p = SafeXTermParser()
+    p.PASTE_S = 0.2
+    assert [e.key for e in p.feed("a\x1b[200~pasted, never ended")] == ["a"]
+    time.sleep(0.3)
+    list(p.tick())  # (the driver ticks the parser every 0.1 s)
+    got = [e.key for e in p.feed("b\x1b[Ac") if isinstance(e, events.Key)]
+    assert got == ["b", "up", "c"]
+    whole = list(SafeXTermParser().feed("\x1b[200~hi\x1b[201~q"))  # a whole paste: as before
+    assert isinstance(whole[0], events.Paste) and whole[0].text == "hi"
+    assert whole[1].key == "q"
+
+
 def test_the_viewer_installs_the_guarded_parser_in_textuals_drivers():
     from textual.drivers import linux_driver
 

@@ -42,6 +42,7 @@ from __future__ import annotations
 import asyncio
 import inspect
 import io
+import time
 from collections.abc import Iterable
 
 from textual._compositor import ChopsUpdate, Compositor
@@ -211,7 +212,14 @@ class SafeXTermParser(XTermParser):
     Textual 8.2 raises out of its input thread on, e.g., a kitty key ``ESC [ 1114112 u``
     (``chr`` of a code point beyond U+10FFFF), which ends the app.  Input is fed one
     character at a time; when the parser raises, it starts afresh with the next character
-    (what it had buffered of the bad sequence is dropped)."""
+    (what it had buffered of the bad sequence is dropped).  A bracketed paste whose end never
+    comes is dropped after :data:`PASTE_S` (the driver ticks the parser every 0.1 s)."""
+
+    #: a bracketed paste not ended this long after it began is dropped (a terminal sends a
+    #: paste in one go; without its end every later key would be read as pasted text)
+    PASTE_S = 2.0
+    _recent = ""  # the last characters fed (to see a paste begin and end)
+    _paste_since: float | None = None
 
     def feed(self, data: str):
         if not data:  # end of input
@@ -221,12 +229,21 @@ class SafeXTermParser(XTermParser):
                 pass
             return
         for ch in data:
+            self._recent = (self._recent + ch)[-6:]
+            if self._recent == "\x1b[200~":
+                self._paste_since = time.monotonic()
+            elif self._recent == "\x1b[201~":
+                self._paste_since = None
             try:
                 yield from super().feed(ch)
             except Exception:
                 Parser.__init__(self)  # a fresh parse generator, no tokens, no timeout
 
     def tick(self):
+        if self._paste_since is not None and time.monotonic() - self._paste_since > self.PASTE_S:
+            self._paste_since = None
+            Parser.__init__(self)  # the unended paste is dropped: keys are keys again
+            return
         try:
             yield from super().tick()
         except Exception:
