@@ -316,6 +316,7 @@ KEY_WHERE = {
     "checks": "any view (the active side's model)",
     "help": "any view",
     "quit": "any view",
+    "interrupt": "any view",
 }
 
 #: the action column where the key table's own words are the help screen's

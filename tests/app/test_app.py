@@ -411,7 +411,7 @@ async def test_preset_io_runs_off_the_event_loop_in_a_daemon_thread(config_home,
 
     release, seen = threading.Event(), {}
 
-    def slow_load(name):
+    def slow_load(name, allow_code=False):
         seen["daemon"] = threading.current_thread().daemon
         release.wait(10)
         return 10.0, [Side.of("lambert")]

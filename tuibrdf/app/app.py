@@ -15,17 +15,17 @@ from textual.app import App, ComposeResult, SystemCommand
 from textual.containers import Container, Horizontal, Vertical
 from textual.css.query import NoMatches
 from textual.widgets import Footer, Static
-from textual.worker import Worker
 
 from tuibrdf.app import keys
 from tuibrdf.app.figures import FigureWriter
 from tuibrdf.app.frames import FrameDelivery
+from tuibrdf.app.guard import error_text, survives
 from tuibrdf.app.layout import CSS, arrange
 from tuibrdf.app.loading import MeasuredData
 from tuibrdf.app.paint import ViewerScreen
 from tuibrdf.app.screens import HelpScreen, ReportScreen, SaveScreen, ValueScreen
 from tuibrdf.app.text import PANES
-from tuibrdf.app.textual_internals import SafeCommandPalette
+from tuibrdf.app.textual_internals import OneLineCrash, SafeCommandPalette, guard_input_parsing
 from tuibrdf.app.widgets import ParamPanel, Picture, QuietStatic, StatusLine
 from tuibrdf.core.conventions import fmt_number
 from tuibrdf.core.directions import from_degrees
@@ -38,10 +38,13 @@ from tuibrdf.render.sections import angle_at
 from tuibrdf.state.bparams import save_bparams
 from tuibrdf.state.presets import (
     PresetError,
+    PresetRunsCode,
     apply_loaded,
     list_presets,
     load_preset,
     preset_dir,
+    preset_path,
+    runs_code,
     save_preset,
 )
 from tuibrdf.state.viewer import ViewerState
@@ -67,15 +70,27 @@ def _list_presets() -> list[str]:
         return []
 
 
-def _read_preset(name: str):
-    """``(θi, sides)`` of a saved preset, or the message saying why it cannot be read."""
+def _read_preset(name: str, allow_code=()):
+    """``(θi, sides)`` of a saved preset, or the message saying why it cannot be read (a
+    :class:`PresetRunsCode` for one naming a Python file not in ``allow_code``)."""
     try:
-        return load_preset(name)
+        return load_preset(name, allow_code)
+    except PresetRunsCode as e:
+        return e
     except (PresetError, OSError) as e:
         return str(e)
 
 
-class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
+def _name_refused(name: str) -> str | None:
+    """Why ``name`` cannot be a preset's name (the save dialog then stays open), or None."""
+    try:
+        preset_path(name)
+    except PresetError as e:
+        return str(e)
+    return None
+
+
+class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
     """``BrdfApp(state, color=None)``; ``color`` ∈ truecolor/256/none overrides detection.
     ``sync=True`` (tests) computes every frame on the event loop, deterministically."""
 
@@ -86,6 +101,7 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
     def __init__(self, state: ViewerState | None = None, *, color: str | None = None,
                  message: str = "", sync: bool = False) -> None:
         super().__init__()
+        guard_input_parsing()  # a malformed escape sequence is dropped, not fatal
         self.sync = sync
         self.state = state or ViewerState()
         self._color = color
@@ -95,10 +111,9 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
         self.frames = 0  # how many results were shown (tests, benchmarks)
         self._loading: dict[str, float] = {}  # measured-data file → fraction read so far
         self._loaded = ""  # the saved preset `P` loaded last
-        self._worker: Worker | None = None  # the frame worker started last, and its request
-        self._worker_for: FrameRequest | None = None
         #: recent computing times of each kind of frame (frames.FrameDelivery._quick)
         self._costs: dict[tuple, list[float]] = {}
+        self._jobs: list = []  # the frame jobs whose thread has not ended (frames.FrameJob)
         self._changes = 0  # changes so far; only the last one queued updates the screen
         self._relayout = False  # a change since the last update may show other panes
         self._preset_names: list[str] = []  # the saved presets, for the command palette
@@ -125,16 +140,20 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
         yield QuietStatic(id="toosmall")
         yield Footer(compact=True, show_command_palette=False)
 
+    @survives
     def on_mount(self) -> None:
         self._changed(self.message, relayout=True)
         self.set_interval(FILE_POLL_S, self._check_files)
+        self.app_resume_signal.subscribe(self, self._resumed)
         self.background(_list_presets, self._listed)
         if not self.sync:
             self.set_timer(FREEZE_S, gc.freeze)
 
+    @survives
     def on_resize(self, event) -> None:
         self._changed(self.message, relayout=True)
 
+    @survives
     def _check_files(self) -> None:
         """A model file edited on disk (mtime or size changed): re-read, redraw."""
         for side in self.state.sides:
@@ -181,6 +200,7 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
         self._changes += 1
         self.call_later(self._update, self._changes)
 
+    @survives
     def _update(self, change: int) -> None:
         """The layout if the change asked for it, then the frame (:meth:`refresh_frame`: the
         panels and the status line go with it, so one key costs one paint)."""
@@ -194,10 +214,26 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
         except NoMatches:  # keys still queued while the app closes: no widgets left
             pass
 
+    @survives
+    async def run_action(self, action, default_namespace=None) -> bool:
+        """Textual's, but an error in the action is a message and the viewer goes on
+        (every key, palette command and binding of a dialog comes through here)."""
+        return await super().run_action(action, default_namespace)
+
+    def report_error(self, error: Exception, where: str) -> None:
+        """An error in the viewer's own code (:mod:`.guard`): a message on the status line;
+        the last picture stays and the viewer goes on."""
+        self.message = f"error in {where}: {error_text(error)} (the viewer goes on)"
+        try:
+            self._status()
+        except Exception:  # (no status line: closing, or the error is in drawing it)
+            pass
+
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         """While a modal screen (help, save, palette) is open, the viewer's keys wait."""
         return not (action in VIEWER_ACTIONS and len(self.screen_stack) > 1)
 
+    @survives
     def picture_clicked(self, pane: str, x: int, y: int) -> None:
         """A click at cell ``(x, y)`` of ``pane``: on a map or a section the probe goes to
         the direction drawn there (the status line then reads it)."""
@@ -243,6 +279,7 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
         if got is not None:
             self._changed(pick.reading(res, got))
 
+    @survives
     def picture_dragged(self, pane: str, x: int, y: int, dx: int, dy: int) -> None:
         """A drag: on the lit sphere the light goes where the sphere's normal under the
         pointer points; on the lit plane right/left turns φi and up/down θi; on the 3D
@@ -258,20 +295,35 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
         elif view == "solid":
             self._changed(s.rotate(-3.0 * dx, 3.0 * dy))
 
+    @survives
     def picture_scrolled(self, pane: str, steps: int) -> None:
         """The wheel on the 3D solid or a section: zoom in (up) or out, ×1.25 a notch."""
         if PANES.get(pane, ("",))[0] in ("solid", "incidence", "perpendicular"):
             self._changed(self.state.zoom_by(1.25 ** steps))
 
     # -- actions -----------------------------------------------------------------------------
+    @survives
     def action_state(self, method: str, args: tuple = ()) -> None:
         """A :class:`ViewerState` transition named in the key table."""
         message = getattr(self.state, method)(*args)
         self._changed(message, relayout=method in keys.RELAYOUT)
 
+    @survives
+    def action_interrupt(self) -> None:
+        """ctrl+c: quit with exit status 130, as Ctrl-C ends the other commands."""
+        self.exit(return_code=130)
+
+    def _resumed(self, app=None) -> None:
+        """Back from a suspension (SIGTSTP, then SIGCONT: ctrl+z and fg in a shell): the
+        terminal's screen was left, so everything is painted again."""
+        self.screen.refresh(repaint=True)
+        self.refresh(repaint=True, layout=True)
+
+    @survives
     def action_help(self) -> None:
         self.push_screen(HelpScreen())
 
+    @survives
     def action_checks(self) -> None:
         """F: the checks of the active side's model (off the event loop), then the report."""
         from tuibrdf.app.checks import check_work
@@ -281,6 +333,7 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
         self.background(partial(check_work, material, self.state.theta_i, self.state.phi_i,
                                 look.cmap, look.color), self._checked)
 
+    @survives
     def _checked(self, result) -> None:
         if isinstance(result, str):  # why the checks could not run
             self._changed(result)
@@ -288,9 +341,13 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
         self._changed("checks done (F or Esc closes the report)")
         self.push_screen(ReportScreen(result))
 
+    @survives
     def action_type_value(self) -> None:
         """Enter or =: type the selected parameter's value (a filtered list for choices)."""
         s = self.state
+        if (why := s.no_params()) is not None:
+            self._changed(why)
+            return
         row = s.row
         p = row.param
         current = fmt_number(s.row_value(row))
@@ -303,6 +360,7 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
         self.push_screen(ValueScreen(prompt, current, s.type_value, p.choices),
                          partial(self._typed, row.label))
 
+    @survives
     def action_type_theta(self) -> None:
         s = self.state
         prompt = f"θi (angle of incidence, degrees)\nnow {s.theta_i:g}°; in [0, 90]°" \
@@ -310,6 +368,7 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
         self.push_screen(ValueScreen(prompt, f"{s.theta_i:g}", s.type_theta),
                          partial(self._typed, "θi"))
 
+    @survives
     def _typed(self, label: str, text: str | None) -> None:
         self._changed(f"{label} = {text}" if text is not None else f"{label} unchanged",
                       relayout=True)
@@ -324,14 +383,20 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
             return
 
         def run() -> None:
-            result = work()
             try:
-                self.call_from_thread(done, result)
+                result = work()
+            except Exception as e:  # (else Python would print it over the screen)
+                call, args = self.report_error, (e, "background")
+            else:
+                call, args = done, (result,)
+            try:
+                self.call_from_thread(call, *args)
             except RuntimeError:  # the app has closed meanwhile
                 pass
 
         threading.Thread(target=run, name="tuibrdf-io", daemon=True).start()
 
+    @survives
     def action_save(self) -> None:
         state = self.state
 
@@ -349,48 +414,74 @@ class BrdfApp(FigureWriter, FrameDelivery, MeasuredData, App):
             self._changed(f"saving preset {name} …")
             self.background(partial(write, name), self._saved)
 
-        self.push_screen(SaveScreen(), done)
+        self.push_screen(SaveScreen(_name_refused), done)
 
+    @survives
     def _saved(self, message: str) -> None:
         self._changed(message)
         self.background(_list_presets, self._listed)
 
+    @survives
     def _listed(self, names: list[str]) -> None:
         self._preset_names = names
 
-    def action_load_next(self) -> None:
-        loaded = self._loaded
+    def _named_code(self) -> list[str]:
+        """The Python model files the user named this session (on the command line, or shown
+        since): a preset may load those; any other would run code nobody named."""
+        s = self.state
+        return [m for m in [*s.files, *(x.model for x in s.sides)] if runs_code(m)]
 
-        def work() -> tuple[str, object]:
+    @survives
+    def action_load_next(self) -> None:
+        """P: the next saved preset, skipping those that would run a Python file the user
+        did not name (with a message saying so)."""
+        loaded, allowed = self._loaded, self._named_code()
+
+        def work() -> tuple[str, object, str]:
             names = _list_presets()
             if not names:
-                return "", f"no saved presets in {preset_dir()} (s saves one)"
+                return "", f"no saved presets in {preset_dir()} (s saves one)", ""
             i = names.index(loaded) if loaded in names else -1
-            name = names[(i + 1) % len(names)]
-            return name, _read_preset(name)
+            skipped = []
+            for k in range(1, len(names) + 1):
+                name = names[(i + k) % len(names)]
+                got = _read_preset(name, allowed)
+                if not isinstance(got, PresetRunsCode):
+                    break
+                skipped.append(name)
+            else:
+                return "", (f"skipped {', '.join(skipped)}: each would run a Python file you "
+                            "did not name (tuibrdf view --preset NAME --trust loads one)"), ""
+            note = (f"; skipped {', '.join(skipped)}: would run a Python file you did not "
+                    "name (tuibrdf view --preset NAME --trust)") if skipped else ""
+            return name, got, note
 
         self.background(work, self._show_loaded)
 
+    @survives
     def load_and_show(self, name: str) -> None:
-        self.background(lambda: (name, _read_preset(name)), self._show_loaded)
+        allowed = self._named_code()
+        self.background(lambda: (name, _read_preset(name, allowed), ""), self._show_loaded)
 
-    def _show_loaded(self, result: tuple[str, object]) -> None:
-        name, got = result
-        if isinstance(got, str):  # why it cannot be loaded
-            self._changed(got)
+    @survives
+    def _show_loaded(self, result: tuple[str, object, str]) -> None:
+        name, got, note = result
+        if not isinstance(got, tuple):  # why it cannot be loaded
+            self._changed(str(got) + note)
             return
         apply_loaded(self.state, *got)
         self._loaded = name
-        self._changed(f"loaded preset {name}", relayout=True)
+        self._changed(f"loaded preset {name}{note}", relayout=True)
 
     def load(self, name: str) -> str | None:
         """Load a saved preset into the viewer now; a message if it cannot be."""
-        got = _read_preset(name)
-        if isinstance(got, str):
-            return got
+        got = _read_preset(name, self._named_code())
+        if not isinstance(got, tuple):
+            return str(got)
         apply_loaded(self.state, *got)
         return None
 
+    @survives
     def action_command_palette(self) -> None:
         if self.use_command_palette and not SafeCommandPalette.is_open(self):
             self.push_screen(SafeCommandPalette(id="--command-palette"))

@@ -24,6 +24,7 @@ import os
 from pathlib import Path
 from types import SimpleNamespace
 
+from tuibrdf.app.guard import survives
 from tuibrdf.render.export.figure import DEFAULT_SIZE, IMAGE_VIEWS
 
 #: the numbers written with each main view: (table view, suffix)
@@ -86,6 +87,7 @@ class FigureWriter:
     #: where ``w`` writes (None: the current directory at the time of the key)
     output_dir: Path | None = None
 
+    @survives
     def action_write_figures(self) -> None:
         self.write_figures()
 

@@ -6,15 +6,17 @@ line, drawn from that one result.
 A request computed before is shown at once (the core caches results by request).  A frame of
 registered models only (:func:`built_in`: no model file, no measured data) is computed on the
 event loop, where the key is handled, unless frames of its kind took :data:`INLINE_S` of CPU
-time or more lately.  Every other frame is computed by :meth:`FrameDelivery.compute` in an
-exclusive thread worker (``@work(exclusive=True, thread=True)``): the newest request cancels
-the older ones, and a result that is no longer the current request is dropped, so the latest
-state always wins and its frame always arrives.  The worker posts the fast part (maps,
-sections, peak) as soon as it has it and the slow part (albedo, albedo curve) when done
-(:class:`FrameComputed`); a frame not there after :data:`PENDING_S` lets the panels and the
-status line go ahead of it.  So the kernel of a model read from a user's file (``.py``,
-``.brdf``, ``.bsdf``) or from measured data (MERL) never runs on the event loop (in sync
-mode, for tests, every frame does).
+time or more lately.  Every other frame is computed by :meth:`FrameDelivery.compute` in a
+daemon thread of its own (:class:`FrameJob`): the newest request cancels the older ones, and
+a result that is no longer the current request is dropped, so the latest state always wins
+and its frame always arrives.  The job posts the fast part (maps, sections, peak) as soon as
+it has it and the slow part (albedo, albedo curve) when done (:class:`FrameComputed`); a
+frame not there after :data:`PENDING_S` lets the panels and the status line go ahead of it.
+So the kernel of a model read from a user's file (``.py``, ``.brdf``, ``.bsdf``) or from
+measured data (MERL) never runs on the event loop (in sync mode, for tests, every frame
+does).  A user's kernel may never return: a frame still coming after :data:`SLOW_S` says
+"model too slow" (the last picture stays), at most :data:`MAX_JOBS` threads run at a time,
+and nothing waits for them at exit.
 
 A frame waits while Textual's output thread still has writes queued for the terminal (a slow
 link), and each pane is redrawn only when what it shows changed, through
@@ -23,17 +25,19 @@ link), and each pane is redrawn only when what it shows changed, through
 
 from __future__ import annotations
 
+import threading
 import time
 from functools import partial
+from time import monotonic  # (tests replace the module time with a clock of their own)
 
 from rich.text import Text
-from textual import work
 from textual.message import Message
 from textual.timer import Timer
-from textual.worker import get_current_worker
 
+from tuibrdf.app.guard import survives
 from tuibrdf.app.text import PANES, TERSE_FORMS, legend_text, status_text, visible_panes
 from tuibrdf.app.textual_internals import writer_backlog
+from tuibrdf.app.widgets import drawn_size
 from tuibrdf.core.material import Material
 from tuibrdf.core.registry import MODELS
 from tuibrdf.core.views import frame as core_frame
@@ -59,6 +63,12 @@ DRAW_ERRORS = (ValueError, OSError, ArithmeticError)
 INLINE_S = 0.012
 #: the computing times kept per kind of frame (the largest decides)
 INLINE_KEEP = 3
+#: a frame still computing after this long (wall time): the status line says "model too
+#: slow" (and again every SLOW_S); the last picture computed stays on screen
+SLOW_S = 2.0
+#: at most this many frame threads at a time: a kernel that never returns keeps its thread
+#: (a thread cannot be stopped); beyond this, the newest request waits for one to end
+MAX_JOBS = 3
 
 
 def built_in(material: Material) -> bool:
@@ -68,14 +78,42 @@ def built_in(material: Material) -> bool:
     return material.name in MODELS and not any(p.kind == "path" for p in material.model.params)
 
 
-class FrameComputed(Message):
-    """A result of the frame worker, for the event loop; ``seconds``: the CPU time computing
-    it took, when none of it was cached (else None)."""
+class FrameJob:
+    """One frame computed in a daemon thread of its own (:meth:`FrameDelivery.compute`), not
+    in Textual's thread workers: Textual waits for those when the app closes, and a user's
+    kernel that never returns would keep the process alive after q.  A daemon thread is
+    abandoned at exit (the CLI exits without waiting for it, cli/view.py)."""
 
-    def __init__(self, result: FrameResult, seconds: float | None) -> None:
+    def __init__(self, request: FrameRequest) -> None:
+        self.request = request
+        self.started = monotonic()
+        self.done = False  # the thread has ended
+        self._cancelled = threading.Event()
+
+    def cancel(self) -> None:
+        """A newer request wants the screen: this job's results are dropped."""
+        self._cancelled.set()
+
+    @property
+    def is_cancelled(self) -> bool:
+        return self._cancelled.is_set()
+
+    @property
+    def is_running(self) -> bool:
+        return not self.done
+
+
+class FrameComputed(Message):
+    """What a frame's thread reports to the event loop: a ``result`` (``seconds``: the CPU
+    time computing it took, when none of it was cached, else None), an ``error``, or that
+    the job has ended (``last``)."""
+
+    def __init__(self, job: FrameJob, result: FrameResult | None = None,
+                 seconds: float | None = None, error: Exception | None = None,
+                 last: bool = False) -> None:
         super().__init__()
-        self.result = result
-        self.seconds = seconds
+        self.job, self.result, self.seconds, self.error, self.last = (job, result, seconds,
+                                                                       error, last)
 
 
 class FrameDelivery:
@@ -84,11 +122,23 @@ class FrameDelivery:
 
     #: the timer of the frame on its way: its panels going ahead (:data:`PENDING_S`)
     _pending_timer: Timer | None = None
+    _slow_timer: Timer | None = None  # says "model too slow" (:data:`SLOW_S`)
+    _worker: FrameJob | None = None  # the frame job started last, and its request
+    _worker_for: FrameRequest | None = None
+    _queued: FrameRequest | None = None  # a request waiting for a job to end (MAX_JOBS)
+    #: (the app's ``_jobs``: the frame jobs whose thread has not reported its end)
+
+    _asked_at = 0.0  # when the current request was made (time.monotonic)
+
+    def stuck_jobs(self) -> int:
+        """How many frame threads are still computing (the CLI does not wait for them)."""
+        return sum(1 for j in self._jobs if not j.done)
 
     def _panels(self) -> None:
         for i in range(len(self.state.sides)):
             self.one(f"panel-{'ab'[i]}").show(self.state, i)
 
+    @survives
     def _pending(self, req: FrameRequest) -> None:
         """The frame of ``req`` is slow to come: show the panels and the status line (its
         numbers "…") now rather than with it."""
@@ -102,13 +152,15 @@ class FrameDelivery:
             self._pending_timer.stop()
             self._pending_timer = None
 
+    @survives
     def request_rebuild(self) -> None:
         """A pane was resized: the request (pane sizes) changed."""
         self._changed(self.message)
 
     def _pane_size(self, pane: str) -> tuple[int, int]:
+        """The size ``pane``'s picture is drawn at (at most ``widgets.MAX_PANE``)."""
         size = self.one(pane).size
-        return size.width, size.height
+        return drawn_size(size.width, size.height)
 
     def frame_request(self) -> FrameRequest:
         """What the visible panes show, from the state and the pane sizes."""
@@ -150,7 +202,10 @@ class FrameDelivery:
             self._panels()
             self._status()
             return
-        req = self.request = self.frame_request()
+        req = self.frame_request()
+        if req != self.request:
+            self._asked_at = monotonic()
+        self.request = req
         if self.sync:
             try:
                 self.show_frame(core_frame.compute_frame(req))
@@ -174,6 +229,8 @@ class FrameDelivery:
             self._stop_pending()
             self._pending_timer = self.set_timer(PENDING_S, partial(self._pending, req))
         if not on_its_way:
+            if busy:
+                self._worker.cancel()  # an older request's: its results would be dropped
             self._worker, self._worker_for = self.compute(req), req
 
     @staticmethod
@@ -210,52 +267,107 @@ class FrameDelivery:
             self._took(req, time.thread_time() - start)
         self.show_frame(res)
 
-    @work(exclusive=True, thread=True, group="frame", description="frame")  # (Textual would
-    # otherwise describe the worker by the repr of its request on every key: ≈ 0.1 ms)
-    def compute(self, req: FrameRequest) -> None:
-        """The frame of ``req`` off the event loop: the fast part, then the albedo (and the
-        albedo curve); each posted (:class:`FrameComputed`) unless a newer request cancelled
-        this worker."""
-        worker = get_current_worker()
+    def compute(self, req: FrameRequest) -> FrameJob:
+        """Start computing the frame of ``req`` in a daemon thread (:class:`FrameJob`): the
+        fast part, then the albedo (and the albedo curve), each posted
+        (:class:`FrameComputed`) unless a newer request cancelled the job.  While
+        :data:`MAX_JOBS` jobs still run (kernels that do not return) the request waits
+        for one of them to end."""
+        alive = [j for j in self._jobs if not j.done]
+        if len(alive) >= MAX_JOBS:
+            self._queued = req
+            return alive[-1]
+        job = FrameJob(req)
+        self._jobs.append(job)
+        self._queued = None
+        threading.Thread(target=self._run_job, args=(job,), name="tuibrdf-frame",
+                         daemon=True).start()
+        if self._slow_timer is None:
+            self._slow_timer = self.set_interval(SLOW_S, self._too_slow)
+        return job
 
-        def post(res: FrameResult, seconds: float | None) -> None:
-            if not worker.is_cancelled:
+    def _run_job(self, job: FrameJob) -> None:
+        """The body of a frame's thread (never on the event loop): results, an error and
+        the job's end reach the loop as messages (``post_message`` is thread-safe and never
+        waits for the loop, which may be closing)."""
+        req = job.request
+
+        def post(**kw) -> None:
+            if not job.is_cancelled or kw.get("last"):
                 try:
-                    self.post_message(FrameComputed(res, seconds))
+                    self.post_message(FrameComputed(job, **kw))
                 except RuntimeError:  # the app (and its loop) has closed meanwhile
                     pass
 
-        if worker.is_cancelled:
-            return
-        fresh = core_frame.cached_frame(req) is None
-        start = time.thread_time()
         try:
+            if job.is_cancelled:
+                return
+            fresh = core_frame.cached_frame(req) is None
+            start = time.thread_time()
             res = core_frame.compute_frame(req, slow=False)
-            post(res, time.thread_time() - start if res.complete and fresh else None)
-            if not res.complete and not worker.is_cancelled:
-                res = core_frame.compute_frame(req, check=lambda: not worker.is_cancelled)
+            post(result=res,
+                 seconds=time.thread_time() - start if res.complete and fresh else None)
+            if not res.complete and not job.is_cancelled:
+                res = core_frame.compute_frame(req, check=lambda: not job.is_cancelled)
                 if res is not None:
-                    post(res, time.thread_time() - start if fresh else None)
-        except DRAW_ERRORS as e:  # a data file that vanished or changed on disk
-            if not worker.is_cancelled:
-                try:
-                    self.call_from_thread(self._failed, req, e)
-                except RuntimeError:  # the app has closed meanwhile
-                    pass
+                    post(result=res, seconds=time.thread_time() - start if fresh else None)
+        except Exception as e:  # bad data, a user's kernel raising anything: a message
+            post(error=e)
+        finally:
+            job.done = True
+            post(last=True)
 
+    @survives
     def on_frame_computed(self, message: FrameComputed) -> None:
-        if message.seconds is not None:
-            self._took(message.result.request, message.seconds)
-        self.show_frame(message.result)
+        job = message.job
+        if message.last:
+            self._job_ended(job)
+        elif message.error is not None:
+            self._failed(job.request, message.error)
+        else:
+            if message.seconds is not None:
+                self._took(message.result.request, message.seconds)
+            self.show_frame(message.result)
 
+    def _job_ended(self, job: FrameJob) -> None:
+        """A frame's thread has ended: the request that waited for it starts now."""
+        if job in self._jobs:
+            self._jobs.remove(job)
+        if self._queued is not None and self._queued == self.request:
+            self._worker, self._worker_for = self.compute(self._queued), self._queued
+
+    def _stop_slow_timer(self) -> None:
+        if self._slow_timer is not None:
+            self._slow_timer.stop()
+            self._slow_timer = None
+
+    @survives
+    def _too_slow(self) -> None:
+        """Every :data:`SLOW_S` while the current request's frame is still computing: say
+        so (the last picture computed stays on screen; q still quits)."""
+        shown = self.frame is not None and self.frame.request == self.request
+        if shown or self.request is None:
+            self._stop_slow_timer()
+            return
+        took = monotonic() - self._asked_at
+        if took < SLOW_S:
+            return
+        self.message = (f"model too slow: {took:.0f} s so far for this frame; the last "
+                        "picture stays (q quits)")
+        self._panels()
+        self._status()
+
+    @survives
     def _failed(self, req: FrameRequest, error: Exception) -> None:
         if req == self.request:
+            self._stop_slow_timer()
             for pane in visible_panes(self.state):
                 self.one(pane).show(Text(f"cannot draw: {error}"), None)
             self.message = f"cannot compute this frame: {error}"
             self._panels()
             self._status()
 
+    @survives
     def show_frame(self, res: FrameResult) -> None:
         """Draw ``res`` if it is still the current request (and not the fast part of a frame
         shown complete already): every visible pane, the panels and the status line in one go
@@ -270,6 +382,8 @@ class FrameDelivery:
             self.set_timer(RETRY_S, partial(self.show_frame, res))
             return
         self._stop_pending()  # this request's frame is shown: its panels and status with it
+        if self.message.startswith("model too slow"):  # it came after all
+            self.message = ""
         self.frame = res
         self.frames += 1
         for pane in visible_panes(self.state):
@@ -284,7 +398,7 @@ class FrameDelivery:
         drawn again only when this changes), and the size to draw it at; None when the pane is
         too small for it."""
         pic = self.one(pane)
-        w, h = pic.size.width, pic.size.height
+        w, h = drawn_size(pic.size.width, pic.size.height)
         view, k = PANES[pane]
         look, req = self.look, res.request
         if w < MIN_WIDTH or h < MIN_HEIGHT or (view in ("map", "diff") and not req.map_px) or (

@@ -114,6 +114,8 @@ KEYS: tuple[Key, ...] = (
         "map at this θi), energy, and the χ² test of a sampler (pdf, histogram, difference)"),
     Key("question_mark", "help", "help", "this screen", "?", footer=True),
     Key("q", "quit", "quit", "quit", footer=True),
+    Key("ctrl+c", "interrupt", "quit", "quit with exit status 130 (as Ctrl-C; ctrl+q quits too)",
+        "ctrl+c"),
 )
 
 #: transitions after which the set of visible panes may change
@@ -151,4 +153,4 @@ def help_text() -> Group:
 
 def palette_keys() -> list[Key]:
     """The keys the command palette lists (Textual adds its own help and quit)."""
-    return [k for k in KEYS if k.action not in ("help", "quit")]
+    return [k for k in KEYS if k.action not in ("help", "quit", "interrupt")]

@@ -6,6 +6,7 @@ from __future__ import annotations
 import threading
 from functools import partial
 
+from tuibrdf.app.guard import survives
 from tuibrdf.app.text import side_files
 from tuibrdf.core.formats import merl
 from tuibrdf.state.viewer import Side
@@ -44,20 +45,23 @@ class MeasuredData:
 
         try:
             merl.load_cached(path, partial(post, self._load_progress, path))
-        except (merl.MerlError, OSError) as e:
+        except Exception as e:  # MerlError, OSError; anything else is a message too
             post(self._load_failed, path, str(e))
             return
         post(self._load_done, path)
 
+    @survives
     def _load_progress(self, path: str, fraction: float) -> None:
         if path in self._loading:
             self._loading[path] = fraction
             self._status()
 
+    @survives
     def _load_done(self, path: str) -> None:
         self._loading.pop(path, None)
         self._changed(f"loaded {path}")
 
+    @survives
     def _load_failed(self, path: str, error: str) -> None:
         """A side whose file cannot be read shows Lambert instead; the message says why."""
         self._loading.pop(path, None)

@@ -26,6 +26,14 @@ internal (Textual 8.2.8)                         what the viewer does with it
 ``LinuxDriver._writer_thread``                   output thread still has queued
 ``WriterThread._queue``                          (``app._driver._writer_thread._queue``)
 ``CommandPalette._action_command_list(action)``  :class:`SafeCommandPalette` overrides it
+``Parser.__init__()`` (textual._parser)          :class:`SafeXTermParser` re-runs it to start
+                                                 afresh after a malformed sequence
+``App._handle_exception(error)``                 :class:`OneLineCrash` overrides it, and
+``App._exit_renderables``                        replaces what it prints (a traceback) by one
+``App._return_code``                             line; :meth:`OneLineCrash.panic` sets it to 1
+``<driver module>.XTermParser``                  :func:`guard_input_parsing` replaces it with
+                                                 :class:`SafeXTermParser` in each driver module
+                                                 (Linux, inline, web) that reads it there
 ===============================================  ==================================================
 """
 
@@ -34,9 +42,13 @@ from __future__ import annotations
 import asyncio
 import inspect
 import io
+import time
 from collections.abc import Iterable
 
 from textual._compositor import ChopsUpdate, Compositor
+from textual._parser import Parser
+from textual._xterm_parser import XTermParser
+from textual.await_complete import AwaitComplete
 from textual.command import CommandPalette
 from textual.css.styles import RenderStyles
 from textual.geometry import Region
@@ -44,8 +56,9 @@ from textual.screen import Screen
 from textual.widget import Widget
 
 __all__ = ["ChopsUpdate", "Compositor", "PARTIAL_PAINT", "SafeCommandPalette",
-           "checks", "install_compositor", "regions_to_spans", "styles_key",
-           "take_dirty_regions", "writer_backlog"]
+           "OneLineCrash", "SafeXTermParser", "checks", "guard_input_parsing",
+           "install_compositor", "regions_to_spans", "styles_key", "take_dirty_regions",
+           "writer_backlog"]
 
 
 def _params(owner, name: str) -> list[str] | None:
@@ -97,6 +110,13 @@ def _other_checks() -> dict[str, bool]:
         "WriterThread._queue": callable(getattr(getattr(writer, "_queue", None), "qsize", None)),
         "CommandPalette._action_command_list(action)":
             _params(CommandPalette, "_action_command_list") == ["self", "action"],
+        "Parser.__init__()": _params(Parser, "__init__") == ["self"],
+        "App._handle_exception(error)": _params(App, "_handle_exception") == ["self", "error"],
+        "App._exit_renderables": isinstance(vars(app).get("_exit_renderables"), list),
+        "App._return_code": "_return_code" in vars(app),
+        "<driver module>.XTermParser": all(
+            getattr(m, "XTermParser", None) in (XTermParser, SafeXTermParser)
+            for m in _driver_modules()) and bool(_driver_modules()),
     }
 
 
@@ -152,12 +172,124 @@ def writer_backlog(app) -> int:
 
 
 class SafeCommandPalette(CommandPalette):
-    """Textual 8.2's palette raises ``KeyError`` when PageUp/PageDown (or Home/End) reach its
-    option list before the list has been laid out (ctrl+p then PageUp in one burst): its line
-    index is still empty.  Such a key is dropped; once laid out, the list works as usual."""
+    """Textual 8.2's palette, made safe against key bursts.  It raises ``KeyError`` when
+    PageUp/PageDown (or Home/End) reach its option list before the list has been laid out
+    (ctrl+p then PageUp in one burst): its line index is still empty.  Such a key is
+    dropped; once laid out, the list works as usual.  It closes only while on top
+    (:meth:`dismiss`)."""
+
+    def dismiss(self, result=None):
+        """Only while on top: a second Enter queued behind the first (ctrl+p Enter Enter)
+        asked it to close again after it had gone, and Textual's ``dismiss`` then popped the
+        viewer's own screen (``ScreenStackError``)."""
+        stack = self.app.screen_stack
+        if not stack or stack[-1] is not self:
+            return AwaitComplete.nothing()
+        return super().dismiss(result)
 
     def _action_command_list(self, action: str) -> None:
         try:
             super()._action_command_list(action)
         except (KeyError, IndexError):
             pass
+
+
+def _driver_modules() -> list:
+    """The modules of Textual's drivers that make an ``XTermParser`` (those importable here)."""
+    import importlib
+
+    found = []
+    for name in ("linux_driver", "linux_inline_driver", "web_driver"):
+        try:
+            found.append(importlib.import_module(f"textual.drivers.{name}"))
+        except ImportError:  # (another platform's driver)
+            continue
+    return found
+
+
+class SafeXTermParser(XTermParser):
+    """Textual's terminal input parser, but a sequence it cannot parse is dropped, not fatal:
+    Textual 8.2 raises out of its input thread on, e.g., a kitty key ``ESC [ 1114112 u``
+    (``chr`` of a code point beyond U+10FFFF), which ends the app.  Input is fed one
+    character at a time; when the parser raises, it starts afresh with the next character
+    (what it had buffered of the bad sequence is dropped).  A bracketed paste whose end never
+    comes is dropped after :data:`PASTE_S` (the driver ticks the parser every 0.1 s)."""
+
+    #: a bracketed paste not ended this long after it began is dropped (a terminal sends a
+    #: paste in one go; without its end every later key would be read as pasted text)
+    PASTE_S = 2.0
+    _recent = ""  # the last characters fed (to see a paste begin and end)
+    _paste_since: float | None = None
+
+    def feed(self, data: str):
+        if not data:  # end of input
+            try:
+                yield from super().feed(data)
+            except Exception:
+                pass
+            return
+        for ch in data:
+            self._recent = (self._recent + ch)[-6:]
+            if self._recent == "\x1b[200~":
+                self._paste_since = time.monotonic()
+            elif self._recent == "\x1b[201~":
+                self._paste_since = None
+            try:
+                yield from super().feed(ch)
+            except Exception:
+                Parser.__init__(self)  # a fresh parse generator, no tokens, no timeout
+
+    def tick(self):
+        if self._paste_since is not None and time.monotonic() - self._paste_since > self.PASTE_S:
+            self._paste_since = None
+            Parser.__init__(self)  # the unended paste is dropped: keys are keys again
+            return
+        try:
+            yield from super().tick()
+        except Exception:
+            Parser.__init__(self)
+
+
+def guard_input_parsing() -> bool:
+    """Every Textual driver here parses terminal input with :class:`SafeXTermParser`;
+    whether it could be installed (Textual's drivers name ``XTermParser`` in their module)."""
+    done = False
+    for module in _driver_modules():
+        if getattr(module, "XTermParser", None) in (XTermParser, SafeXTermParser):
+            module.XTermParser = SafeXTermParser
+            done = True
+    return done
+
+
+def _one_line(renderable, limit: int = 300) -> str:
+    """The last non-blank line of what ``renderable`` prints (a traceback's: the error)."""
+    from rich.console import Console
+
+    out = io.StringIO()
+    Console(file=out, width=200, color_system=None).print(renderable)
+    lines = [ln.strip(" │╰╯─") for ln in out.getvalue().splitlines()]
+    last = next((ln for ln in reversed(lines) if ln), "unknown error")
+    return last if len(last) <= limit else last[:limit - 1] + "…"
+
+
+class OneLineCrash:
+    """A mixin of the app: an error that still reaches Textual (the viewer's own handlers
+    report theirs on the status line, :mod:`.guard`) ends the viewer as Textual does (the
+    terminal restored, exit status 1) but prints one line, not a 300-line traceback; and a
+    ``panic`` (Textual's input thread calls it when it fails) sets exit status 1 too."""
+
+    def _handle_exception(self, error: Exception) -> None:
+        super()._handle_exception(error)
+        from rich.text import Text
+
+        text = " ".join(f"{type(error).__name__}: {error}".split())[:300]
+        self._exit_renderables[:] = [Text(f"tuibrdf view: internal error, the viewer "
+                                          f"stopped: {text}")]
+
+    def panic(self, *renderables) -> None:
+        from rich.text import Text
+
+        line = _one_line(renderables[0]) if renderables else "unknown error"
+        super().panic(Text(f"tuibrdf view: the viewer stopped: {line}"))
+        if self._return_code is None:
+            self._return_code = 1

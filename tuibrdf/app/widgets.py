@@ -19,6 +19,7 @@ from textual.style import Style as TextualStyle
 from textual.widget import Widget
 from textual.widgets import Static
 
+from tuibrdf.app.guard import survives
 from tuibrdf.app.textual_internals import styles_key
 from tuibrdf.core.conventions import fmt_number
 from tuibrdf.render.lines import BLANK, fit_row, pane_lines, render_rows
@@ -159,6 +160,32 @@ class Rows(Widget):
         return [f for f in super().get_line_filters() if not isinstance(f, ANSIToTruecolor)]
 
 
+#: the largest picture the viewer draws, in cells (a pane larger than this, in a huge
+#: terminal, shows it centred with a note): the frame's pixels, and so its memory, are
+#: bounded whatever the terminal's size
+MAX_PANE = (400, 200)
+
+
+def drawn_size(width: int, height: int) -> tuple[int, int]:
+    """The size a picture is drawn at in a ``width × height`` pane (:data:`MAX_PANE`)."""
+    return min(width, MAX_PANE[0]), min(height, MAX_PANE[1])
+
+
+def centred(lines: list[list[Segment]], cw: int, width: int, height: int,
+            note: str) -> list[list[Segment]]:
+    """``lines`` (rows of ``cw`` cells) centred in ``height`` rows of ``width`` cells, the
+    ``note`` under them; the blank rows are one shared row."""
+    x0 = (width - cw) // 2
+    left, right = Segment(" " * x0, BLANK), Segment(" " * (width - cw - x0), BLANK)
+    rows = [[left, *line, right] for line in lines]
+    text = note[:width]
+    rows.append([Segment(text.center(width), BLANK)])
+    blank = [Segment(" " * width, BLANK)]
+    top = max(0, (height - len(rows)) // 2)
+    out = [blank] * top + rows
+    return (out + [blank] * (height - len(out)))[:height]
+
+
 class Picture(Rows):
     """A pane: the app renders its renderable once per change (:meth:`show`), not once per
     refresh."""
@@ -173,12 +200,19 @@ class Picture(Rows):
         self._shown: RenderableType | None = None
 
     def show(self, renderable: RenderableType, key: object = None) -> None:
-        """Show ``renderable``, drawn from ``key`` (None: from nothing the app names)."""
+        """Show ``renderable``, drawn from ``key`` (None: from nothing the app names); in a
+        pane larger than :data:`MAX_PANE` it is drawn at that size, centred, with a note."""
         w, h = self.size.width, self.size.height
         self.shown_for = key
         like, self._shown = self._shown, renderable
-        self._set(pane_lines(renderable, self.app.console, w, h, like), w, h)
+        cw, ch = drawn_size(w, h)
+        lines = pane_lines(renderable, self.app.console, cw, ch, like)
+        if (cw, ch) != (w, h):
+            lines = centred(lines, cw, w, h, f"(drawn at {cw}×{ch} cells: the largest "
+                                             f"picture the viewer draws; this pane is {w}×{h})")
+        self._set(lines, w, h)
 
+    @survives
     def on_resize(self, event) -> None:
         self.shown_for = None
         request = getattr(self.app, "request_rebuild", None)
@@ -189,6 +223,7 @@ class Picture(Rows):
     _press: tuple[int, int] | None = None
     _dragged = False
 
+    @survives
     def on_click(self, event) -> None:
         """A click reads the picture there (the app decides: the probe on a map or a section,
         a readout elsewhere); the end of a drag is not a click."""
@@ -200,12 +235,14 @@ class Picture(Rows):
         if offset is not None and clicked is not None:
             clicked(self.pane, offset.x, offset.y)
 
+    @survives
     def on_mouse_down(self, event) -> None:
         offset = event.get_content_offset(self)
         if offset is not None:
             self._press, self._dragged = (offset.x, offset.y), False
             self.capture_mouse()  # the drag goes on outside the pane
 
+    @survives
     def on_mouse_move(self, event) -> None:
         """A drag (button held): the app moves the light (lit views) or turns the solid."""
         if self._press is None or not event.button:
@@ -219,13 +256,16 @@ class Picture(Rows):
         if dragged is not None:
             dragged(self.pane, offset.x, offset.y, dx, dy)
 
+    @survives
     def on_mouse_up(self, event) -> None:
         self._press = None
         self.release_mouse()
 
+    @survives
     def on_mouse_scroll_up(self, event) -> None:
         self._scrolled(+1)
 
+    @survives
     def on_mouse_scroll_down(self, event) -> None:
         self._scrolled(-1)
 
@@ -262,6 +302,7 @@ class QuietStatic(Static):
             self.update(text, layout=rows != self._rows)
             self._rows = rows
 
+    @survives
     def on_resize(self, event) -> None:
         self._rows = None  # the next text is laid out at the new width
 
@@ -289,6 +330,7 @@ class DrawnRows(Rows):
         blank = [Segment(" " * width, self._blank_style())]  # rows below (min-height)
         self._set(lines[:h] + [blank] * (h - len(lines)), width, h)
 
+    @survives
     def on_resize(self, event) -> None:
         if self._strips and event.size.width == self._strips[0].cell_length:
             return  # a new height for rows already drawn at this width
@@ -313,6 +355,7 @@ class ParamPanel(DrawnRows):
     """
 
     _for: tuple | None = None  # what the panel shows now (:meth:`show`)
+    _titles: tuple = ()  # the border's title and subtitle shown (plain text)
     max_rows: int | None = None  # how many parameter rows fit (None: all)
     _top = 0  # the first row shown when they do not all fit
 
@@ -399,8 +442,9 @@ class ParamPanel(DrawnRows):
         title = f"{label}{name}{up}"
         subtitle = " · ".join(x for x in (f"↓ {below} more" if below else "",
                                           "m/M model" if active else "") if x)
-        if (self.border_title, self.border_subtitle) != (title, subtitle):
-            self.border_title, self.border_subtitle = title, subtitle
+        if self._titles != (title, subtitle):  # as Text: a file's name is never markup
+            self._titles = (title, subtitle)
+            self.border_title, self.border_subtitle = Text(title), Text(subtitle)
         # one label column for every row: as wide as the longest label (a .brdf file's
         # "clearcoatGloss"), within LABEL_WIDTH; a longer one ends in "…"
         lw = min(max((len(r.label) for r in rows), default=0), LABEL_WIDTH[1])

@@ -96,7 +96,11 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     add_compare_args(parser)
     parser.add_argument("--preset", metavar="NAME",
                         help="draw a saved preset, or a seed comparison: diffuse, specular "
-                             "(its sides; θi from --theta-i)")
+                             "(its sides; θi from --theta-i); a preset naming a .py model "
+                             "file runs that file's code, so it needs --trust")
+    parser.add_argument("--trust", action="store_true",
+                        help="let --preset load a preset that names a .py model file (its "
+                             "Python code runs)")
 
 
 def add_extra_args(parser: argparse.ArgumentParser) -> None:

@@ -79,14 +79,15 @@ def sides_of(args) -> tuple[tuple[Model, dict[str, Any]], tuple[Model, dict[str,
     if getattr(args, "preset", None):
         if args.model or args.param:
             raise UsageError("--preset chooses the sides: drop MODEL and -p")
-        return preset_sides(args.preset)
+        return preset_sides(args.preset, getattr(args, "trust", False))
     return side(args.model, args.param), other
 
 
-def preset_sides(name: str) -> tuple[tuple[Model, dict[str, Any]],
-                                     tuple[Model, dict[str, Any]] | None]:
+def preset_sides(name: str, trust: bool = False) -> tuple[tuple[Model, dict[str, Any]],
+                                                         tuple[Model, dict[str, Any]] | None]:
     """The sides of preset ``name``: a saved preset (``s`` in the viewer), or else one of the
-    seed's comparisons (``diffuse``, ``specular``), as ``view --preset`` finds them."""
+    seed's comparisons (``diffuse``, ``specular``), as ``view --preset`` finds them.  A preset
+    that names a ``.py`` model file loads only with ``trust`` (its code runs)."""
     import os
 
     from tuibrdf.state.presets import (
@@ -106,7 +107,7 @@ def preset_sides(name: str) -> tuple[tuple[Model, dict[str, Any]],
                 have = ", ".join(list_presets() + sorted(seed))
                 raise UsageError(f"no preset named {name!r} in {where_presets_are()} "
                                  f"(available: {have})")
-            _, loaded = load_preset(name)
+            _, loaded, _look = load_preset(name, trust)
             pairs = [(x.spec, dict(x.values)) for x in loaded]
         else:
             pairs = [(find_model(m), find_model(m).resolve(v))

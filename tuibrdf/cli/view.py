@@ -1,17 +1,18 @@
 """``tuibrdf view``: open the interactive viewer (also what plain ``tuibrdf`` does).
 
-``tuibrdf view [MODEL | FILE] [-p NAME=VALUE ...] [--theta-i DEG] [--phi-i DEG] [--preset NAME]
-[--color auto|truecolor|256|none | --no-color]`` (or ``--material NAME`` instead of the model,
-below).  A ``.binary`` path opens the measured MERL
-material (model ``merl`` with ``file=PATH``); a ``.brdf``, ``.bparam``, ``.py`` or ``.bsdf`` file
-opens through the model registry (:mod:`tuibrdf.core.formats.userfiles`).  ``--preset NAME`` loads a
-saved preset (``s`` in the viewer saves one) or, when no file has that name, one of the seed's
-comparisons (``diffuse``, ``specular``).  Everything is validated before Textual is imported (a
-MERL file is read whole, as ``eval`` reads it), so bad input is one line on stderr and exit
-status 2; so is a missing terminal (stdin and stdout must both be one; Textual's web driver,
-as ``tuibrdf serve`` runs the viewer, counts as one).  ``--color`` and
-``NO_COLOR`` are handed to Textual through its environment variables (``TEXTUAL_COLOR_SYSTEM``,
-``NO_COLOR``).
+``tuibrdf view [MODEL | FILE] [-p NAME=VALUE ...] [--theta-i DEG] [--phi-i DEG] [--preset NAME
+[--trust]] [--color auto|truecolor|256|none | --no-color]`` (or ``--material NAME`` instead of
+the model, below).  A ``.py`` model file is Python code and runs; a preset that names one loads
+only if that file is named on the command line too, or with ``--trust``.  A ``.binary`` path
+opens the measured MERL material (model ``merl`` with ``file=PATH``); a ``.brdf``, ``.bparam``,
+``.py`` or ``.bsdf`` file opens through the model registry
+(:mod:`tuibrdf.core.formats.userfiles`).  ``--preset NAME`` loads a saved preset (``s`` in the
+viewer saves one) or, when no file has that name, one of the seed's comparisons (``diffuse``,
+``specular``).  Everything is validated before Textual is imported (a MERL file is read whole,
+as ``eval`` reads it), so bad input is one line on stderr and exit status 2; so is a missing
+terminal (stdin and stdout must both be one; Textual's web driver, as ``tuibrdf serve``
+runs the viewer, counts as one).  ``--color`` and ``NO_COLOR`` are handed to
+Textual through its environment variables (``TEXTUAL_COLOR_SYSTEM``, ``NO_COLOR``).
 
 ``--material NAME`` opens the published fit of a MERL material (``tuibrdf materials`` lists
 them): model ``abc`` (Löw et al. 2012), or ``sgd`` (Bagher et al. 2012) with ``--fit sgd``.
@@ -25,6 +26,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from functools import partial
 
 from tuibrdf.cli.common import (
     UsageError,
@@ -51,7 +53,8 @@ SECTIONS = ("incidence", "perpendicular")
 def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("model", nargs="?", default=None, metavar="MODEL|FILE",
                         help="model name (see 'tuibrdf models') or a file: .brdf, .bparam "
-                             "(BRDF Explorer), .py (Python model), .bsdf (RGL), .binary (MERL) "
+                             "(BRDF Explorer), .py (Python model: its code runs), .bsdf (RGL), "
+                             ".binary (MERL) "
                              "(default: phong, a glossy lobe)")
     parser.add_argument("-p", "--param", action="append", default=[], metavar="NAME=VALUE",
                         help="set a parameter (repeatable); RGB as R,G,B; angles in degrees")
@@ -61,7 +64,12 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         help="start in this main view (v cycles them): " + ", ".join(
                             v for v in VIEWS if v not in SECTIONS) + " (default: map)")
     parser.add_argument("--preset", metavar="NAME",
-                        help="load a saved preset, or a seed comparison: diffuse, specular")
+                        help="load a saved preset, or a seed comparison: diffuse, specular; "
+                             "a preset naming a .py model file runs that file's code, so it "
+                             "loads only if that file is also named here or with --trust")
+    parser.add_argument("--trust", action="store_true",
+                        help="let --preset load a preset that names a .py model file (its "
+                             "Python code runs) not named on the command line")
     parser.add_argument("--color", type=choices_type("color mode", COLORS), default="auto",
                         metavar="|".join(COLORS),
                         help="colours: auto (Textual detects; NO_COLOR respected), truecolor, "
@@ -190,8 +198,9 @@ def _build_state(args: argparse.Namespace):
             raise UsageError(f"no preset named {args.preset!r} in {where_presets_are()} "
                              f"(available: {have})")
         if exists:
+            named = [name] if name.lower().endswith(".py") else []  # the user named it
             try:
-                loaded = load_preset(args.preset)
+                loaded = load_preset(args.preset, True if args.trust else named)
             except PresetError as e:
                 raise UsageError(str(e)) from None
             apply_loaded(state, *loaded)
@@ -246,9 +255,69 @@ def web_driver() -> bool:
     return module == "textual.drivers.web_driver"
 
 
+#: the signals that end the viewer: the terminal is restored, then exit status 128 + n
+#: (SIGINT: 130, as Ctrl-C); SIGTSTP/SIGCONT are Textual's (suspend, resume: redrawn)
+TERMINATING = ("SIGINT", "SIGTERM", "SIGHUP", "SIGQUIT", "SIGUSR1", "SIGUSR2", "SIGALRM")
+#: what leaving Textual's application mode writes: the kitty keyboard protocol, mouse
+#: tracking, focus events and bracketed paste off, line wrap on, the main screen back, the
+#: cursor shown
+RESTORE = ("\x1b[<u\x1b[?1000l\x1b[?1003l\x1b[?1015l\x1b[?1006l\x1b[?1004l\x1b[?2004l"
+           "\x1b[?7h\x1b[?1049l\x1b[?25h")
+
+
+def _on_terminating_signal(saved, signum, frame) -> None:
+    """Restore the terminal (the modes Textual set, the tty's attributes from before) and
+    exit 128 + ``signum`` at once: nothing waits for the app or a frame's thread."""
+    try:
+        os.write(sys.__stdout__.fileno(), RESTORE.encode())
+    except (OSError, ValueError, AttributeError):  # the terminal is gone (SIGHUP)
+        pass
+    if saved is not None:
+        import termios
+
+        try:
+            termios.tcsetattr(sys.__stdin__.fileno(), termios.TCSANOW, saved)
+        except (termios.error, OSError, ValueError):
+            pass
+    os._exit(128 + signum)
+
+
+def catch_terminating_signals() -> dict:
+    """From here on, each of :data:`TERMINATING` restores the terminal and exits; returns
+    the handlers they had (for :func:`restore_signals`)."""
+    import signal
+
+    saved = None
+    try:
+        import termios
+    except ImportError:  # (Windows)
+        termios = None
+    if termios is not None:
+        try:
+            saved = termios.tcgetattr(sys.__stdin__.fileno())
+        except (termios.error, OSError, ValueError, AttributeError):  # not a tty (tests)
+            pass
+    before = {}
+    for name in TERMINATING:
+        if hasattr(signal, name):
+            n = getattr(signal, name)
+            before[n] = signal.signal(n, partial(_on_terminating_signal, saved))
+    return before
+
+
+def restore_signals(before: dict) -> None:
+    import signal
+
+    for n, handler in before.items():
+        signal.signal(n, handler if handler is not None else signal.SIG_DFL)
+
+
 def open_viewer(state, color: str | None, message: str = "",
                 output_dir: str | None = None) -> int:
-    """Run the Textual app (the only place Textual is imported); its exit status."""
+    """Run the Textual app (the only place Textual is imported); its exit status.  A crash:
+    Textual restores the terminal, the app prints one line and sets exit status 1.  A frame
+    still computing in a thread (a user's kernel that does not return) is not waited for:
+    the process ends without it (``os._exit``, after the terminal was restored)."""
     from pathlib import Path
 
     from tuibrdf.app.app import BrdfApp
@@ -256,8 +325,20 @@ def open_viewer(state, color: str | None, message: str = "",
     app = BrdfApp(state, color=color, message=message)
     if output_dir is not None:
         app.output_dir = Path(output_dir).absolute()  # a later cd does not move it
-    app.run()  # a crash: Textual restores the terminal, prints the error, sets return_code 1
-    return app.return_code or 0
+    before = catch_terminating_signals()
+    try:
+        app.run()
+    finally:
+        restore_signals(before)
+    code = app.return_code or 0
+    if app.stuck_jobs():
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
+        os._exit(code)
+    return code
 
 
 def run(args: argparse.Namespace) -> int:

@@ -35,6 +35,11 @@ a file) is a :class:`PresetError` too.  A preset without ``[look]`` (saved by an
 version) loads as before: θi and the sides, the rest of the look left as it is; a look key
 this version does not know is ignored (a newer version's preset still loads).
 
+A side whose model is a ``.py`` file would run that file's code when the preset is loaded:
+:func:`load_preset` refuses such a preset (:class:`PresetRunsCode`, before importing anything)
+unless the caller allows that file (``allow_code``: the files the user named, or True for
+``--trust``).  Strings are written as UTF-8 TOML strings, so any path round-trips (😀 too).
+
 Nothing here blocks for long, but it does touch the disk: a caller with an event loop runs
 :func:`load_preset` and :func:`save_preset` in a worker thread.
 """
@@ -89,6 +94,27 @@ class Preset(NamedTuple):
 
 class PresetError(ValueError):
     """A preset that cannot be saved or loaded (bad name, unreadable or malformed file)."""
+
+
+class PresetRunsCode(PresetError):
+    """A preset names a Python model file that the caller did not allow: loading it would
+    run that file's code (:func:`from_toml`'s ``allow_code``)."""
+
+    def __init__(self, message: str, files: list[str]) -> None:
+        super().__init__(message)
+        self.files = files
+
+
+def runs_code(model: str) -> bool:
+    """Whether loading model ``model`` (a preset's ``model = "…"``) runs a Python file."""
+    return model.lower().endswith(".py")
+
+
+def _allowed(model: str, allow_code) -> bool:
+    if allow_code is True:
+        return True
+    real = os.path.realpath(model)
+    return any(real == os.path.realpath(f) for f in (allow_code or ()))
 
 
 def preset_dir() -> Path:
@@ -190,14 +216,19 @@ def _toml_value(v: Any) -> str:
             raise PresetError(f"cannot save a non-finite value {v!r}")
         return repr(v)
     if isinstance(v, str):
-        return json.dumps(v)  # a JSON string (\" \\ \uXXXX escapes) is a TOML basic string
+        if any("\ud800" <= c <= "\udfff" for c in v):  # (a file name that is not UTF-8)
+            raise PresetError(f"cannot save {v!r}: not valid Unicode text")
+        # a TOML basic string: JSON's escapes (\" \\ control characters as \uXXXX) and every
+        # other character as itself (JSON's ASCII form writes 😀 as a surrogate pair,
+        # \ud83d\ude00, which TOML refuses), DEL escaped too (TOML refuses it raw)
+        return json.dumps(v, ensure_ascii=False).replace("\x7f", "\\u007f")
     if isinstance(v, tuple | list):
         return "[" + ", ".join(_toml_value(x) for x in v) + "]"
     raise PresetError(f"cannot save a value of type {type(v).__name__}")
 
 
 def _key(k: str) -> str:
-    return k if re.match(r"^[A-Za-z0-9_-]+$", k) else json.dumps(k)
+    return k if re.match(r"^[A-Za-z0-9_-]+$", k) else _toml_value(k)
 
 
 def to_toml(state: ViewerState) -> str:
@@ -272,9 +303,11 @@ def _unlink_quietly(path: str) -> None:
 
 
 # -- reading ------------------------------------------------------------------------------
-def from_toml(text: str, where: str = "preset") -> Preset:
-    """Parse and validate a preset: ``(theta_i, sides, look)``.  Raises
-    :class:`PresetError`."""
+def from_toml(text: str, where: str = "preset", allow_code=False) -> Preset:
+    """Parse and validate a preset: ``(theta_i, sides, look)``.  Raises :class:`PresetError`;
+    a side whose model is a Python file (:func:`runs_code`) is loaded (its code run) only if
+    ``allow_code`` is True or names that file (an iterable of paths), else
+    :class:`PresetRunsCode` is raised before anything is loaded."""
     import tomllib  # ≈ 20 ms (its regular expressions): when a preset is read, not at start
 
     try:
@@ -297,10 +330,17 @@ def from_toml(text: str, where: str = "preset") -> Preset:
     raw = data.get("sides")
     if not isinstance(raw, list) or not 1 <= len(raw) <= 2:
         raise PresetError(f"{where}: expected one or two [[sides]] tables")
-    sides = []
     for entry in raw:
         if not isinstance(entry, dict) or not isinstance(entry.get("model"), str):
             raise PresetError(f"{where}: each [[sides]] needs model = \"NAME\"")
+    code = [e["model"] for e in raw if runs_code(e["model"]) and
+            not _allowed(e["model"], allow_code)]
+    if code:
+        raise PresetRunsCode(f"{where}: loading it would run the Python file "
+                             f"{_one_line(code[0])}, not named by you: name that file too "
+                             "(tuibrdf view FILE --preset NAME) or add --trust", code)
+    sides = []
+    for entry in raw:
         params = entry.get("params", {})
         if not isinstance(params, dict):
             raise PresetError(f"{where}: params must be a table")
@@ -349,10 +389,12 @@ def _one_line(text: str, limit: int = 300) -> str:
     return text if len(text) <= limit else text[:limit] + "…"
 
 
-def load_preset(name: str) -> Preset:
+def load_preset(name: str, allow_code=False) -> Preset:
     """``(theta_i, sides, look)`` of the saved preset ``name`` (:func:`find_preset`: the new
     directory first); raises :class:`PresetError` (one line naming the file) for a missing,
-    non-regular, oversized, undecodable or malformed file.  Never blocks on a FIFO."""
+    non-regular, oversized, undecodable or malformed file, and :class:`PresetRunsCode` for
+    a preset that would run a Python file not allowed (``allow_code``, :func:`from_toml`).
+    Never blocks on a FIFO."""
     path = find_preset(name)
     try:
         text = read_regular(path, MAX_BYTES).decode("utf-8")
@@ -364,7 +406,7 @@ def load_preset(name: str) -> Preset:
         raise PresetError(f"cannot read {path}: {_why(e)}") from None
     except UnicodeDecodeError as e:
         raise PresetError(f"cannot read {path}: not UTF-8 text (byte {e.start})") from None
-    return from_toml(text, str(path))
+    return from_toml(text, str(path), allow_code)
 
 
 def apply_loaded(state: ViewerState, theta_i: float, sides: list[Side],

@@ -12,6 +12,7 @@ method                what it does
 ``step_theta``        θi by ± degrees, clamped to [0°, 90°]
 ``set_theta``         θi set to a value in [0°, 90°] (a value out of range is refused)
 ``type_theta``        θi typed as text (key t)
+``no_params``         why the parameter keys cannot act (a model without parameters), or None
 ``select``            move the parameter cursor (wraps)
 ``step_param``        the selected parameter ± its step (or coarse step); a choice cycles
 ``reset_param``       the selected parameter back to its default
@@ -263,7 +264,16 @@ class ViewerState:
         return None
 
     # -- parameters -------------------------------------------------------------------------
+    def no_params(self) -> str | None:
+        """Why the parameter keys cannot act on the active side (a model without parameters:
+        a ``.bsdf`` file, a ``.brdf`` with an empty parameter block), else None."""
+        if self.side.rows():
+            return None
+        return f"{self.side.spec.title} has no parameters to select, step or type"
+
     def select(self, delta: int) -> str | None:
+        if (why := self.no_params()) is not None:
+            return why
         n = len(self.side.rows())
         self.side.selected = (self.side.selected + delta) % n
         return None
@@ -283,6 +293,8 @@ class ViewerState:
     def step_param(self, direction: int, coarse: bool = False) -> str | None:
         """The selected parameter by ± one step; a choice cycles.  At a bound the value is
         clamped to it; already there, or against a constraint, the key is refused."""
+        if (why := self.no_params()) is not None:
+            return why
         row = self.row
         p = row.param
         if p.kind == "path":
@@ -305,6 +317,8 @@ class ViewerState:
         return tuple(rgb)
 
     def reset_param(self) -> str | None:
+        if (why := self.no_params()) is not None:
+            return why
         row = self.row
         default = row.param.default
         if row.channel is not None:
@@ -314,6 +328,8 @@ class ViewerState:
     def type_value(self, text: str) -> str | None:
         """A value typed for the selected row (Enter or = opens the input): a number checked
         against the declared range, a choice (name or alias), or a file path."""
+        if (why := self.no_params()) is not None:
+            return why
         row = self.row
         p = row.param
         if p.kind == "choice":
