@@ -269,7 +269,7 @@ def test_a_preset_round_trips_a_path_with_non_bmp_characters(tmp_path, config_ho
     path = d / "lamb😀ert.brdf"
     shutil.copy(DATA_DIR / "brdf" / "lambert.brdf", path)
     save_preset(ViewerState(sides=[Side.of(str(path))], theta_i=20.0), "emoji")
-    theta, sides = load_preset("emoji")
+    theta, sides, _look = load_preset("emoji")
     assert theta == 20.0 and sides[0].model == str(path)
 
 

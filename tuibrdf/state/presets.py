@@ -333,6 +333,11 @@ def from_toml(text: str, where: str = "preset", allow_code=False) -> Preset:
     for entry in raw:
         if not isinstance(entry, dict) or not isinstance(entry.get("model"), str):
             raise PresetError(f"{where}: each [[sides]] needs model = \"NAME\"")
+    for entry in raw:  # served: no file outside what serve allows, before anything else
+        try:
+            sandbox.check_name(entry["model"])
+        except ValueError as e:
+            raise PresetError(f"{where}: {_one_line(str(e))}") from None
     code = [e["model"] for e in raw if runs_code(e["model"]) and
             not _allowed(e["model"], allow_code)]
     if code:
@@ -345,7 +350,6 @@ def from_toml(text: str, where: str = "preset", allow_code=False) -> Preset:
         if not isinstance(params, dict):
             raise PresetError(f"{where}: params must be a table")
         try:
-            sandbox.check_name(entry["model"])  # served: before a model file is read
             model = get_model(entry["model"])
             for k, v in params.items():  # float() of a 400-digit integer overflows
                 if isinstance(v, int) and not isinstance(v, bool) and abs(v) > 1e300:
