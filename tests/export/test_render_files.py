@@ -97,6 +97,20 @@ def test_npz_map_values_are_evaluate_at_the_stated_directions(tmp_path):
                        "--phi-i", "120", "--size", "48", "--format", "npz")
 
 
+@pytest.mark.parametrize("view", ["sphere", "plane", "solid"])
+def test_npz_of_the_views_drawn_from_the_hemisphere_is_f_over_it(tmp_path, view):
+    """The lit sphere, the lit plane and the solid are drawn from f over the hemisphere at the
+    light: their NPZ holds those values, each ``tuibrdf.evaluate`` at the stated directions."""
+    data = run(tmp_path, f"{view}.npz", "ggx", "--theta-i", "50", "--size", "32", "--view",
+               view, "--format", "npz")
+    z = np.load(io.BytesIO(data))
+    meta = json.loads(str(z["metadata"]))
+    inside = ~np.isnan(z["f"])
+    assert inside.sum() > 0.7 * math.pi * 15**2  # most of the disc of a 32-px grid
+    f = tuibrdf.evaluate(meta["model"], meta["params"], z["wi"], z["wo"][inside])
+    assert np.array_equal(f, z["f"][inside])
+
+
 def test_npz_rgb_model_has_three_channels(tmp_path):
     data = run(tmp_path, "rgb.npz", "gltf", "-p", "base_color=0.9,0.5,0.1", "--size", "32",
                "--format", "npz")

@@ -28,7 +28,7 @@ if TYPE_CHECKING:  # typing is not imported for ``render --help``
 FORMATS = ("text", "ansi", "svg", "html", "png", "csv", "npz", "json", "pdf")
 INLINE = ("auto", "iterm", "kitty", "sixel", "off")
 IMAGE_VIEWS = ("map", "slice", "sphere", "plane", "solid")  # render.export.figure's
-NPZ_VIEWS = ("map", "slice")
+NPZ_VIEWS = ("map", "slice", "sphere", "plane", "solid")  # the last three: the map's numbers
 TABLE_VIEWS = ("incidence", "perpendicular", "albedo", "theta-h", "theta-d")
 BINARY = ("png", "npz", "pdf")
 MIN_SIZE, MAX_SIZE = 32, 2048  # render.export.figure's (not imported for --help)
@@ -39,7 +39,8 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--format", type=choices_type("format", FORMATS), default="text",
                         metavar="|".join(FORMATS),
                         help="what to write (default text): png for the image views (map, "
-                             "slice, sphere, plane, solid), npz for map and slice, csv and "
+                             "slice, sphere, plane, solid), npz for those (the slice's or the "
+                             "map's numbers: f over the hemisphere at this light), csv and "
                              "json for the sections, albedo, theta-h and theta-d; pdf (needs "
                              "the [plot] extra, matplotlib) for the map and those")
     parser.add_argument("--output", "-o", default="-", metavar="FILE",
@@ -68,7 +69,7 @@ def _check(args: argparse.Namespace) -> None:
         raise UsageError(f"--format png: the {view} view has no pixel picture; image views: "
                          f"{', '.join(IMAGE_VIEWS)} (csv or json give its numbers)")
     if fmt == "npz" and view not in NPZ_VIEWS:
-        raise UsageError(f"--format npz: for the {' and '.join(NPZ_VIEWS)} views; the "
+        raise UsageError(f"--format npz: for the views {', '.join(NPZ_VIEWS)}; the "
                          f"{view} view: " + ("csv or json" if view in TABLE_VIEWS else "png"))
     if fmt in ("csv", "json") and view not in TABLE_VIEWS:
         raise UsageError(f"--format {fmt}: for the views {', '.join(TABLE_VIEWS)}; the {view} "

@@ -194,10 +194,12 @@ def for_view(view: str, model: Model, values: dict[str, Any], theta_i: float,
              theta_d: float = 0.0, theta_h: float = 0.0, phi_d: float = 90.0,
              sqrt_h: bool = True, cosine: bool = False) -> Table:
     """The numbers of ``view`` (one of :data:`IMAGE_TABLES` or :data:`CURVE_TABLES`); the map
-    on a ``size × size`` grid, the slice ``size`` θh by ``size // 2`` θd samples."""
+    on a ``size × size`` grid, the slice ``size`` θh by ``size // 2`` θd samples.  The solid,
+    the lit sphere and the lit plane are drawn from the BRDF over the hemisphere at this light:
+    their numbers are the map's."""
     from tuibrdf.core.views.frame import LINE_SAMPLES
 
-    if view == "map":
+    if view in ("map", "solid", "sphere", "plane"):
         return map_table(model, values, theta_i, phi_i, size)
     if view == "slice":
         return slice_table(model, values, phi_d, size, max(size // 2, 2), sqrt_h)
