@@ -256,8 +256,9 @@ def pct(xs: list[float], q: float) -> float:
     return xs[min(len(xs) - 1, round(q * (len(xs) - 1)))]
 
 
-def latency(w: int, h: int, color: str, reps: int, root: str | Path = ROOT) -> dict:
-    term = Term(w, h, color, ["phong", "--theta-i", "0"], root=root)
+def latency(w: int, h: int, color: str, reps: int, root: str | Path = ROOT,
+            model: str = "phong") -> dict:
+    term = Term(w, h, color, [model, "--theta-i", "0"], root=root)
     out: dict = {}
     try:
         out["startup"] = term.until("sr⁻¹".encode()) - term.t0
@@ -388,6 +389,9 @@ def help_time() -> float:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sizes", default="80x24,160x48,240x70")
+    ap.add_argument("--model", default="phong",
+                    help="the model or file the viewer opens (default phong; its first "
+                         "parameter takes the '-' keys)")
     ap.add_argument("--reps", type=int, default=20)
     ap.add_argument("--colors", default="truecolor,256")
     ap.add_argument("--no-catch-up", action="store_true", help="skip the held-key test")
@@ -412,7 +416,11 @@ def main() -> int:
         with loaded(args.load):
             lines = run(args)
     if args.write_docs:
-        name = "bench_app" + ("-views" if args.views else "") + (
+        import re
+
+        kind = "" if args.model == "phong" else "-" + re.sub(r"[^A-Za-z0-9_.-]", "_",
+                                                              Path(args.model).name)
+        name = "bench_app" + kind + ("-views" if args.views else "") + (
             f"-load{args.load}" if args.load else "") + (
             f"-at-{args.against}" if args.against else "")
         doc = write_section(name, "\n".join(lines), command_line(), machine_line=started)
@@ -435,7 +443,7 @@ def run(args: argparse.Namespace) -> list[str]:
     emit(lines, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for w, h in sizes:
         for color in colors:
-            r = latency(w, h, color, args.reps, args.root)
+            r = latency(w, h, color, args.reps, args.root, args.model)
             cu = float("nan") if args.no_catch_up else catch_up(w, h, color, root=args.root)
             ms = [f"{r[k][0] * 1e3:.0f} / {r[k][1] * 1e3:.0f}" for k in kinds]
             done = [f"{r[k][3] * 1e3:.0f} / {r[k][4] * 1e3:.0f}" for k in kinds]
