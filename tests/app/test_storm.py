@@ -57,18 +57,26 @@ def files(tmp_path) -> dict[str, list[Side]]:
     }
 
 
-async def run_storm(sides, view, seed, n=400, sync=True):
-    app = StormApp(ViewerState(sides=sides, view=view), sync=sync)
+async def run_storm(sides, views, seed, n=400, sync=True):
+    """``n`` storm keys on each of ``views`` in turn, in one viewer: between two storms the
+    modal screens are closed and ``v`` brings the next view."""
+    app = StormApp(ViewerState(sides=sides, view=views[0]), sync=sync)
     async with app.run_test(size=(100, 30)) as pilot:
-        for i, event in enumerate(events(storm(seed, n))):
-            app.post_message(event)
-            if i % 10 == 9:
+        for k, view in enumerate(views):
+            await close_screens(pilot, app)
+            for _ in range(len(MAIN_VIEWS)):
+                if app.state.view == view:
+                    break
+                await pilot.press("v")
                 await pilot.pause()
-        await pilot.pause()
-        # alive: the viewer's screen underneath, and it still answers a key
-        while len(app.screen_stack) > 1:
-            await pilot.press("escape")
+            assert app.state.view == view, (view, app.message)
+            for i, event in enumerate(events(storm(seed + k, n))):
+                app.post_message(event)
+                if i % 25 == 24:
+                    await pilot.pause()
             await pilot.pause()
+        # alive: the viewer's screen underneath, and it still answers a key
+        await close_screens(pilot, app)
         theta = app.state.theta_i
         await pilot.press("t")
         await pilot.pause()
@@ -80,19 +88,22 @@ async def run_storm(sides, view, seed, n=400, sync=True):
     assert app.return_code in (0, None)
 
 
+async def close_screens(pilot, app) -> None:
+    while len(app.screen_stack) > 1:
+        await pilot.press("escape")
+        await pilot.pause()
+
+
 KINDS = ["scalar", "rgb", "bsdf", "brdf", "empty-brdf", "py", "merl", "material", "compare"]
 
 
 @pytest.mark.parametrize("kind", KINDS)
 async def test_storm_over_every_kind_of_model_and_view(kind, tmp_path):
-    sides = files(tmp_path)[kind]
-    for k, view in enumerate(MAIN_VIEWS):
-        fresh = [Side(s.material) for s in sides]
-        await run_storm(fresh, view, seed=1000 * KINDS.index(kind) + k, n=150)
+    await run_storm(files(tmp_path)[kind], MAIN_VIEWS, seed=1000 * KINDS.index(kind), n=100)
 
 
 @pytest.mark.parametrize("kind", ["py", "compare", "merl"])
 async def test_storm_with_frames_computed_in_threads(kind, tmp_path):
     # as the viewer runs (not sync): a user file's frames in threads, the keys meanwhile
     sides = files(tmp_path)[kind]
-    await run_storm(sides, "map", seed=7000 + KINDS.index(kind), n=300, sync=False)
+    await run_storm(sides, ["map"], seed=7000 + KINDS.index(kind), n=300, sync=False)
