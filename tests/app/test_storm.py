@@ -11,6 +11,9 @@ from tests.app.storm import events, storm
 from tuibrdf.app.app import BrdfApp
 from tuibrdf.state.viewer import MAIN_VIEWS, Side, ViewerState
 
+#: robustness runs: CI's Python 3.13 leg skips them (pyproject.toml, markers)
+pytestmark = pytest.mark.slow
+
 ROOT_DATA = __import__("tests").DATA_DIR
 
 

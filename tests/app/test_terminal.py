@@ -20,6 +20,9 @@ import pytest
 from tests.app.ptyrun import PtyViewer, restored_after_last_start
 from tests.app.storm import QUIT_KEYS, storm
 
+#: robustness runs: CI's Python 3.13 leg skips them (pyproject.toml, markers)
+pytestmark = pytest.mark.slow
+
 UP = "θi 30°"
 
 
