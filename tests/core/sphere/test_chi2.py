@@ -155,8 +155,8 @@ def _pdf_reference(wi, wo, kd, a):
 def test_the_vndf_sampler_is_heitz_2018_and_its_pdf_is_the_reflected_density():
     rng = np.random.default_rng(11)
     for a in (0.05, 0.3, 1.0):
-        for theta in (0.0, 35.0, 80.0):
-            wi = incident(theta, 180.0)
+        for theta, phi in ((0.0, 180.0), (35.0, 180.0), (80.0, 140.0), (50.0, -65.0)):
+            wi = incident(theta, phi)
             u1, u2 = rng.random(64), rng.random(64)
             wo, pdf = ggx_sample(np.broadcast_to(wi, (64, 3)), u1, u2, 0.0, 1.0, a, "exact")
             for k in range(64):
