@@ -71,10 +71,28 @@ class PtyViewer:
         os.kill(self.proc.pid, signum)
 
     def wait(self, timeout: float = 60.0) -> int | None:
+        """The exit status (None: still running after ``timeout``), once the reader thread
+        has taken what the viewer wrote last (the restore sequences come just before the
+        exit, and may still sit in the pty when the process is gone)."""
         try:
-            return self.proc.wait(timeout)
+            code = self.proc.wait(timeout)
         except subprocess.TimeoutExpired:
             return None
+        self.drain()
+        return code
+
+    def drain(self, quiet: float = 0.3, limit: float = 10.0) -> None:
+        """Wait until nothing new has arrived for ``quiet`` seconds (at most ``limit``)."""
+        end = time.monotonic() + limit
+        seen, since = -1, time.monotonic()
+        while time.monotonic() < end:
+            with self._lock:
+                n = len(self.out)
+            if n != seen:
+                seen, since = n, time.monotonic()
+            elif time.monotonic() - since >= quiet:
+                return
+            time.sleep(0.05)
 
     def attrs_now(self):
         return termios.tcgetattr(self.slave)
