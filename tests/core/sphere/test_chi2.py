@@ -172,3 +172,22 @@ def test_the_vndf_sampler_is_heitz_2018_and_its_pdf_is_the_reflected_density():
                 got = float(ggx_pdf(wi, wo2, kd, 0.04, a, "exact"))
                 if theta < 90.0:
                     assert got == pytest.approx(_pdf_reference(wi, wo2, kd, a), rel=1e-12)
+
+
+def test_with_a_diffuse_term_half_the_samples_are_cosine_weighted():
+    """kd > 0: u1 < ½ picks the cosine lobe with u1/½ (Malley: the disc point (√u, 2πu2)
+    lifted to the hemisphere), u1 ≥ ½ the visible normals with (u1 − ½)/½."""
+    rng = np.random.default_rng(12)
+    wi = incident(40.0, 120.0)
+    u1, u2 = rng.random(64), rng.random(64)
+    wo, _ = ggx_sample(np.broadcast_to(wi, (64, 3)), u1, u2, 0.5, 0.04, 0.3, "exact")
+    for k in range(64):
+        if u1[k] < 0.5:
+            u = u1[k] / 0.5
+            r, phi = math.sqrt(u), 2 * math.pi * u2[k]
+            ref = [r * math.cos(phi), r * math.sin(phi), math.sqrt(1 - u)]
+        else:
+            h = _vndf_reference(wi, (u1[k] - 0.5) / 0.5, u2[k], 0.3)
+            dot = sum(wi[j] * h[j] for j in range(3))
+            ref = [2 * dot * h[j] - wi[j] for j in range(3)]
+        assert np.allclose(wo[k], ref, atol=1e-12), k
