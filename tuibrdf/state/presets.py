@@ -241,10 +241,9 @@ def to_toml(state: ViewerState) -> str:
     return "\n".join(lines) + "\n"
 
 
-def check_can_save(name: str) -> Path:
-    """Raise :class:`PresetError` now if preset ``name`` could not be saved (bad name, the
-    directory cannot be created or written): for a caller about to spend time computing
-    what it will save (``tuibrdf fit --save-preset``).  Returns the path."""
+def _save_path(name: str) -> Path:
+    """The path preset ``name`` is saved to, its directory made; :class:`PresetError` when
+    the directory cannot be made or the path is a directory (os.replace onto it fails)."""
     path = preset_path(name)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -253,6 +252,14 @@ def check_can_save(name: str) -> Path:
                           f"{_why(e)}") from None
     if path.is_dir():
         raise PresetError(f"cannot save preset {name!r}: {path} is a directory")
+    return path
+
+
+def check_can_save(name: str) -> Path:
+    """Raise :class:`PresetError` now if preset ``name`` could not be saved (bad name, the
+    directory cannot be created or written): for a caller about to spend time computing
+    what it will save (``tuibrdf fit --save-preset``).  Returns the path."""
+    path = _save_path(name)
     if not os.access(path.parent, os.W_OK | os.X_OK):
         raise PresetError(f"cannot save preset {name!r} to {path.parent}: permission denied")
     return path
@@ -264,13 +271,7 @@ def save_preset(state: ViewerState, name: str) -> Path:
     or full disk, no permission, the presets directory is a file)."""
     path = preset_path(name)
     text = to_toml(state)
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-    except OSError as e:
-        raise PresetError(f"cannot save preset {name!r}: cannot create {path.parent}: "
-                          f"{_why(e)}") from None
-    if path.is_dir():  # os.replace onto a directory: say what it is
-        raise PresetError(f"cannot save preset {name!r}: {path} is a directory")
+    _save_path(name)
     clean_stale(path.parent)
     tmp = ""
     try:
