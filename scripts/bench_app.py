@@ -350,6 +350,100 @@ def view_latency(w: int, h: int, color: str, reps: int, view: str,
     return out
 
 
+def sample_files(tmp: str | Path) -> dict[str, tuple[list[str], str | None]]:
+    """Every kind of model the viewer opens: label → (the viewer's arguments, the key that
+    steps its first parameter, None for a model without parameters).  The files are written
+    here by the tests' writers (a synthetic 1×8-incidence 32×32 RGB ``.bsdf``, a synthetic
+    MERL table) or taken from the repository (``tests/data/brdf/disney.brdf``,
+    ``docs/examples/minnaert.py``)."""
+    sys.path.insert(0, str(ROOT / "tests"))
+    import numpy as np
+    from merl_writer import sample_angles, write_merl
+    from rgl_writer import material, write_tensor
+
+    tmp = Path(tmp)
+    bsdf = write_tensor(tmp / "synthetic.bsdf", material(n_phi=1, n_theta=8, n=32))
+    th, _, _ = sample_angles()
+    lobe = 0.1 + 2.0 * np.exp(-(th / 0.1) ** 2)  # a glossy peak about the half vector
+    merl = write_merl(tmp / "synthetic.binary",
+                      np.broadcast_to(lobe[None], (3, 90, 90, 180)).copy())
+    return {
+        "phong (built-in)": (["phong"], "minus"),
+        "gltf (built-in, RGB)": (["gltf"], "minus"),
+        "material alum-bronze (abc)": (["--material", "alum-bronze"], "minus"),
+        "disney.brdf": ([str(ROOT / "tests" / "data" / "brdf" / "disney.brdf")], "minus"),
+        "minnaert.py": ([str(ROOT / "docs" / "examples" / "minnaert.py")], "minus"),
+        "synthetic .bsdf": ([str(bsdf)], None),
+        "synthetic MERL": ([str(merl)], None),
+    }
+
+
+def hold(term: Term, key: bytes, hold_s: float = 2.0, rate_hz: float = 30.0
+         ) -> tuple[float, float]:
+    """A key held ``hold_s`` seconds (``rate_hz`` repeats), the pty read as fast as it comes:
+    (the longest time without output while it is held, after its first 0.1 s; the time from
+    the last key to the screen's last change)."""
+    t_start = t_next = time.perf_counter()
+    t_end = t_start + hold_s
+    last_key, frames = t_start, []
+    while time.perf_counter() < t_end:
+        if time.perf_counter() >= t_next:
+            os.write(term.fd, key)
+            last_key = time.perf_counter()
+            t_next += 1 / rate_hz
+        got = term.read(0.001)
+        if got:  # the screen changed (a θi key changes the pictures and the status line)
+            frames.append(got[0])
+    last = last_key
+    while True:
+        got = term.read(IDLE_S)
+        if got is None:
+            break
+        last = got[0]
+    marks = [t_start + 0.1] + [t for t in frames if t > t_start + 0.1] + [t_end]
+    return max(b - a for a, b in zip(marks, marks[1:], strict=False)), max(0.0, last - last_key)
+
+
+def kinds_table(sizes, colors, reps: int, lines: list[str], root: str | Path = ROOT,
+                views: tuple[str, ...] | None = None) -> None:
+    """Key → complete frame for every kind of model on every main view: θi (→, a new
+    incidence each key) and the first parameter (−, a new value each key), p50 / p95 of the
+    time to the screen's last change (``SETTLE_S`` of quiet after it); and on the map a held
+    →: the longest wait for a frame while held, the settling after release."""
+    from tuibrdf.state.viewer import MAIN_VIEWS
+
+    views = views or MAIN_VIEWS
+    emit(lines, "| size | colours | model | view | θi p50/p95 ms | parameter p50/p95 ms "
+         "| held →: longest gap / settles, ms |")
+    emit(lines, "|---|---|---|---|---|---|---|")
+    with tempfile.TemporaryDirectory() as tmp:
+        for label, (argv, param_key) in sample_files(tmp).items():
+            for w, h in sizes:
+                for color in colors:
+                    for view in views:
+                        term = Term(w, h, color, [*argv, "--theta-i", "0", "--view", view],
+                                    root=root)
+                        try:
+                            term.until(b"\x1b[?1049h")  # the alternate screen: started
+                            term.drain(1.0)  # the first screen, its albedo included
+                            cells = []
+                            for key in ("right", param_key):
+                                if key is None:
+                                    cells.append("—")
+                                    continue
+                                done = [term.key_to_frame(KEYS[key])[2] for _ in range(reps)]
+                                cells.append(f"{statistics.median(done) * 1e3:.0f} / "
+                                             f"{pct(done, 0.95) * 1e3:.0f}")
+                            held = "—"
+                            if view == views[0]:
+                                gap, settle = hold(term, KEYS["right"])
+                                held = f"{gap * 1e3:.0f} / {settle * 1e3:.0f}"
+                        finally:
+                            term.close()
+                        emit(lines, f"| {w}×{h} | {color} | {label} | {view} | {cells[0]} | "
+                             f"{cells[1]} | {held} |")
+
+
 def emit(lines: list[str], line: str) -> None:
     """Print a line of the table as soon as it is measured, and keep it."""
     print(line, flush=True)
@@ -397,6 +491,10 @@ def main() -> int:
     ap.add_argument("--no-catch-up", action="store_true", help="skip the held-key test")
     ap.add_argument("--views", action="store_true",
                     help="key → frame on each of issue 13's views instead")
+    ap.add_argument("--kinds", action="store_true",
+                    help="every kind of model (built-in, RGB, material, .brdf, .py, .bsdf, "
+                         "MERL) on every main view instead")
+    ap.add_argument("--only-views", metavar="V,V", help="with --kinds: these views only")
     ap.add_argument("--load", type=int, default=0, metavar="N",
                     help="N other processes spinning on the CPU meanwhile (a shared machine)")
     ap.add_argument("--against", metavar="REV",
@@ -421,6 +519,7 @@ def main() -> int:
         kind = "" if args.model == "phong" else "-" + re.sub(r"[^A-Za-z0-9_.-]", "_",
                                                               Path(args.model).name)
         name = "bench_app" + kind + ("-views" if args.views else "") + (
+            "-kinds" if args.kinds else "") + (
             f"-load{args.load}" if args.load else "") + (
             f"-at-{args.against}" if args.against else "")
         doc = write_section(name, "\n".join(lines), command_line(), machine_line=started)
@@ -435,6 +534,10 @@ def run(args: argparse.Namespace) -> list[str]:
     lines: list[str] = []
     if args.views:
         views_table(sizes, colors, args.reps, lines, args.root)
+        return lines
+    if args.kinds:
+        kinds_table(sizes, colors, args.reps, lines, args.root,
+                    tuple(args.only_views.split(",")) if args.only_views else None)
         return lines
     kinds = ("param", "theta", "model", "mixed")
     emit(lines, "| size | colours | startup s | main view p50/p95 ms: param | θi | model | "

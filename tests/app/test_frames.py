@@ -672,3 +672,87 @@ async def test_after_any_keys_every_picture_is_what_drawing_it_gives(monkeypatch
                     assert _cells(_shown_rows(app, pane)) == _cells(
                         _fresh_rows(app, pane)), (step, key, pane)
             await pilot.pause(rng.choice([0.0, 0.005, 0.02, 0.05, 0.1]))
+
+
+async def test_a_held_key_on_a_threaded_model_shows_frames_while_held(monkeypatch, tmp_path):
+    # a model file's frames are computed in the worker; here each takes 40 ms of wall time
+    # (a sleep in the test's compute_frame: the scheduling, not the machine's speed, decides)
+    # and → comes every 10 ms for 0.6 s.  The viewer must not cancel every frame for the next
+    # key (nothing was shown until the key was released) nor start a thread per key (they
+    # share one interpreter): one job at a time, each finished job's pictures shown, and the
+    # final state's complete frame last
+    import shutil
+    import threading
+    import time
+
+    path = tmp_path / "mine.brdf"
+    shutil.copy(DATA_DIR / "brdf" / "lambert.brdf", path)
+    core_frame.clear_caches()
+    real = core_frame.compute_frame
+    running, most = [0], [0]
+    lock = threading.Lock()
+
+    def compute(req, **kw):
+        with lock:
+            running[0] += 1
+            most[0] = max(most[0], running[0])
+        try:
+            time.sleep(0.04)
+            return real(req, **kw)
+        finally:
+            with lock:
+                running[0] -= 1
+
+    monkeypatch.setattr(core_frame, "compute_frame", compute)
+    app = BrdfApp(ViewerState(sides=[Side.of(str(path))], theta_i=0.0))
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        shown = app.frames
+        for _ in range(60):
+            burst(app, "right")
+            await pilot.pause(0.01)
+        during = app.frames - shown
+        assert app.state.theta_i == 60.0
+        assert await wait_for(pilot, lambda: app.frame.request.theta_i == 60.0
+                              and app.frame.complete)
+        assert "θi 60°" in status(app) and "a(θi) …" not in status(app)
+    # 0.6 s of keys, ≥ 40 ms a frame: at most 15 frames; a cancelled-at-every-key viewer
+    # showed none before the last key
+    assert during >= 3, during
+    assert most[0] == 1, most[0]
+
+
+@pytest.mark.parametrize("hold", [True, False])
+async def test_a_threaded_frame_whose_albedo_is_quick_is_shown_in_one_piece(monkeypatch,
+                                                                             tmp_path, hold):
+    # each message from the worker is a paint, and Textual holds a second paint until its next
+    # 1/60 s tick: when the slow part (the albedo) of a kind of frame was quick lately
+    # (HOLD_S), the pictures wait for it and come with it; else (HOLD_S = 0, the control) the
+    # pictures come first and the albedo after
+    import shutil
+
+    from tuibrdf.app import frames
+
+    monkeypatch.setattr(frames, "HOLD_S", 1e9 if hold else 0.0)
+    path = tmp_path / "mine.brdf"
+    shutil.copy(DATA_DIR / "brdf" / "lambert.brdf", path)
+    core_frame.clear_caches()
+    app = BrdfApp(ViewerState(sides=[Side.of(str(path))], theta_i=10.0))
+    shown: list[tuple[float, bool]] = []
+    real_show = app.show_frame
+
+    def show(res, passed=False):
+        shown.append((res.request.theta_i, res.complete))
+        return real_show(res, passed)
+
+    monkeypatch.setattr(app, "show_frame", show)
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        for theta in (11.0, 12.0, 13.0):
+            await pilot.press("right")
+            assert await wait_for(pilot, lambda t=theta: app.frame.request.theta_i == t
+                                  and app.frame.complete)
+    # the first frame has no history (pictures first); the next ones follow HOLD_S
+    later = [c for t, c in shown if t >= 12.0]
+    assert later.count(True) == 2
+    assert later.count(False) == (0 if hold else 2), shown

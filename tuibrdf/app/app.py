@@ -113,6 +113,8 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         self._loaded = ""  # the saved preset `P` loaded last
         #: recent computing times of each kind of frame (frames.FrameDelivery._quick)
         self._costs: dict[tuple, list[float]] = {}
+        #: and of their slow part (the albedo) alone (frames.HOLD_S)
+        self._slow_costs: dict[tuple, list[float]] = {}
         self._jobs: list = []  # the frame jobs whose thread has not ended (frames.FrameJob)
         self._changes = 0  # changes so far; only the last one queued updates the screen
         self._relayout = False  # a change since the last update may show other panes

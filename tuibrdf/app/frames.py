@@ -7,11 +7,18 @@ A request computed before is shown at once (the core caches results by request).
 registered models only (:func:`built_in`: no model file, no measured data) is computed on the
 event loop, where the key is handled, unless frames of its kind took :data:`INLINE_S` of CPU
 time or more lately.  Every other frame is computed by :meth:`FrameDelivery.compute` in a
-daemon thread of its own (:class:`FrameJob`): the newest request cancels the older ones, and
-a result that is no longer the current request is dropped, so the latest state always wins
-and its frame always arrives.  The job posts the fast part (maps, sections, peak) as soon as
-it has it and the slow part (albedo, albedo curve) when done (:class:`FrameComputed`); a
-frame not there after :data:`PENDING_S` lets the panels and the status line go ahead of it.
+daemon thread of its own (:class:`FrameJob`), one at a time: a request made while a job
+computes another waits for it (the newest request replaces an older waiting one), and the
+running job then skips its slow part and shows its pictures as they are, so a held key shows
+a frame every time one is computed, and the latest state's frame always arrives last.  (Two
+jobs at once would share the interpreter and each take twice as long; one that cancelled the
+other at every key showed nothing while a key was held.)  A job running for :data:`STUCK_S`
+or more may be a user's kernel that never returns: a newer request then gets a thread of its
+own.  The job posts the fast part (maps, sections, peak) and the slow part (albedo, albedo
+curve) in one message when the slow part of its kind was quick lately (:data:`HOLD_S`; each
+message is a paint, and a second paint waits for Textual's next 1/60 s tick), else each as
+soon as it has it (:class:`FrameComputed`); a frame not there after :data:`PENDING_S` lets
+the panels and the status line go ahead of it.
 So the kernel of a model read from a user's file (``.py``, ``.brdf``, ``.bsdf``) or from
 measured data (MERL) never runs on the event loop (in sync mode, for tests, every frame
 does).  A user's kernel may never return: a frame still coming after :data:`SLOW_S` says
@@ -69,6 +76,14 @@ SLOW_S = 2.0
 #: at most this many frame threads at a time: a kernel that never returns keeps its thread
 #: (a thread cannot be stopped); beyond this, the newest request waits for one to end
 MAX_JOBS = 3
+#: a job computing for this long (wall time) may never end (a user's kernel in a loop): a
+#: newer request no longer waits for it but gets a thread of its own (up to MAX_JOBS)
+STUCK_S = 0.25
+#: the slow part of a frame (the albedo) is posted with the fast part, in one paint, when the
+#: slow part of frames of its kind took less CPU time than this lately (a 60 Hz frame):
+#: waiting for it costs less than a second paint, which Textual holds until its next 1/60 s
+#: tick after the first
+HOLD_S = 0.016
 
 
 def built_in(material: Material) -> bool:
@@ -89,10 +104,19 @@ class FrameJob:
         self.started = monotonic()
         self.done = False  # the thread has ended
         self._cancelled = threading.Event()
+        #: a newer request waits for this job: its pictures are still shown, its slow part is
+        #: not computed
+        self.superseded = threading.Event()
+        #: its slow part is posted with its fast part (:data:`HOLD_S`)
+        self.hold = False
 
     def cancel(self) -> None:
         """A newer request wants the screen: this job's results are dropped."""
         self._cancelled.set()
+
+    def stuck(self) -> bool:
+        """Computing for :data:`STUCK_S` or more: a newer request does not wait for it."""
+        return not self.done and monotonic() - self.started >= STUCK_S
 
     @property
     def is_cancelled(self) -> bool:
@@ -105,15 +129,16 @@ class FrameJob:
 
 class FrameComputed(Message):
     """What a frame's thread reports to the event loop: a ``result`` (``seconds``: the CPU
-    time computing it took, when none of it was cached, else None), an ``error``, or that
-    the job has ended (``last``)."""
+    time computing it took, when none of it was cached, else None; ``slow_seconds``: that of
+    its slow part alone), an ``error``, or that the job has ended (``last``)."""
 
     def __init__(self, job: FrameJob, result: FrameResult | None = None,
                  seconds: float | None = None, error: Exception | None = None,
-                 last: bool = False) -> None:
+                 last: bool = False, slow_seconds: float | None = None) -> None:
         super().__init__()
         self.job, self.result, self.seconds, self.error, self.last = (job, result, seconds,
                                                                        error, last)
+        self.slow_seconds = slow_seconds
 
 
 class FrameDelivery:
@@ -125,7 +150,8 @@ class FrameDelivery:
     _slow_timer: Timer | None = None  # says "model too slow" (:data:`SLOW_S`)
     _worker: FrameJob | None = None  # the frame job started last, and its request
     _worker_for: FrameRequest | None = None
-    _queued: FrameRequest | None = None  # a request waiting for a job to end (MAX_JOBS)
+    #: the request waiting for the running job to end (or for one of MAX_JOBS stuck ones)
+    _queued: FrameRequest | None = None
     #: (the app's ``_jobs``: the frame jobs whose thread has not reported its end)
 
     _asked_at = 0.0  # when the current request was made (time.monotonic)
@@ -206,6 +232,7 @@ class FrameDelivery:
         if req != self.request:
             self._asked_at = monotonic()
         self.request = req
+        self._queued = None  # a request waiting for a job: this one replaces it
         if self.sync:
             try:
                 self.show_frame(core_frame.compute_frame(req))
@@ -229,6 +256,10 @@ class FrameDelivery:
             self._stop_pending()
             self._pending_timer = self.set_timer(PENDING_S, partial(self._pending, req))
         if not on_its_way:
+            if busy and not self._worker.stuck():  # wait for it: its pictures still show
+                self._worker.superseded.set()
+                self._queued = req
+                return
             if busy:
                 self._worker.cancel()  # an older request's: its results would be dropped
             self._worker, self._worker_for = self.compute(req), req
@@ -278,6 +309,7 @@ class FrameDelivery:
             self._queued = req
             return alive[-1]
         job = FrameJob(req)
+        job.hold = max(self._slow_costs.get(self._kind(req), (1.0,))) < HOLD_S
         self._jobs.append(job)
         self._queued = None
         threading.Thread(target=self._run_job, args=(job,), name="tuibrdf-frame",
@@ -305,12 +337,20 @@ class FrameDelivery:
             fresh = core_frame.cached_frame(req) is None
             start = time.thread_time()
             res = core_frame.compute_frame(req, slow=False)
-            post(result=res,
-                 seconds=time.thread_time() - start if res.complete and fresh else None)
-            if not res.complete and not job.is_cancelled:
-                res = core_frame.compute_frame(req, check=lambda: not job.is_cancelled)
-                if res is not None:
-                    post(result=res, seconds=time.thread_time() - start if fresh else None)
+            if res.complete or not job.hold or job.superseded.is_set():
+                post(result=res,
+                     seconds=time.thread_time() - start if res.complete and fresh else None)
+                if res.complete or job.superseded.is_set():
+                    return
+            fast = time.thread_time()
+            res = core_frame.compute_frame(
+                req, check=lambda: not (job.is_cancelled or job.superseded.is_set()))
+            if res is not None:
+                now = time.thread_time()
+                post(result=res, seconds=now - start if fresh else None,
+                     slow_seconds=now - fast if fresh else None)
+            elif job.hold and not job.is_cancelled:  # superseded meanwhile: its pictures
+                post(result=core_frame.compute_frame(req, slow=False))
         except Exception as e:  # bad data, a user's kernel raising anything: a message
             post(error=e)
         finally:
@@ -327,14 +367,21 @@ class FrameDelivery:
         else:
             if message.seconds is not None:
                 self._took(message.result.request, message.seconds)
-            self.show_frame(message.result)
+            if message.slow_seconds is not None:
+                kept = self._slow_costs.setdefault(self._kind(message.result.request), [])
+                kept.append(message.slow_seconds)
+                del kept[:-INLINE_KEEP]
+            # a superseded job's pictures: shown as the last state computed until the newer
+            # request's frame comes (its status line says "…" for the numbers meanwhile)
+            self.show_frame(message.result, passed=job is self._worker and self._queued is not None)
 
     def _job_ended(self, job: FrameJob) -> None:
         """A frame's thread has ended: the request that waited for it starts now."""
         if job in self._jobs:
             self._jobs.remove(job)
         if self._queued is not None and self._queued == self.request:
-            self._worker, self._worker_for = self.compute(self._queued), self._queued
+            queued, self._queued = self._queued, None
+            self._worker, self._worker_for = self.compute(queued), queued
 
     def _stop_slow_timer(self) -> None:
         if self._slow_timer is not None:
@@ -368,18 +415,19 @@ class FrameDelivery:
             self._status()
 
     @survives
-    def show_frame(self, res: FrameResult) -> None:
+    def show_frame(self, res: FrameResult, passed: bool = False) -> None:
         """Draw ``res`` if it is still the current request (and not the fast part of a frame
-        shown complete already): every visible pane, the panels and the status line in one go
-        (one paint; each pane redrawn only if what it shows changed)."""
-        if res.request != self.request or not self.is_running:
+        shown complete already), or ``passed``: a state the keys went through, whose frame
+        stands until the current one comes; every visible pane, the panels and the status
+        line in one go (one paint; each pane redrawn only if what it shows changed)."""
+        if (res.request != self.request and not passed) or not self.is_running:
             return  # a newer request is on its way, or the app is closing
         shown = self.frame
         if not res.complete and shown is not None and shown.request == res.request \
                 and shown.complete:
             return
         if writer_backlog(self):  # trailing edge: try again when the terminal has caught up
-            self.set_timer(RETRY_S, partial(self.show_frame, res))
+            self.set_timer(RETRY_S, partial(self.show_frame, res, passed))
             return
         self._stop_pending()  # this request's frame is shown: its panels and status with it
         if self.message.startswith("model too slow"):  # it came after all
