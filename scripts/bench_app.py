@@ -26,9 +26,15 @@ timestamps the bytes the app writes back:
 
 * **views** (``--views``): key → frame and key → all panes on each of issue 13's views (lit
   sphere, lit plane, θh × θd slice, f(θh), f(θd)): a parameter key and the view's own key.
+* **kinds** (``--kinds [--only-views V,V]``): every kind of model the viewer opens (built-in
+  scalar and RGB, a MERL material's fit, a ``.brdf``, a ``.py``, a synthetic ``.bsdf`` and a
+  synthetic MERL file, :func:`sample_files`) on every main view: key → the screen's last
+  change (complete frame) for → and for the first parameter's −, and on the first view a →
+  held 2 s at 30/s read at full speed: the longest time without output while held, and how
+  long the screen keeps changing after release.
 
-Usage: ``python scripts/bench_app.py [--sizes 80x24,160x48,240x70] [--reps 20] [--views]
-[--load N] [--write-docs]``; ``--load N`` runs N processes spinning on the CPU meanwhile (a
+Usage: ``python scripts/bench_app.py [--sizes 80x24,160x48,240x70] [--reps 20] [--views |
+--kinds] [--load N] [--write-docs]``; ``--load N`` runs N processes spinning on the CPU meanwhile (a
 shared machine).  Prints a Markdown table; ``--write-docs`` also writes it into
 docs/benchmarks.md (scripts/benchdoc.py: its own section per ``--views`` and ``--load``, with
 the command, the machine and the date).  Numbers depend on the machine: read them as "about".
