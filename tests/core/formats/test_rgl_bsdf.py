@@ -236,3 +236,73 @@ def test_grazing_views_divide_by_at_most_1_over_cos_89_9(tmp_path):
     got = tuibrdf.evaluate(str(f), {}, wi, wo)
     want = expected(wi, wo) * np.cos(t) / np.cos(np.radians(89.9))
     np.testing.assert_allclose(got, want, rtol=1e-12)
+
+
+def rough(fields: dict, seed=7) -> dict:
+    """The synthetic material with random positive vndf, rgb, ndf and σ tables (same shapes):
+    nothing is linear any more, so a wrong corner, slice or weight shows."""
+    rng = np.random.default_rng(seed)
+    out = dict(fields)
+    for name in ("vndf", "rgb", "ndf", "sigma"):
+        out[name] = rng.uniform(0.2, 1.5, size=fields[name].shape)
+    return out
+
+
+@pytest.mark.parametrize("kw", [
+    dict(n_phi=1, n_theta=4, n=9),
+    dict(n_phi=1, n_theta=8, n=32),
+    dict(n_phi=2, n_theta=6, n=12, jacobian=False),
+    dict(n_phi=3, n_theta=8, n=32, k=0.1),
+    dict(n_phi=5, n_theta=3, n=7, k=0.2, phi_span=np.pi),  # reduction 2
+    dict(n_phi=4, n_theta=5, n=16, k=0.3, phi_span=np.pi / 2),  # reduction 4
+    dict(n_phi=1, n_theta=1, n=5),
+])
+@pytest.mark.parametrize("make", [material, lambda **kw: rough(material(**kw))],
+                         ids=["linear", "rough"])
+def test_one_light_fast_path_equals_the_general_path(tmp_path, kw, make):
+    # One wi (shape (3,) or (1, 3)) takes the fast path: the (φi, θi) slices mixed once per
+    # incidence (and kept), the four corners of a cell gathered per table.  The same wi
+    # broadcast to every wo takes the general path: the slices mixed per direction at each
+    # corner.  Both are the same linear combinations of the same table entries, at most
+    # regrouped: a sum of m terms regrouped moves by ≤ m·2⁻⁵³ of Σ|terms| (m ≤ 16 here: 4
+    # cell corners × ≤ 4 slices, ≤ 2e-15 of the largest value); the inverse warp's (x, y), a
+    # few such sums and a quotient of them, move by ~1e-14 at most, and the rgb interpolation
+    # turns a shift δ of its argument into ≤ 2·max·(n − 1)·δ (n ≤ 32: ~1e-12 of the maximum
+    # at the very worst).  Hence 1e-12 of the maximum.  (As written today the two group
+    # their sums alike and agree to the bit.)
+    f = write_tensor(tmp_path / "fast.bsdf", make(**kw))
+    data = rgl_bsdf.load(f)
+    wis, wo = pairs(700, seed=11)
+    wo = np.concatenate([wo, [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.6, -0.8, 1e-9]]])
+    lights = [*wis[:5], np.array([0.0, 0.0, 1.0]), np.array([-0.8, -0.6, 1e-3]),
+              np.array([0.3, 0.4, -0.5])]  # normal, grazing, below the horizon
+    for wi in lights:
+        for clamp in (True, False):
+            general = rgl_bsdf.evaluate(data, np.broadcast_to(wi, wo.shape), wo, clamp=clamp)
+            tol = 1e-12 * np.abs(general).max()
+            for one in (wi, wi[None]):
+                for _ in range(2):  # the second time from the kept incidence
+                    fast = rgl_bsdf.evaluate(data, one, wo, clamp=clamp)
+                    assert fast.shape == general.shape
+                    np.testing.assert_allclose(fast, general, rtol=0, atol=tol)
+            np.testing.assert_allclose(rgl_bsdf.evaluate(data, wi, wo[7]), general[7], rtol=0,
+                                       atol=tol)
+
+
+def test_kept_incidences_are_bounded_and_per_file(tmp_path):
+    # the slices mixed at an incidence live in the file's own RglData, at most LIGHT_CACHE of
+    # them: another file (other values, the same grids) evaluated at the same wi is not
+    # answered from this one's
+    a = rgl_bsdf.load(write_tensor(tmp_path / "a.bsdf", material(n_phi=3, k=0.1)))
+    b = rgl_bsdf.load(write_tensor(tmp_path / "b.bsdf", rough(material(n_phi=3, k=0.1))))
+    wis, wo = pairs(50, seed=5)
+    for wi in wis[:3 * rgl_bsdf.LIGHT_CACHE]:
+        va, vb = rgl_bsdf.evaluate(a, wi, wo), rgl_bsdf.evaluate(b, wi, wo)
+        np.testing.assert_allclose(va, expected(np.broadcast_to(wi, wo.shape), wo, k=0.1),
+                                   rtol=1e-12)
+        np.testing.assert_array_equal(vb, rgl_bsdf.evaluate(b, np.broadcast_to(wi, wo.shape),
+                                                            wo))
+    assert len(a.lights) == len(b.lights) == rgl_bsdf.LIGHT_CACHE
+    light = rgl_bsdf._light(a, 0.1, 0.2)  # kept, and shared read-only
+    assert rgl_bsdf._light(a, 0.1, 0.2) is light
+    assert not light.vndf.data.flags.writeable and not light.den.flags.writeable

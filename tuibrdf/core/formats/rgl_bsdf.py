@@ -36,6 +36,10 @@ are read as information.  Float fields may be f32 or f64 (converted to f64).
    the horizon (measured values there are noisy and need not vanish: the division amplifies
    them at most 573×); on the horizon itself the value is 0, as powitacq.
 
+One ``wi`` for many ``wo`` (a map, the peak finder) mixes the (φi, θi) slices of the warps once
+(every lookup is linear in the slices) and keeps them with ``σ(u(wi))`` for the last few
+incidences of the file (``RglData.lights``).
+
 Negative RGB values (out-of-gamut spectra) are clamped to 0 for display.  The ``valid`` mask is
 not applied (powitacq and Mitsuba ignore it); the count of invalid entries is reported.
 
@@ -48,12 +52,14 @@ from __future__ import annotations
 
 import os
 import struct
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import partial
+from typing import NamedTuple
 
 import numpy as np
 
 from tuibrdf.core.formats.files import UserFileError
+from tuibrdf.core.lru import LRU
 from tuibrdf.core.numerics import safe_div
 from tuibrdf.core.params import Model
 
@@ -78,6 +84,9 @@ MAX_MAGNITUDE = 1e20
 MIN_MAGNITUDE = 1e-20
 #: ``cos θo`` floor of step 6: cos 89.9°
 COS_FLOOR = float(np.cos(np.radians(89.9)))
+#: incidences a file keeps prepared (:func:`_light`): a frame's views and its peak finder
+#: evaluate one light many times; a few more for the lights of a comparison
+LIGHT_CACHE = 8
 
 
 class BsdfError(UserFileError):
@@ -185,8 +194,10 @@ def read_tensor(path: str, names=None) -> dict[str, np.ndarray]:
 
 class Warp:
     """Mitsuba's ``Marginal2D`` over a grid ``(ny, nx)`` of values, with ``S`` parameter slices
-    (the flattened (φi, θi) grid) in front: ``data`` is ``(S, ny, nx)``.  ``cdf`` builds the
-    marginal/conditional CDFs and normalises each slice (as ``build_cdf = true``)."""
+    (the flattened (φi, θi) grid) in front.  ``cdf`` builds the marginal/conditional CDFs and
+    normalises each slice (as ``build_cdf = true``).  The tables are kept with each slice's grid
+    flattened, row-major: ``data`` and ``cond`` ``(S, ny·nx)`` (``data`` of the rgb warp
+    ``(S, ny·nx, 3)``), ``marg`` ``(S, ny)``; cell (iy, ix) is at ``iy·nx + ix``."""
 
     def __init__(self, data: np.ndarray, params: list[np.ndarray], cdf: bool):
         self.params = params
@@ -203,16 +214,17 @@ class Warp:
             marg[:, 1:] = np.cumsum(0.5 * (rows[:, 1:] + rows[:, :-1]), axis=1)
             total = marg[:, -1]
             norm = safe_div(1.0, total, total > 0)  # a slice of zeros: checked at load
-            self.data = data * norm[:, None, None]
-            self.cond = cond * norm[:, None, None]
+            self.cond = (cond * norm[:, None, None]).reshape(s, -1)
             self.marg = marg * norm[:, None]
-        else:
-            self.data = data
+            data = data * norm[:, None, None]
+        self.data = data.reshape(s, -1)
 
     def corners(self, values: list[np.ndarray]):
         """``[(slice index, weight)]`` over the 2^D corners of the parameter cell (linear
         interpolation, clamped at the ends; a parameter with one value has weight 1)."""
-        out = [(np.zeros(np.shape(values[0]) if values else (), dtype=np.intp), 1.0)]
+        if not self.params:
+            return ONE  # no parameters (ndf, σ): the one table
+        out = [(np.zeros(np.shape(values[0]), dtype=np.intp), 1.0)]
         stride = 1
         strides = []
         for n in reversed(self.sizes):
@@ -223,30 +235,37 @@ class Warp:
             n = len(grid)
             if n == 1:
                 continue
-            i0 = np.clip(np.searchsorted(grid, v, side="right") - 1, 0, n - 2)
+            i0 = np.minimum(np.maximum(np.searchsorted(grid, v, side="right") - 1, 0), n - 2)
             p0, p1 = grid[i0], grid[i0 + 1]
-            w1 = np.clip((v - p0) / (p1 - p0), 0.0, 1.0)  # grid strictly increasing: p1 > p0
+            # grid strictly increasing (checked at load): p1 > p0
+            w1 = np.minimum(np.maximum((v - p0) / (p1 - p0), 0.0), 1.0)
             out = [(idx + i0 * st, w * (1.0 - w1)) for idx, w in out] + \
                   [(idx + (i0 + 1) * st, w * w1) for idx, w in out]
         return out
 
     @staticmethod
-    def lookup(arr: np.ndarray, corners, *index) -> np.ndarray:
-        """``Σ_corners w · arr[slice, *index]``: one flat ``take`` per corner (2–3× faster
-        than fancy indexing); trailing axes of ``arr`` beyond ``index`` are kept (channels)."""
-        n_tail = 1
-        tail = 0
-        for k, i in enumerate(index):
-            tail = tail * arr.shape[1 + k] + i
-            n_tail *= arr.shape[1 + k]
-        rest = arr.shape[1 + len(index):]
-        flat = arr.reshape(arr.shape[0] * n_tail, *rest)
-        if len(corners) == 1 and np.ndim(corners[0][0]) == 0 and corners[0][1] == 1.0:
-            return flat.take(corners[0][0] * n_tail + tail, axis=0)  # one table (collapsed)
-        out = 0.0
-        for idx, w in corners:
-            v = flat.take(idx * n_tail + tail, axis=0)
-            out = out + (w[..., None] if rest and np.ndim(w) else w) * v
+    def lookup(arr: np.ndarray, corners, cells: np.ndarray, offsets=(0,)) -> list[np.ndarray]:
+        """``[Σ_corners w · arr[slice, cells + o] for o in offsets]``, ``arr`` being
+        ``(S, n, *channels)`` (the channels are kept) and ``cells`` flat indices into a slice:
+        one flat ``take`` per corner and offset, 2–3× faster than fancy indexing.  (One
+        ``take`` of all offsets, a (4, N) index, measured no faster; with several slices and
+        many directions its 4× larger temporaries were slower.)"""
+        n = arr.shape[1]
+        flat = arr.reshape(-1, *arr.shape[2:])
+        if corners is ONE:  # one table (collapsed, or no parameters): slice 0
+            return [flat.take(cells + o, axis=0) for o in offsets]
+        weights = [_spread(w, flat.shape[1:]) for _, w in corners]
+        out = []
+        for o in offsets:
+            at, acc = cells + o, None
+            for (idx, _), w in zip(corners, weights, strict=True):
+                v = flat.take(idx * n + at, axis=0)
+                v *= w  # in place, as the sum: fewer temporaries (many directions)
+                if acc is None:
+                    acc = v
+                else:
+                    acc += v
+            out.append(acc)
         return out
 
     def collapse(self, corners) -> Warp:
@@ -258,52 +277,67 @@ class Warp:
         w.ny, w.nx = self.ny, self.nx
 
         def mix(a):
-            return sum(float(np.ravel(wt)[0]) * a[int(np.ravel(ix)[0])]
-                       for ix, wt in corners)[None]
+            m = sum(float(np.ravel(wt)[0]) * a[int(np.ravel(ix)[0])] for ix, wt in corners)[None]
+            m.flags.writeable = False  # kept in RglData.lights, shared by later evaluations
+            return m
 
         w.data = mix(self.data)
         if hasattr(self, "cond"):
             w.cond, w.marg = mix(self.cond), mix(self.marg)
         return w
 
-    def cell(self, pos: np.ndarray, n: int):
-        """Cell index and fraction of unit-square coordinate ``pos`` on an axis of n samples."""
-        p = np.clip(pos, 0.0, 1.0) * (n - 1)
-        i = np.minimum(p.astype(np.intp), n - 2)
-        return i, p - i
+    def cells(self, u) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """``(ix, fx, iy, fy)``: cell indices and fractions of ``u = (x, y)`` in this grid.
+        They depend on ``u`` and the grid's size only: warps of equal sizes share them."""
+        return (*_cell(u[0], self.nx), *_cell(u[1], self.ny))
 
-    def eval(self, u: np.ndarray, corners) -> np.ndarray:
+    def eval(self, u, corners, cells=None) -> np.ndarray:
         """Bilinear interpolation of the (un-normalised) data at ``u = (x, y)``."""
-        ix, fx = self.cell(u[0], self.nx)
-        iy, fy = self.cell(u[1], self.ny)
+        ix, fx, iy, fy = self.cells(u) if cells is None else cells
         d = self.data
-        if d.ndim == 4:  # (S, ny, nx, channels): weights broadcast over the channels
-            fx, fy = fx[:, None], fy[:, None]
+        if d.ndim == 3:  # (S, ny·nx, channels): the same weights for every channel
+            fx, fy = _spread(fx, d.shape[2:]), _spread(fy, d.shape[2:])
+        nx = self.nx  # cell (iy, ix) is at iy·nx + ix; its corners (y, x) = (0, 0) … (1, 1)
+        v00, v01, v10, v11 = self.lookup(d, corners, iy * nx + ix, (0, 1, nx, nx + 1))
+        return (1 - fy) * ((1 - fx) * v00 + fx * v01) + fy * ((1 - fx) * v10 + fx * v11)
 
-        def at(dy, dx):
-            return self.lookup(d, corners, iy + dy, ix + dx)
-
-        return (1 - fy) * ((1 - fx) * at(0, 0) + fx * at(0, 1)) + \
-            fy * ((1 - fx) * at(1, 0) + fx * at(1, 1))
-
-    def invert(self, u: np.ndarray, corners) -> tuple[np.ndarray, np.ndarray]:
+    def invert(self, u, corners, cells=None) -> tuple[np.ndarray, np.ndarray]:
         """``Marginal2D::invert``: the unit-square sample that ``sample()`` maps to ``u``."""
-        ix, sx = self.cell(u[0], self.nx)
-        iy, sy = self.cell(u[1], self.ny)
-        L = partial(self.lookup, self.data, corners)
-        v00, v10 = L(iy, ix), L(iy, ix + 1)
-        v01, v11 = L(iy + 1, ix), L(iy + 1, ix + 1)
+        ix, sx, iy, sy = self.cells(u) if cells is None else cells
+        nx = self.nx
+        at, end = iy * nx + ix, iy * nx + (nx - 1)  # cell (iy, ix) and its row's end
+        v00, v10, v01, v11 = self.lookup(self.data, corners, at, (0, 1, nx, nx + 1))  # v_xy
         c0 = (1 - sy) * v00 + sy * v01
         c1 = (1 - sy) * v10 + sy * v11
         x = sx * (c0 + 0.5 * sx * (c1 - c0))
-        C = partial(self.lookup, self.cond, corners)
-        x = x + (1 - sy) * C(iy, ix) + sy * C(iy + 1, ix)
-        r0, r1 = C(iy, self.nx - 1), C(iy + 1, self.nx - 1)
+        C0, C1 = self.lookup(self.cond, corners, at, (0, nx))  # rows iy and iy + 1
+        x = x + (1 - sy) * C0 + sy * C1
+        r0, r1 = self.lookup(self.cond, corners, end, (0, nx))
         row = (1 - sy) * r0 + sy * r1
         x = safe_div(x, row, row > 0)  # an all-zero row (no density): 0
         y = sy * (r0 + 0.5 * sy * (r1 - r0))
-        y = y + self.lookup(self.marg, corners, iy)
+        y = y + self.lookup(self.marg, corners, iy)[0]
         return x, y
+
+
+#: the corners of a warp without parameters (ndf, σ) or of a collapsed one: its one table
+ONE = ((0, 1.0),)
+
+
+def _spread(w, channels: tuple[int, ...]):
+    """Per-direction weights ``w`` repeated over ``channels`` (a copy: numpy multiplies an
+    (N, 3) array by an (N, 1) one several times slower than by an (N, 3) one)."""
+    if not channels or not np.ndim(w):
+        return w
+    return np.repeat(w[..., None], channels[0], axis=-1)
+
+
+def _cell(pos: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Cell index and fraction of unit-square coordinate ``pos`` on an axis of n samples
+    (``np.minimum``/``np.maximum``: ``np.clip``'s wrapper costs more than the clipping)."""
+    p = np.minimum(np.maximum(pos, 0.0), 1.0) * (n - 1)
+    i = np.minimum(p.astype(np.intp), n - 2)
+    return i, p - i
 
 
 # --------------------------------------------------------------------------- the material
@@ -324,7 +358,9 @@ class RglData:
     ndf: Warp
     sigma: Warp
     vndf: Warp
-    rgb: Warp  # (S, ny, nx, 3) float64, linear sRGB; shares the vndf's parameter grid
+    rgb: Warp  # (S, ny·nx, 3) float64, linear sRGB; shares the vndf's parameter grid
+    #: :class:`Light` by its (φi, θi): this file's own, bounded
+    lights: LRU = field(default_factory=lambda: LRU(LIGHT_CACHE), repr=False, compare=False)
 
     def __call__(self, wi, wo):
         return evaluate(self, wi, wo)
@@ -454,13 +490,13 @@ def _inert(text: str) -> str:
 
 
 def _channels_last(rgb: np.ndarray, params: list[np.ndarray]) -> Warp:
-    """The ``(φi, θi, 3, ny, nx)`` tensor as a warp over ``(S, ny, nx, 3)`` (no CDFs)."""
+    """The ``(φi, θi, 3, ny, nx)`` tensor as a warp over ``(S, ny·nx, 3)`` (no CDFs)."""
     w = Warp.__new__(Warp)
     w.params = params
     w.sizes = [len(p) for p in params]
     s = int(np.prod(w.sizes))
     w.ny, w.nx = rgb.shape[3:]
-    w.data = np.ascontiguousarray(np.moveaxis(rgb.reshape(s, 3, w.ny, w.nx), 1, -1),
+    w.data = np.ascontiguousarray(np.moveaxis(rgb.reshape(s, 3, w.ny * w.nx), 1, -1),
                                   dtype=np.float64)
     return w
 
@@ -479,16 +515,52 @@ def _phi2u(p):
     return (p + np.pi) / (2.0 * np.pi)
 
 
+class Light(NamedTuple):
+    """What evaluating one incidence needs of it, computed once (:func:`_light`)."""
+
+    vndf: Warp  # the warps collapsed at the incidence (:meth:`Warp.collapse`)
+    rgb: Warp
+    den: np.ndarray | None  # 4 σ(u(wi)), shape (1,) (step 5; None without the jacobian)
+
+
+def _light(data: RglData, phi_i: float, theta_i: float) -> Light:
+    """The :class:`Light` of incidence (φi, θi), kept in the file's :attr:`RglData.lights`:
+    the key is all it depends on, the elevation and azimuth of ``wi`` (after the reduction)."""
+
+    def make():
+        phi, theta = np.array([phi_i]), np.array([theta_i])
+        corners = data.vndf.corners([phi, theta])
+        den = None
+        if data.jacobian:
+            den = _sigma4(data, phi, theta)
+            den.flags.writeable = False  # shared by later evaluations
+        return Light(data.vndf.collapse(corners), data.rgb.collapse(corners), den)
+
+    return data.lights.get((phi_i, theta_i), make)
+
+
+def _sigma4(data: RglData, phi_i: np.ndarray, theta_i: np.ndarray) -> np.ndarray:
+    """``4 σ(u(wi))``, the jacobian's denominator (step 5)."""
+    return 4.0 * data.sigma.eval((_theta2u(theta_i), _phi2u(phi_i)), ONE)
+
+
 def evaluate(data: RglData, wi: np.ndarray, wo: np.ndarray, clamp: bool = True,
              floor: bool = True) -> np.ndarray:
     """RGB BRDF values (sr⁻¹, no cosine factor), shape ``(..., 3)``; negative values clamped to
     0 unless ``clamp`` is False (module docstring).  ``floor=False``: the file's own f, its
     f·cos θo divided by cos θo all the way to the horizon (the albedo integrates that)."""
-    one_light = np.asarray(wi).size == 3  # one incidence for all (a map): mix slices once
-    wi, wo = np.broadcast_arrays(np.asarray(wi, dtype=float), np.asarray(wo, dtype=float))
-    shape = wi.shape[:-1]
-    wi = wi.reshape(-1, 3).copy()
-    wo = wo.reshape(-1, 3).copy()
+    wi, wo = np.asarray(wi, dtype=float), np.asarray(wo, dtype=float)
+    # one incidence for all (a map, the peak finder): wi stays one row, broadcast against wo
+    # in each operation, and what depends on it alone is computed once (_light)
+    one_light = wi.size == 3
+    shape = wo.shape[:-1] if wi.ndim == 1 else np.broadcast_shapes(wi.shape, wo.shape)[:-1]
+    if one_light:
+        wi = wi.reshape(1, 3).copy()
+        wo = wo.reshape(-1, 3).copy()
+    else:
+        wi, wo = np.broadcast_arrays(wi, wo)
+        wi = wi.reshape(-1, 3).copy()
+        wo = wo.reshape(-1, 3).copy()
     active = (wi[:, 2] > 0) & (wo[:, 2] > 0)
     if data.reduction >= 2:  # into the measured half/quadrant (Mitsuba 3's mulsign_neg)
         sy = wi[:, 1]
@@ -500,27 +572,27 @@ def evaluate(data: RglData, wi: np.ndarray, wo: np.ndarray, clamp: bool = True,
         wi[:, 1] *= fy
         wo[:, 1] *= fy
     s = wi + wo
-    n = np.sqrt(np.sum(s * s, axis=-1))
+    n = np.sqrt(np.add.reduce(s * s, axis=-1))
     ok = active & (n > 0)
     wm = s / np.where(ok, n, 1.0)[:, None]  # wi = −wo: H undefined (inactive anyway)
     theta_i, phi_i = _elevation(wi), np.arctan2(wi[:, 1], wi[:, 0])
     theta_m, phi_m = _elevation(wm), np.arctan2(wm[:, 1], wm[:, 0])
-    u_wi = np.stack([_theta2u(theta_i), _phi2u(phi_i)])
     um_y = _phi2u(phi_m - phi_i if data.isotropic else phi_m)
-    u_wm = np.stack([_theta2u(theta_m), um_y - np.floor(um_y)])
-    vndf, rgb = data.vndf, data.rgb
-    if one_light and len(wi):
-        corners = vndf.corners([phi_i[:1], theta_i[:1]])
-        vndf, rgb = vndf.collapse(corners), rgb.collapse(corners)
-        corners = [(np.intp(0), 1.0)]
+    u_wm = (_theta2u(theta_m), um_y - np.floor(um_y))
+    if one_light:
+        vndf, rgb, den = _light(data, float(phi_i[0]), float(theta_i[0]))
+        corners = ONE
     else:
+        vndf, rgb = data.vndf, data.rgb
         corners = vndf.corners([phi_i, theta_i])
-    x, y = vndf.invert(u_wm, corners)
-    sample = np.stack([x, y])
-    out = rgb.eval(sample, corners)  # (N, 3): all channels in one gather per corner
+        den = _sigma4(data, phi_i, theta_i) if data.jacobian else None
+    cells_m = vndf.cells(u_wm)  # u(wm)'s cells, shared with the ndf if its grid is the same
+    x, y = vndf.invert(u_wm, corners, cells_m)
+    out = rgb.eval((x, y), corners)  # (N, 3): all channels in one gather per corner
     if data.jacobian:
-        num = data.ndf.eval(u_wm, data.ndf.corners([]))
-        den = 4.0 * data.sigma.eval(u_wi, data.sigma.corners([]))
+        ndf = data.ndf
+        same = (ndf.ny, ndf.nx) == (vndf.ny, vndf.nx)
+        num = ndf.eval(u_wm, ONE, cells_m if same else None)
         out *= safe_div(num, den, den > 0)[:, None]  # σ = 0: no projected area, value 0
     # the data is f·cos θo (powitacq's eval); floor=False: cos θo itself, ≥ 1e-200 (no
     # overflow; that close to the horizon the solid angle is nil)
