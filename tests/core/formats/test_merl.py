@@ -5,6 +5,7 @@ Full-size files (35 MB) are written once per module; malformed ones are small or
 
 from __future__ import annotations
 
+import math
 import os
 
 import numpy as np
@@ -145,6 +146,92 @@ def test_trilinear_reproduces_a_linear_function(coded):
     got = lookup_at(coded, t_h, t_d, t_p, "trilinear")
     np.testing.assert_allclose(got[:, 2], expected(2, t_h - 0.5, t_d - 0.5, t_p - 0.5),
                                rtol=1e-9)
+
+
+def trilinear_reference(table, theta_h, theta_d, phi_d):
+    """One direction's RGB by trilinear interpolation, scalar, from SPEC §6 alone: bin coordinates
+    tθh = 90·√(θh/90°), tθd = 90·θd/90°, tφd = 180·(φd mod π)/π; bin i's value sits at
+    t = i + ½; in the outer half of the end bins of θh and θd the end value holds; φd is periodic
+    (bin 179 neighbours bin 0)."""
+    def samples(t, n, periodic):  # [(bin, weight)] along one axis
+        s = t - 0.5  # bin i's centre at s = i
+        i = math.floor(s)
+        w = s - i
+        if periodic:
+            return [(i % n, 1.0 - w), ((i + 1) % n, w)]
+        if s <= 0.0:
+            return [(0, 1.0)]
+        if s >= n - 1:
+            return [(n - 1, 1.0)]
+        return [(i, 1.0 - w), (i + 1, w)]
+
+    t_h = 90.0 * math.sqrt(min(max(theta_h / (math.pi / 2), 0.0), 1.0))
+    t_d = 90.0 * min(max(theta_d / (math.pi / 2), 0.0), 1.0)
+    t_p = 180.0 * math.fmod(phi_d, math.pi) / math.pi
+    rgb = [0.0, 0.0, 0.0]
+    for ih, wh in samples(t_h, 90, False):
+        for jd, wd in samples(t_d, 90, False):
+            for kp, wp in samples(t_p, 180, True):
+                for c in range(3):
+                    rgb[c] += wh * wd * wp * float(table[c, ih, jd, kp])
+    return rgb
+
+
+def test_trilinear_matches_a_scalar_reference_at_edges_and_ends():
+    """Random directions, and directions at bin edges, bin centres and the ends of every axis
+    (θh, θd: t = 0, the outer halves of the end bins, t = 90; φd: the wrap 179 ↔ 0), in one call
+    (> merl.BLOCK directions) and one at a time, against :func:`trilinear_reference`.
+
+    Tolerance: both sides take the angles from ``half_diff`` and compute t with the SPEC's
+    formulas in the same IEEE operations (÷, ×, √, fmod, each correctly rounded), so their t and
+    weights are the same numbers; they may differ only in how the 8 terms wθh·wθd·wφd·v are
+    rounded and summed.  Each term has ≤ 3 roundings (relative error ≤ 3u, u = 2⁻⁵³), and a sum
+    of 8 terms ≥ 0 in any order ≤ 7 more (≤ 7u of the sum S), so each side is within 10u·S of the
+    exact sum and the two within 20u·S ≈ 2.2e-15·S; S is the value itself (all terms ≥ 0)."""
+    rng = np.random.default_rng(11)
+    table = rng.uniform(0.5, 1.5, (3, *DIMS))  # positive, no structure a wrong bin could hide in
+    data = merl.MerlData("random", table, (0, 0, 0))
+    # bin coordinates at the ends, bin edges and centres of each axis, ± a hair (the side they
+    # land on after the round trip through directions does not matter: the reference gets the
+    # same angles); the other coordinates where both directions are above the horizon (φd ≈ 90°
+    # lets H reach the horizon, and θd reach 90° when θh is small)
+    ends = np.array([0.0, 1e-9, 0.25, 0.5, 1.0, 1.5, 44.5, 45.0, 88.5, 89.0, 89.5, 89.75, 90.0])
+    ends_p = np.array([0.0, 0.25, 0.5, 1.0, 90.0, 178.5, 179.0, 179.5, 179.75, 180.0])
+
+    def special(values, hi):
+        return np.clip(rng.choice(values, 400) + rng.choice([-1e-9, 0.0, 1e-9], 400), 0.0, hi)
+
+    def uniform(lo, hi):
+        return rng.uniform(lo, hi, 400)
+
+    groups = [(special(ends, 90.0), uniform(0, 40), uniform(89.6, 90.4)),  # θh ends
+              (uniform(0, 10), special(ends, 90.0), uniform(89.6, 90.4)),  # θd ends
+              above(uniform(0, 60), uniform(0, 60), special(ends_p, 180.0)),  # φd wrap
+              above(uniform(0, 90), uniform(0, 90), uniform(0, 180))]
+    t_h, t_d, t_p = (np.concatenate(c) for c in zip(*groups, strict=True))
+    wi, wo = merl.from_half_diff(*angles_at(t_h, t_d, t_p), rng.uniform(-np.pi, np.pi, len(t_h)))
+    # and random pairs over the whole sphere (a third of them below the horizon: 0)
+    v = rng.normal(size=(2, 1500, 3))
+    v /= np.linalg.norm(v, axis=-1, keepdims=True)
+    v[:, :1000, 2] = abs(v[:, :1000, 2])
+    wi, wo = np.concatenate([wi, v[0]]), np.concatenate([wo, v[1]])
+    assert len(wi) > merl.BLOCK
+
+    th, td, pd, valid = merl.half_diff(wi, wo)
+    inside = valid & (wi[:, 2] >= 0) & (wo[:, 2] >= 0)
+    ref = np.array([trilinear_reference(table, *a) if ok else [0.0] * 3
+                    for *a, ok in zip(th, td, pd, inside, strict=True)])
+    assert np.all(ref[inside] > 0.4) and inside.sum() > 2000
+    tt = np.array(merl.bin_coordinates(th, td, pd))
+    for axis, n in ((0, 90), (1, 90)):  # outer halves of both end bins, with both directions up
+        assert np.sum(inside & (tt[axis] < 0.5)) > 20 and np.sum(inside & (tt[axis] > n - 0.5)) > 20
+    assert np.sum(inside & ((tt[2] < 0.5) | (tt[2] > 179.5))) > 50  # φd between bins 179 and 0
+    got = merl.evaluate(data, wi, wo, "trilinear")
+    np.testing.assert_allclose(got, ref, rtol=20 * 2.0**-53, atol=0)
+    np.testing.assert_array_equal(got[~inside], 0.0)
+    for k in rng.choice(len(wi), 40, replace=False):  # one direction at a time: other code path
+        np.testing.assert_allclose(merl.evaluate(data, wi[k], wo[k]), ref[k], rtol=20 * 2.0**-53,
+                                   atol=0)
 
 
 def test_lookups_agree_on_the_samples(coded):
