@@ -610,13 +610,35 @@ async def test_the_objects_of_start_up_are_frozen_out_of_the_collector(monkeypat
 
     monkeypatch.setattr(app_module, "FREEZE_S", 0.05)
     gc.unfreeze()
+    gc.disable()  # as `tuibrdf view` starts (cli/view.py): the collector comes back with it
     try:
         app = BrdfApp(ViewerState(sides=[Side.of("phong")]))
         async with app.run_test(size=(100, 30)) as pilot:
-            assert gc.get_freeze_count() == 0
+            assert gc.get_freeze_count() == 0 and not gc.isenabled()
             assert await wait_for(pilot, lambda: gc.get_freeze_count() > 0)
+            assert gc.isenabled()
     finally:
+        gc.enable()
         gc.unfreeze()
+
+
+def test_view_turns_the_collector_back_on_when_it_ends(monkeypatch):
+    # `tuibrdf view` starts with the collector off (start-up makes objects that live for the
+    # session); however the viewer ends, before the app froze them or not, it is on again
+    import gc
+
+    from tuibrdf.cli import view
+
+    seen = []
+
+    def fake_run(args):
+        seen.append(gc.isenabled())
+        raise RuntimeError("the viewer failed")
+
+    monkeypatch.setattr(view, "_run", fake_run)
+    with pytest.raises(RuntimeError):
+        view.run(None)
+    assert seen == [False] and gc.isenabled()
 
 
 def _fresh_rows(app, pane: str) -> list[list[tuple[str, object]]]:

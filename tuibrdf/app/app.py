@@ -53,6 +53,13 @@ from tuibrdf.state.viewer import ViewerState
 #: collector stops scanning what exists then: a full collection took 23–48 ms here, a stall
 #: of any key it fell on; later ones scan only the objects made since (docs/benchmarks.md)
 FREEZE_S = 1.0
+
+
+def freeze_start_up() -> None:
+    """Keep the collector off what start-up made (``FREEZE_S``), and turn it back on if
+    ``tuibrdf view`` turned it off to start (cli/view.py)."""
+    gc.freeze()
+    gc.enable()
 FILE_POLL_S = 1.0  # how often a model file's mtime is checked (an edit redraws)
 #: colour levels of the maps: 256, as `render` (32 showed false contours on smooth diffuse
 #: lobes); a full truecolor update of a 110×46 map of Oren-Nayar at 60° is ≈ 90 KB instead of
@@ -149,7 +156,7 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         self.app_resume_signal.subscribe(self, self._resumed)
         self.background(_list_presets, self._listed)
         if not self.sync:
-            self.set_timer(FREEZE_S, gc.freeze)
+            self.set_timer(FREEZE_S, freeze_start_up)
 
     @survives
     def on_resize(self, event) -> None:

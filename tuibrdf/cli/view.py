@@ -342,6 +342,20 @@ def open_viewer(state, color: str | None, message: str = "",
 
 
 def run(args: argparse.Namespace) -> int:
+    import gc
+
+    # start-up's objects (Textual, numpy, the models, the first frame) nearly all live for the
+    # whole session: collecting while they are made scans them for nothing (≈ 20 ms of the
+    # imports, 9 %).  The app turns the collector back on when it freezes them
+    # (app.freeze_start_up); open_viewer does if it ends first
+    gc.disable()
+    try:
+        return _run(args)
+    finally:
+        gc.enable()
+
+
+def _run(args: argparse.Namespace) -> int:
     from tuibrdf.state import sandbox
 
     policy = sandbox.install_from_environment()  # served: only the files serve allows
