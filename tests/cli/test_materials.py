@@ -53,6 +53,16 @@ def test_swatches_only_with_colour(capsys, monkeypatch):
     assert ESC not in run(capsys, "materials", "--color", "auto")[1]
 
 
+def test_truecolor_swatches_after_256_colour_ones_in_one_process(capsys):
+    # Rich keeps a Style's escape codes on it for the first colour system that rendered it: a
+    # swatch style shared with an earlier 256-colour rendering came out in 256 colours
+    r, g, b = srgb8(stored()["gold-metallic-paint"]["abc"][0])
+    for color, code in (("256", f"{ESC}38;5;"), ("truecolor", f"{ESC}38;2;{r};{g};{b}m")):
+        rc, out, _ = run(capsys, "materials", "--color", color)
+        line = next(ln for ln in out.splitlines() if "gold-metallic-paint " in ln)
+        assert rc == 0 and code in line, (color, line)
+
+
 def test_srgb8_follows_the_transfer_function():
     # IEC 61966-2-1: 0 → 0, 1 → 255, 0.0031308 → 12.92·0.0031308 = 0.04045 → 10,
     # 0.5 → 1.055·0.5^(1/2.4) − 0.055 = 0.735357 → 188; out-of-range values clip

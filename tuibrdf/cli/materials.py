@@ -60,7 +60,8 @@ def rows():
 
 def text(color: str) -> str:
     from rich.console import Console
-    from rich.text import Text
+    from rich.segment import Segment, Segments
+    from rich.style import Style
 
     items = rows()
     width = max(len(n) for n, _, _ in items)
@@ -75,17 +76,18 @@ def text(color: str) -> str:
     con.print(HEADER.format(n=len(items)))
     con.print(head.rstrip())
     for name, _, alb in items:
-        line = Text()
+        # segments, not a Text: Rich keeps a Style's escape codes on it for the first colour
+        # system that rendered it, and a Text's styles go through Rich's cache of combined
+        # styles, shared by the process (a 256-colour rendering before made these 256-colour)
+        line = []
         if color != "none":
             for model in ("abc", "sgd"):
                 r, g, b = srgb8(alb[model][0])
-                line.append(SWATCH, style=f"rgb({r},{g},{b})")
-                line.append(" ")
-            line.append(" ")
-        line.append(f"{name:<{width}}  ")
-        line.append("  ".join(f"{_rgb(alb[m][k]):<17}" for m in ("abc", "sgd") for k in (0, 1))
-                    .rstrip())
-        con.print(line)
+                line += [Segment(SWATCH, Style(color=f"rgb({r},{g},{b})")), Segment(" ")]
+            line.append(Segment(" "))
+        line.append(Segment(f"{name:<{width}}  " + "  ".join(
+            f"{_rgb(alb[m][k]):<17}" for m in ("abc", "sgd") for k in (0, 1)).rstrip()))
+        con.print(Segments([*line, Segment.line()]), end="")
     return buf.getvalue()
 
 
