@@ -101,3 +101,35 @@ def test_no_other_module_of_the_viewer_reaches_a_private_name_of_textual():
                         f"textual_internals.py: {foreign}"
     shadowing = sorted(defined & textual)
     assert not shadowing, f"the viewer's own private names shadow Textual's: {shadowing}"
+
+
+def test_a_resize_signal_inside_the_handler_runs_it_again_after_not_inside():
+    # Textual's SIGWINCH handler does its work inside the signal handler; a signal arriving
+    # while it runs (simulated: the handler calls the installed one again, as Python does
+    # between two bytecodes of it) must not nest it, but run it once more after it returns
+    import signal
+
+    from tuibrdf.app.textual_internals import coalesce_resize_signals
+
+    depth, most, calls = [0], [0], [0]
+
+    def textual_like(signum, frame):
+        depth[0] += 1
+        most[0] = max(most[0], depth[0])
+        calls[0] += 1
+        if calls[0] <= 3:  # three signals arrive while it runs
+            signal.getsignal(signal.SIGWINCH)(signum, frame)
+            signal.getsignal(signal.SIGWINCH)(signum, frame)
+        depth[0] -= 1
+
+    before = signal.signal(signal.SIGWINCH, textual_like)
+    try:
+        coalesce_resize_signals()
+        coalesce_resize_signals()  # wrapped once only
+        wrapped = signal.getsignal(signal.SIGWINCH)
+        assert wrapped is not textual_like
+        wrapped(signal.SIGWINCH, None)
+        assert most[0] == 1  # never inside itself
+        assert calls[0] == 4  # each run that saw signals ran once more; the last saw none
+    finally:
+        signal.signal(signal.SIGWINCH, before)

@@ -25,7 +25,12 @@ from tuibrdf.app.loading import MeasuredData
 from tuibrdf.app.paint import ViewerScreen
 from tuibrdf.app.screens import HelpScreen, ReportScreen, SaveScreen, ValueScreen
 from tuibrdf.app.text import PANES
-from tuibrdf.app.textual_internals import OneLineCrash, SafeCommandPalette, guard_input_parsing
+from tuibrdf.app.textual_internals import (
+    OneLineCrash,
+    SafeCommandPalette,
+    coalesce_resize_signals,
+    guard_input_parsing,
+)
 from tuibrdf.app.widgets import ParamPanel, Picture, QuietStatic, StatusLine
 from tuibrdf.core.conventions import fmt_number
 from tuibrdf.core.directions import from_degrees
@@ -154,6 +159,7 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         self._changed(self.message, relayout=True)
         self.set_interval(FILE_POLL_S, self._check_files)
         self.app_resume_signal.subscribe(self, self._resumed)
+        coalesce_resize_signals()  # a flood of window changes nests no handler in another
         self.background(_list_presets, self._listed)
         if not self.sync:
             self.set_timer(FREEZE_S, freeze_start_up)
@@ -325,6 +331,7 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
     def _resumed(self, app=None) -> None:
         """Back from a suspension (SIGTSTP, then SIGCONT: ctrl+z and fg in a shell): the
         terminal's screen was left, so everything is painted again."""
+        coalesce_resize_signals()  # (the driver installed its own handler again)
         self.screen.refresh(repaint=True)
         self.refresh(repaint=True, layout=True)
 

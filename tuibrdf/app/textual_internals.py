@@ -34,6 +34,8 @@ internal (Textual 8.2.8)                         what the viewer does with it
 ``<driver module>.XTermParser``                  :func:`guard_input_parsing` replaces it with
                                                  :class:`SafeXTermParser` in each driver module
                                                  (Linux, inline, web) that reads it there
+``LinuxDriver.start_application_mode()``         installs a Python SIGWINCH handler, which
+                                                 :func:`coalesce_resize_signals` wraps
 ===============================================  ==================================================
 """
 
@@ -114,10 +116,48 @@ def _other_checks() -> dict[str, bool]:
         "App._handle_exception(error)": _params(App, "_handle_exception") == ["self", "error"],
         "App._exit_renderables": isinstance(vars(app).get("_exit_renderables"), list),
         "App._return_code": "_return_code" in vars(app),
+        "LinuxDriver.start_application_mode()": "signal.SIGWINCH" in inspect.getsource(
+            LinuxDriver.start_application_mode),
         "<driver module>.XTermParser": all(
             getattr(m, "XTermParser", None) in (XTermParser, SafeXTermParser)
             for m in _driver_modules()) and bool(_driver_modules()),
     }
+
+
+def coalesce_resize_signals() -> None:
+    """Make the SIGWINCH handler that Textual's Linux driver installs not re-entrant.  It reads
+    the terminal's size and posts a Resize from inside the signal handler, so a signal arriving
+    while it ran ran it again inside itself: a flood of window changes (2,000 in a test) nested
+    it 1,000 deep, a RecursionError that ended the viewer.  Wrapped, a signal arriving while it
+    runs makes it run once more when it returns, and that run reads the size the terminal has
+    then.  A handler already wrapped, or none Python can call (the web driver, a test's
+    headless one), is left as it is.  Call from the main thread after the driver has started
+    (on mount, and after a resume, which installs Textual's handler again)."""
+    import signal
+
+    if not hasattr(signal, "SIGWINCH"):
+        return
+    inner = signal.getsignal(signal.SIGWINCH)
+    if not callable(inner) or getattr(inner, "coalesced", False):
+        return
+    state = {"busy": False, "again": False}
+
+    def handler(signum, frame) -> None:
+        if state["busy"]:  # inside the handler already: once more when it returns
+            state["again"] = True
+            return
+        state["busy"] = True
+        try:
+            while True:
+                state["again"] = False
+                inner(signum, frame)
+                if not state["again"]:
+                    break
+        finally:
+            state["busy"] = False
+
+    handler.coalesced = True
+    signal.signal(signal.SIGWINCH, handler)
 
 
 def checks() -> dict[str, bool]:
