@@ -431,7 +431,10 @@ def kinds_table(sizes, colors, reps: int, lines: list[str], root: str | Path = R
                                     root=root)
                         try:
                             term.until(b"\x1b[?1049h")  # the alternate screen: started
-                            term.drain(1.0)  # the first screen, its albedo included
+                            # the first frame complete: 3 s without output (an energy table
+                            # or an albedo curve of a file model can take seconds, and the
+                            # partial repaint never sends the status line's text whole)
+                            term.drain(3.0)
                             cells = []
                             for key in ("right", param_key):
                                 if key is None:
