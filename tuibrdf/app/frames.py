@@ -271,9 +271,10 @@ class FrameDelivery:
         return (tuple(m.name for m in req.materials), req.map_px, req.solid, req.curve,
                 req.extra, req.extra_px)
 
-    def _took(self, req: FrameRequest, seconds: float) -> None:
-        """Note the CPU time a frame of ``req``'s kind took to compute, none of it cached."""
-        kept = self._costs.setdefault(self._kind(req), [])
+    def _took(self, req: FrameRequest, seconds: float, costs: dict | None = None) -> None:
+        """Note the CPU time a frame of ``req``'s kind took to compute, none of it cached (in
+        ``costs``: the app's ``_costs``, or ``_slow_costs`` for its slow part alone)."""
+        kept = (self._costs if costs is None else costs).setdefault(self._kind(req), [])
         kept.append(seconds)
         del kept[:-INLINE_KEEP]
 
@@ -336,11 +337,11 @@ class FrameDelivery:
                 return
             fresh = core_frame.cached_frame(req) is None
             start = time.thread_time()
-            res = core_frame.compute_frame(req, slow=False)
-            if res.complete or not job.hold or job.superseded.is_set():
-                post(result=res,
-                     seconds=time.thread_time() - start if res.complete and fresh else None)
-                if res.complete or job.superseded.is_set():
+            first = core_frame.compute_frame(req, slow=False)
+            if first.complete or not job.hold or job.superseded.is_set():
+                post(result=first,
+                     seconds=time.thread_time() - start if first.complete and fresh else None)
+                if first.complete or job.superseded.is_set():
                     return
             fast = time.thread_time()
             res = core_frame.compute_frame(
@@ -350,7 +351,7 @@ class FrameDelivery:
                 post(result=res, seconds=now - start if fresh else None,
                      slow_seconds=now - fast if fresh else None)
             elif job.hold and not job.is_cancelled:  # superseded meanwhile: its pictures
-                post(result=core_frame.compute_frame(req, slow=False))
+                post(result=first)
         except Exception as e:  # bad data, a user's kernel raising anything: a message
             post(error=e)
         finally:
@@ -368,9 +369,7 @@ class FrameDelivery:
             if message.seconds is not None:
                 self._took(message.result.request, message.seconds)
             if message.slow_seconds is not None:
-                kept = self._slow_costs.setdefault(self._kind(message.result.request), [])
-                kept.append(message.slow_seconds)
-                del kept[:-INLINE_KEEP]
+                self._took(message.result.request, message.slow_seconds, self._slow_costs)
             # a superseded job's pictures: shown as the last state computed until the newer
             # request's frame comes (its status line says "…" for the numbers meanwhile)
             self.show_frame(message.result, passed=job is self._worker and self._queued is not None)
@@ -380,8 +379,7 @@ class FrameDelivery:
         if job in self._jobs:
             self._jobs.remove(job)
         if self._queued is not None and self._queued == self.request:
-            queued, self._queued = self._queued, None
-            self._worker, self._worker_for = self.compute(queued), queued
+            self._worker, self._worker_for = self.compute(self._queued), self._queued
 
     def _stop_slow_timer(self) -> None:
         if self._slow_timer is not None:

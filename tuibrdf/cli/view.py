@@ -347,7 +347,7 @@ def run(args: argparse.Namespace) -> int:
     # start-up's objects (Textual, numpy, the models, the first frame) nearly all live for the
     # whole session: collecting while they are made scans them for nothing (≈ 20 ms of the
     # imports, 9 %).  The app turns the collector back on when it freezes them
-    # (app.freeze_start_up); open_viewer does if it ends first
+    # (app.freeze_start_up); this does if the viewer ends first
     gc.disable()
     try:
         return _run(args)
