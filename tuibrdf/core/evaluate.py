@@ -8,7 +8,8 @@ Input contract of the directions (docs/design.md, "The API's input contract"):
   first bad index;
 * a direction is a direction: any non-zero vector is **normalised** first, so ``(0, 0, 2)``,
   ``(0, 0, 1e200)`` and ``(0, 0, 1e-310)`` all mean the normal.  The length is computed
-  without overflow or underflow (the vector is divided by its largest component first), and a
+  without overflow or underflow (the vector is scaled by the power of two of its largest
+  component first, where its squares would overflow or underflow), and a
   unit vector moves by at most a few ulps.  The zero vector has no direction:
   ``ValueError`` with its index;
 * float64 vectors that are already unit (``| |w|² − 1 | ≤`` :data:`UNIT_TOL`, a few ulps) pass
@@ -44,6 +45,11 @@ def _first(mask: np.ndarray) -> str:
 #: at most ½ ulp) and the rounding of the check's sum; unnormalised, such a vector differs from
 #: its normalised self by at most 4 ulps
 UNIT_TOL = 8 * 2.0**-52
+#: where ``|w|²`` of the check can normalise ``w`` directly: its squares stay normal numbers
+#: (a component below 1e-145 squares to a subnormal and keeps fewer bits: 1e-290 bounds the
+#: largest one's square from below) and its sum stays finite (components up to 1e150); the
+#: scaled path gives the same bits there
+SQUARES_EXACT = (1e-290, 1e300)
 
 
 def as_directions(w: Any, name: str) -> np.ndarray:
@@ -58,12 +64,16 @@ def as_directions(w: Any, name: str) -> np.ndarray:
         # the usual input, finite unit vectors, in one pass: |w|² then its range (a NaN makes
         # min and max NaN, an inf makes max inf: both fail the test and take the checks below)
         n2 = np.einsum("...i,...i->...", w, w)
-        if 1.0 - UNIT_TOL <= n2.min() and n2.max() <= 1.0 + UNIT_TOL:
+        lo, hi = n2.min(), n2.max()
+        if 1.0 - UNIT_TOL <= lo and hi <= 1.0 + UNIT_TOL:
             return w
+        if SQUARES_EXACT[0] <= lo and hi <= SQUARES_EXACT[1]:
+            # finite, non-zero, and |w|² neither overflowed nor lost bits to underflow: one
+            # square root and one division (the scaled path below gives the same to an ulp)
+            return w / np.sqrt(n2)[..., None]
     # |w| without overflow (1e200² = inf) or underflow (1e-310² = 0): scale by the largest
-    # component first, so the scaled vector has components in [-1, 1] and a length in [1, √3]
-    # (a subnormal vector keeps only the bits it has).  np.maximum propagates NaN and inf, so
-    # the largest component is also the finiteness check.
+    # component first (a subnormal vector keeps only the bits it has).  np.maximum propagates
+    # NaN and inf, so the largest component is also the finiteness check.
     a = np.abs(w)
     big = np.maximum(np.maximum(a[..., 0], a[..., 1]), a[..., 2])
     finite = np.isfinite(big)
@@ -75,8 +85,11 @@ def as_directions(w: Any, name: str) -> np.ndarray:
         at = _first(zero)
         raise ValueError(f"{name}{at and '[' + at[1:-1].rstrip(',') + ']'} is the zero vector: "
                          "a direction must be non-zero")
-    s = w / big[..., None]  # no overflow: |s| ≤ 1; big > 0 checked above
-    n = np.sqrt(np.einsum("...i,...i->...", s, s))  # in [1, √3]
+    # scaled by a power of two (exact: the same bits as the direct division above, where both
+    # apply) that puts the largest component in [1, 2): never lower, where a unit vector's
+    # subnormal component would round (halving 5e-324 gives 0)
+    s = np.ldexp(w, 1 - np.frexp(big)[1][..., None])  # big > 0 checked above
+    n = np.sqrt(np.einsum("...i,...i->...", s, s))  # in [1, 2√3)
     return s / n[..., None]
 
 
