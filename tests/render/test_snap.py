@@ -84,3 +84,21 @@ def test_a_triangle_corner_on_a_pixel_centre_covers_the_same_pixels():
             pid, _, tri = rasterise(x, y, np.zeros((1, 3)), 8, 8)
             assert sorted(pid.tolist()) == want, (n, m)
             assert set(tri.tolist()) == {0}
+
+
+def test_snap_of_small_arrays_and_of_mixed_ones_round_alike():
+    """The all-small path (a picture's coordinates: three passes) and the general one (any
+    magnitude, inf, NaN) round each element the same way: the small elements of a mixed array
+    equal the all-small array's, bit for bit, ties (odd multiples of 2⁻³¹) to even."""
+    rng = np.random.default_rng(11)
+    small = np.concatenate([rng.uniform(-2.0**21, 2.0**21, 500), rng.uniform(-1, 1, 500),
+                            (2 * np.arange(-8, 8) + 1) * 2.0**-31, [0.0, -0.0]])
+    mixed = np.concatenate([small, [2.0**22, -2.0**40, np.inf, np.nan]])
+    a, b = snap(small), snap(mixed)
+    np.testing.assert_array_equal(a, b[:len(small)])
+    assert np.array_equal(np.signbit(a), np.signbit(b[:len(small)]))  # −0 stays −0
+    # ties to even: (2j + 1)·2⁻³¹ → the even one of j·2⁻³⁰ and (j + 1)·2⁻³⁰
+    j = np.arange(-8, 8)
+    np.testing.assert_array_equal(a[1000:1016], np.where(j % 2 == 0, j, j + 1) * SNAP)
+    assert snap(np.array([])).shape == (0,)
+    assert float(snap(1.5 + 2.0**-40)) == 1.5  # a Python float: a 0-d array back

@@ -144,3 +144,22 @@ def test_sharp_lobe_is_one_connected_surface(px_w, px_h):
     lobe = (index != TRANSPARENT) & (index < SHADE_LEVELS)
     assert lobe.sum() > 100  # the lobe is many pixels long and wide at this size
     assert _components(lobe) == 1
+
+
+def test_the_z_buffer_keeps_the_nearest_fragment_and_the_first_of_a_tie():
+    """``nearest_fragments`` against the z-buffer written as a loop: each pixel keeps its
+    largest depth (toward the camera), a tie goes to the first fragment; depths on a coarse
+    grid make ties common."""
+    from tuibrdf.render.solid import nearest_fragments
+
+    rng = np.random.default_rng(5)
+    for n_frag, n_pix in [(0, 4), (1, 4), (50, 7), (5000, 300)]:
+        pid = rng.integers(0, n_pix, n_frag)
+        depth = rng.integers(-4, 5, n_frag) * 0.25
+        want: dict[int, int] = {}
+        for i, (p, d) in enumerate(zip(pid.tolist(), depth.tolist(), strict=True)):
+            if p not in want or d > depth[want[p]]:
+                want[p] = i
+        hit, won = nearest_fragments(pid, depth, n_pix)
+        assert dict(zip(hit.tolist(), won.tolist(), strict=True)) == want
+        assert hit.tolist() == sorted(want)

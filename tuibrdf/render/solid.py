@@ -191,11 +191,25 @@ def solid_image(
     pid = np.concatenate([t_pid, (rows * px_w + cols)[ok]])
     z = np.concatenate([t_z, xyz[ok, 2]])
     frag = np.concatenate([code[tris[t_id, 0]], code[ok]])  # a triangle shades as its face
-    # by pixel, nearest first; depths compared snapped, in pixels (core.numerics.snap): two
-    # fragments of one point (a shared edge, a splat on its triangle) tie, and the tie goes
-    # to the first in fragment order, not to the last bits of the projection
-    order = np.lexsort((-snap(z * k), pid))
-    first_pid, first = np.unique(pid[order], return_index=True)
     index = np.full(px_w * px_h, TRANSPARENT, dtype=np.int64)
-    index[first_pid] = frag[order][first]
+    hit, won = nearest_fragments(pid, snap(z * k), px_w * px_h)
+    index[hit] = frag[won]
     return index.reshape(px_h, px_w), np.concatenate([pal, guide_pal])
+
+
+def nearest_fragments(pid: np.ndarray, depth: np.ndarray, n_pixels: int):
+    """The z-buffer: ``(pixels, fragments)``, each pixel that fragments ``pid`` cover and the
+    fragment that wins it, the one with the largest ``depth`` (toward the camera; depths
+    compared as given: the caller snaps them, so two fragments of one point tie whatever the
+    last bits of the projection), a tie going to the first in fragment order.  Two unbuffered
+    reductions (``np.maximum.at``, ``np.minimum.at``) instead of a sort of the fragments: a
+    fifth of the picture's time."""
+    if not len(pid):
+        return pid, pid
+    best = np.full(n_pixels, -np.inf)
+    np.maximum.at(best, pid, depth)
+    tied = np.flatnonzero(depth == best[pid])  # the nearest fragments of each pixel
+    first = np.full(n_pixels, len(pid))
+    np.minimum.at(first, pid[tied], tied)
+    hit = np.flatnonzero(first < len(pid))
+    return hit, first[hit]
