@@ -40,6 +40,17 @@ BROADCAST_KERNELS = frozenset(
 )
 
 
+def registered_name(model: Model) -> str | None:
+    """The registry name of the model whose kernel ``model`` runs: its own name, or that of
+    the registered model a file's model was made from (``tuibrdf view X.binary``'s model is
+    MERL's, named by the file); None for any other (a ``.brdf``, ``.py``, ``.bsdf`` file, a
+    plugin).  What per-model knowledge (integration hints, "measured data") is keyed by."""
+    reg = MODELS.get(model.name)
+    if reg is not None and reg.kernel is model.kernel:
+        return model.name
+    return next((name for name, m in MODELS.items() if m.kernel is model.kernel), None)
+
+
 def get_model(name: str | Model) -> Model:
     """Look a model up by registry name, with a close match in the error for a typo; a path to
     a user file (``.brdf``, ``.bparam``, ``.py``, ``.bsdf``, ``.binary``) or the name of an

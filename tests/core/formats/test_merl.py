@@ -429,6 +429,26 @@ def test_model_matches_its_source_at_the_samples(ggx_file):
     assert np.all(got[:, 0] > got[:, 1]) and np.all(got[:, 1] > got[:, 2])
 
 
+def test_a_file_opened_by_its_path_is_the_merl_model(ggx_file):
+    """``tuibrdf albedo X.binary`` (the file's model, named by its path) and ``tuibrdf albedo
+    merl -p file=X.binary`` are one model: the same albedo and error estimate, bit for bit
+    (the file's model had lost MERL's integration hint: a 3.5× larger evaluation budget and
+    another error), and both are measured data (the reference of a comparison)."""
+    from tuibrdf.core.registry import get_model, registered_name
+    from tuibrdf.core.sphere.albedo import albedo_rule
+    from tuibrdf.core.sphere.compare import is_measured
+
+    by_path = get_model(str(ggx_file))
+    named = get_model("merl")
+    assert by_path.name != "merl" and registered_name(by_path) == "merl"
+    assert is_measured(by_path) and is_measured(named)
+    a = albedo_rule(by_path, by_path.resolve({}), [30.0, 75.0])
+    b = albedo_rule(named, named.resolve({"file": str(ggx_file)}), [30.0, 75.0])
+    for field in ("value", "error", "evaluations"):
+        np.testing.assert_array_equal(getattr(a, field), getattr(b, field))
+    assert registered_name(get_model("ggx")) == "ggx"
+
+
 def test_cli_eval_and_errors(ggx_file, tmp_path, capsys):
     rc = main(["eval", "merl", "-p", f"file={ggx_file}", "--theta-i", "30", "--theta-r", "30",
                "--phi-r", "0", "--json"])

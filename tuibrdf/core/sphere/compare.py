@@ -34,6 +34,7 @@ from tuibrdf.core.conventions import REC709
 from tuibrdf.core.directions import check_phi_i, check_theta_i, incident, mirror, sincos_deg
 from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.params import Model
+from tuibrdf.core.registry import registered_name
 from tuibrdf.core.sphere import integrator
 from tuibrdf.core.sphere.albedo import ATOL, DEFAULT_RTOL, MAX_EVALS, albedo_rule
 from tuibrdf.core.sphere.lobes import Lobe, lobe
@@ -82,7 +83,7 @@ class Numbers:
 
 def is_measured(model: Model) -> bool:
     """Whether ``model`` is measured data (a MERL or an RGL ``.bsdf`` file)."""
-    return model.name == "merl" or model.summary.startswith("RGL-EPFL measured")
+    return registered_name(model) == "merl" or model.summary.startswith("RGL-EPFL measured")
 
 
 def reference_side(model_a: Model, model_b: Model) -> str:

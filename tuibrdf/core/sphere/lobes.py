@@ -23,7 +23,7 @@ import numpy as np
 from tuibrdf.core.brdf.materials import table
 from tuibrdf.core.brdf.microfacet import alpha_from_roughness
 from tuibrdf.core.params import Model
-from tuibrdf.core.registry import MODELS
+from tuibrdf.core.registry import registered_name
 from tuibrdf.core.sphere import integrator
 
 #: Evaluation budget per incidence for measured data (~2 µs each: ~40 ms per albedo).
@@ -383,7 +383,5 @@ DEFAULT_LOBE = Lobe("half", 1e-3, None, False)
 def lobe(model: Model, values: Mapping[str, Any], rtol: float) -> Lobe:
     """The integration hint for ``model`` at relative tolerance ``rtol`` (the albedo's, e.g.
     :data:`tuibrdf.core.sphere.albedo.DEFAULT_RTOL`; see :data:`LOBE_HINTS`)."""
-    reg = MODELS.get(model.name)
-    if reg is not None and reg.kernel is model.kernel and model.name in LOBE_HINTS:
-        return LOBE_HINTS[model.name](values, rtol)
-    return DEFAULT_LOBE
+    name = registered_name(model)
+    return LOBE_HINTS[name](values, rtol) if name in LOBE_HINTS else DEFAULT_LOBE
