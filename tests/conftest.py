@@ -23,5 +23,6 @@ def fresh_styles():
 
     halfblock.cell_style.cache_clear()
     halfblock._TABLES.clear()
+    halfblock._rgb.cache_clear()
     braille._style.cache_clear()
     yield

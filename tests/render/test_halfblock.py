@@ -143,6 +143,31 @@ def test_mark_splits_runs_and_draws_its_glyph():
     assert img.plain() == " X "
 
 
+@pytest.mark.parametrize("system", ["truecolor", "256", "none"])
+def test_a_cell_is_drawn_by_its_colours_whatever_the_palette(system):
+    """Two pictures of the same pixels with their palettes in another order (an RGB picture's
+    palette is its own colours, in another order each frame) draw the same rows, and the
+    second reuses the first's rows where its cells are the same (the same list objects); a
+    mark over other colours at the same palette indices is drawn over those colours."""
+    pixels = np.array([[RED, GREEN, BLUE], [BLUE, BLUE, WHITE]], dtype=np.uint8)
+    a = HalfBlockImage.from_rgb(np.concatenate([pixels, pixels]), color_system=system)
+    order = [3, 1, 0, 2]  # the palette of b lists a's colours in this order
+    pal_b = a.palette[order]
+    b = HalfBlockImage(np.argsort(order)[a.index], pal_b, color_system=system)
+    assert not np.array_equal(a.palette, b.palette)
+    rows_a, rows_b = a.rows(system), b.rows(system, like=a)
+    assert rows_a == rows_b
+    assert all(rb is ra for ra, rb in zip(rows_a, rows_b, strict=True))  # kept, not drawn
+    # a mark's look follows the colours under it, not their palette indices
+    index = np.array([[0], [1]])
+    one = HalfBlockImage(index, np.array([BLACK, WHITE]), marks=[Mark(0, 0, "×", "X", RED)])
+    two = HalfBlockImage(index, np.array([WHITE, WHITE]), marks=[Mark(0, 0, "×", "X", RED)])
+    if system == "truecolor":
+        mid = (128, 128, 128)  # the mean of black and white, rounded
+        assert one.rows(system) == [[Segment("×", rgb_style(RED, mid))]]
+        assert two.rows(system) == [[Segment("×", rgb_style(RED, WHITE))]]
+
+
 def test_from_rgb_builds_palette_and_mask():
     rgb = np.array([[RED, BLUE], [RED, GREEN]], dtype=np.uint8)
     img = HalfBlockImage.from_rgb(rgb, mask=np.array([[True, True], [True, False]]))

@@ -46,7 +46,6 @@ from rich.segment import Segment
 from rich.style import Style
 
 from tuibrdf.core.conventions import REC709  # here applied to 8-bit values: a luma
-from tuibrdf.core.lru import LRU
 from tuibrdf.core.numerics import snapped_rint
 from tuibrdf.render.rowdiff import kept_rows, mark_changed
 
@@ -186,13 +185,20 @@ def cell_style(fg: int | tuple[int, int, int] | None, bg: int | tuple[int, int, 
 
 
 def _color(c: int | tuple[int, int, int] | None) -> Color | None:
-    """What ``Color.from_rgb`` / ``Color.from_ansi`` return, made directly."""
+    """What ``Color.from_rgb`` / ``Color.from_ansi`` return, made directly (and kept: an RGB
+    picture's new colour pairs are mostly of colours met before, and making a colour costs
+    8 times its look-up)."""
     if c is None:
         return None
     if isinstance(c, tuple):
-        r, g, b = (int(v) for v in c)
-        return Color(f"#{r:02x}{g:02x}{b:02x}", ColorType.TRUECOLOR, triplet=ColorTriplet(r, g, b))
+        return _rgb(*c)
     return Color.from_ansi(c)
+
+
+@lru_cache(maxsize=1 << 16)
+def _rgb(r: int, g: int, b: int) -> Color:
+    r, g, b = int(r), int(g), int(b)  # numpy integers too (a cache key equal to the int's)
+    return Color(f"#{r:02x}{g:02x}{b:02x}", ColorType.TRUECOLOR, triplet=ColorTriplet(r, g, b))
 
 
 NULL_STYLE = Style()
@@ -226,21 +232,27 @@ def split_halves(index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return index[0::2], index[1::2]
 
 
-#: the code tables kept across frames (:func:`_code_table`): a few palettes at a time (the
-#: colour maps in use; a lit picture's palette is its own distinct colours, new each frame)
-TABLES_KEPT = 8
-_TABLES = LRU(TABLES_KEPT)
-#: a run's key in a code table's segments: ``code * RUN_KEY + length`` (a row is far shorter)
-RUN_KEY = 1 << 20
+#: a run's key in a code table's segments: ``code * RUN_KEY + length`` (a run of 2¹⁴ cells
+#: or more is not kept); a truecolor code is below 2⁴⁹, so the key stays below 2⁶³
+RUN_KEY = 1 << 14
+#: a colour system's code table is emptied when it holds this many runs (a session of RGB
+#: pictures meets new colour pairs every frame; ~200 bytes a run)
+RUNS_KEPT = 1 << 17
+_TABLES: dict[str, tuple[dict, dict]] = {}
 
 
-def _code_table(system: str, ring: int | None, palette: np.ndarray) -> tuple[dict, dict]:
-    """``(looks, runs)`` of a palette's cells in ``system``: ``code → (character, style)``
-    (the codes of :meth:`HalfBlockImage._build`; a mark's look is keyed by the mark and its
-    two pixels) and ``code * RUN_KEY + length → Segment`` of a run; filled as they are met and
-    kept for the next frame with the same palette: a map's frame meets the same few hundred
-    colour pairs and runs again, and working each out anew was ≈ 40 % of drawing it."""
-    return _TABLES.get((system, ring, palette.tobytes()), lambda: ({}, {}))
+def _code_table(system: str) -> tuple[dict, dict]:
+    """``(looks, runs)`` of ``system``'s cells: ``code → (character, style)`` (the codes of
+    :meth:`HalfBlockImage._build`, which say the cell's colours themselves, whatever the
+    palette; a mark's look is keyed by the mark and its two pixels' colours) and ``code *
+    RUN_KEY + length → Segment`` of a run; filled as they are met and kept for the next
+    frames: a frame meets the same colour pairs and runs again, an RGB picture too (its
+    palette is its own colours, new each frame), and working each out anew was ≈ 40 % of
+    drawing it."""
+    table = _TABLES.get(system)
+    if table is None or len(table[1]) > RUNS_KEPT:
+        table = _TABLES[system] = ({}, {})
+    return table
 
 
 # ---------------------------------------------------------------------------------------------
@@ -325,12 +337,11 @@ class HalfBlockImage:
 
     def _differ(self, codes: np.ndarray, system: str,
                 like: HalfBlockImage | None) -> np.ndarray | None:
-        """Cells that may differ from ``like``'s (None: all of them): the codes differ, under
-        the same palette, or a mark of either is there (a mark's code names a mark, not the
-        colours under it)."""
+        """Cells that may differ from ``like``'s (None: all of them): the codes differ (they
+        say the cells' colours, whatever the palettes), or a mark of either is there (a
+        mark's code names a mark, not the colours under it)."""
         old = None if like is None else like._codes.get(system)
-        if (old is None or old.shape != codes.shape or like.ring != self.ring
-                or not np.array_equal(like.palette, self.palette)):
+        if old is None or old.shape != codes.shape or like.ring != self.ring:
             return None
         diff = codes != old
         for m in (*self.marks, *like.marks):
@@ -351,7 +362,7 @@ class HalfBlockImage:
         self._codes[system] = codes
         diff = self._differ(codes, system, like)
         out, same = kept_rows(None if diff is None else like._rows[system], diff, self.height)
-        looks, segments = _code_table(system, self.ring, self.palette)
+        looks, segments = _code_table(system)
         rows, starts, lengths = find_runs(codes)
         if same.any():  # only the runs of the rows that changed
             keep = ~same[rows]
@@ -359,7 +370,8 @@ class HalfBlockImage:
         run_codes = codes[rows, starts]
         # a run's segment, kept by code and length: one dict look-up a run; a mark's
         # (code < 0) key never matches
-        keys = np.where(run_codes >= 0, run_codes * RUN_KEY + lengths, -1).tolist()
+        keys = np.where((run_codes >= 0) & (lengths < RUN_KEY), run_codes * RUN_KEY + lengths,
+                        -1).tolist()
         flat = [segments.get(k) for k in keys]
         if None in flat:
             for i in [i for i, seg in enumerate(flat) if seg is None]:
@@ -368,13 +380,15 @@ class HalfBlockImage:
                 if code < 0:  # a mark: its glyph and colour over its two pixels' mean colour
                     m = self.marks[-code - 1]
                     r, c = int(rows[i]), int(starts[i])
-                    key = (m.glyph, m.ascii, m.rgb, int(top[r, c]), int(bottom[r, c]))
+                    under = tuple(tuple(self.palette[j].tolist()) if j >= 0 else None
+                                  for j in (int(top[r, c]), int(bottom[r, c])))
+                    key = (m.glyph, m.ascii, m.rgb, *under)
                 got = looks.get(key)
                 if got is None:
                     got = looks[key] = (make(code) if code >= 0
                                         else self._mark(m, key[3], key[4], system))
                 flat[i] = seg = Segment(got[0] * n, got[1])
-                if code >= 0:
+                if keys[i] >= 0:
                     segments[keys[i]] = seg
         # the runs are in reading order: each changed row's are the next ones
         ends = np.cumsum(np.bincount(rows, minlength=self.height)).tolist()
@@ -385,20 +399,27 @@ class HalfBlockImage:
         return out
 
     def _color_codes(self, top, bottom, system):
+        """A cell's code says its two colours, whatever the palette: ``(top + 1)·base +
+        (bottom + 1)`` over the xterm index (256 colours) or the packed 24-bit colour
+        (truecolor), −1 for transparent; so a code's look is the same in every picture."""
         if system == "256":
-            xi = np.append(xterm_indices(self.palette), -1)  # index -1 picks the appended -1
-            top, bottom = xi[top], xi[bottom]
+            colors = np.append(xterm_indices(self.palette), -1)  # index -1: the appended -1
             base = 257
-            colors: list = list(range(256))
         else:
-            base = len(self.palette) + 1
-            colors = [tuple(c) for c in self.palette.tolist()]
+            p = self.palette.astype(np.int64)
+            colors = np.append((p[:, 0] << 16) | (p[:, 1] << 8) | p[:, 2], -1)
+            base = (1 << 24) + 1
+        top, bottom = colors[top], colors[bottom]
+        rgb = system != "256"
+
+        def color(c: int):
+            return (c >> 16, (c >> 8) & 255, c & 255) if rgb else c
 
         def make(code: int) -> tuple[str, Style]:
             t, b = divmod(code, base)
             t, b = t - 1, b - 1
-            ct = colors[t] if t >= 0 else None
-            cb = colors[b] if b >= 0 else None
+            ct = color(t) if t >= 0 else None
+            cb = color(b) if b >= 0 else None
             if t == b:
                 return " ", cell_style(None, cb) if cb is not None else NULL_STYLE
             if b < 0:
@@ -434,10 +455,13 @@ class HalfBlockImage:
 
         return level, make
 
-    def _mark(self, m: Mark, t: int, b: int, system: str) -> tuple[str, Style]:
+    def _mark(self, m: Mark, t: tuple | None, b: tuple | None, system: str
+              ) -> tuple[str, Style]:
+        """A mark's look over its cell's two pixels' colours ``t``, ``b`` (None:
+        transparent)."""
         if system == "none":
             return m.ascii, NULL_STYLE
-        under = [self.palette[i].astype(float) for i in (t, b) if i >= 0]
+        under = [np.array(c, dtype=float) for c in (t, b) if c is not None]
         bg = tuple(int(v) for v in np.rint(np.mean(under, axis=0))) if under else None
         fg = m.rgb
         if system == "256":
