@@ -11,7 +11,11 @@ Input is a *level-index image* (``H_px × W_px`` ints) plus a palette (``L × 3`
 Fast by construction (≈ 111 ms per 160×48 frame with one ``Style`` per cell, ≈ 1.5 ms like
 this, when it was written; ``scripts/bench_draw.py`` measures a frame's drawing now):
 
-1. per cell, ``code = (top + 1) · (P + 1) + (bottom + 1)`` over the palette actually drawn;
+1. per cell, ``code = (top + 1) · base + (bottom + 1)`` over the colours drawn (the packed
+   24-bit colour, the xterm index, the plain character), not the palette's indices: a code
+   means one look in every picture, so looks and runs are kept across frames whatever the
+   palette (an RGB picture's is new each frame), and rows whose codes did not change are
+   kept;
 2. runs of equal codes along a row are found with numpy and become **one** ``Segment`` each;
 3. one ``Style`` per (foreground, background) pair, cached across frames;
 4. a run whose top and bottom colours are equal is drawn as spaces on a background colour.
