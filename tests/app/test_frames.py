@@ -778,3 +778,25 @@ async def test_a_threaded_frame_whose_albedo_is_quick_is_shown_in_one_piece(monk
     later = [c for t, c in shown if t >= 12.0]
     assert later.count(True) == 2
     assert later.count(False) == (0 if hold else 2), shown
+
+
+async def test_the_first_frame_is_computed_once_at_the_panes_laid_out_size(monkeypatch):
+    """Start-up computes one frame, at the map's size after the first layout: not one
+    before it (the panes have no size yet: a frame without a map, drawn and painted for
+    nothing, ~15 ms of the first screen), and not one at a size the panels' first rows then
+    change (they are filled before the layout's end)."""
+    core_frame.clear_caches()
+    asked: list = []
+    real = core_frame.compute_frame
+
+    def compute(req, **kw):
+        asked.append(req.map_px)
+        return real(req, **kw)
+
+    monkeypatch.setattr(core_frame, "compute_frame", compute)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        await pilot.pause(0.3)  # any later resize of the panes would ask again
+        assert len(asked) == 1 and asked[0] is not None, asked
+        assert asked[0] == app.frame.request.map_px

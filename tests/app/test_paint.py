@@ -233,6 +233,24 @@ async def test_a_slow_frame_lets_the_status_line_go_ahead(monkeypatch):
                               and app.frame.complete and "a(θi)=" in status())
 
 
+async def test_a_held_frames_pictures_go_ahead_of_a_slow_albedo(monkeypatch):
+    # every job holds its pictures for its slow part (HOLD_S: its kind's albedo was quick
+    # lately), and θi 31°'s albedo then blocks: the pictures go ahead after HOLD_WAIT_S,
+    # without waiting for it, and the whole frame follows when it comes
+    core_frame.clear_caches()
+    monkeypatch.setattr(frames, "HOLD_S", 1e9)
+    release = held_compute(monkeypatch, slow_only=True)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        await pilot.press("right")
+        assert await wait_for(pilot, lambda: app.frame.request.theta_i == 31.0)
+        assert not app.frame.complete and not release.is_set()
+        release.set()
+        assert await wait_for(pilot, lambda: app.frame.complete
+                              and app.frame.request.theta_i == 31.0)
+
+
 async def test_pictures_stop_waiting_for_a_slow_albedo(monkeypatch):
     # the albedo of θi 31° is held: the pictures (maps, sections, peak) are shown without
     # it, then with it when it comes

@@ -84,6 +84,9 @@ STUCK_S = 0.25
 #: waiting for it costs less than a second paint, which Textual holds until its next 1/60 s
 #: tick after the first
 HOLD_S = 0.016
+#: how long a held job's pictures wait for its slow part (two 60 Hz frames): a slow part
+#: slower than its kind's lately (a user's kernel, a new region of a table) lets them go
+HOLD_WAIT_S = 0.033
 
 
 def built_in(material: Material) -> bool:
@@ -125,6 +128,31 @@ class FrameJob:
     @property
     def is_running(self) -> bool:
         return not self.done
+
+
+class _LatePost:
+    """Post ``post()`` from a timer thread after :data:`HOLD_WAIT_S` unless :meth:`stop`
+    comes first: a held job's pictures, when its slow part is slower than its kind's lately
+    (a lock orders the two posts: the pictures never arrive after the whole frame)."""
+
+    def __init__(self, post) -> None:
+        self._post, self._lock, self._stopped, self.posted = post, threading.Lock(), False, False
+        self._timer = threading.Timer(HOLD_WAIT_S, self._fire)
+        self._timer.daemon = True
+        self._timer.start()
+
+    def _fire(self) -> None:
+        with self._lock:
+            if not self._stopped:
+                self._post()
+                self.posted = True
+
+    def stop(self) -> bool:
+        """No post from now on; whether the pictures were posted already."""
+        with self._lock:
+            self._stopped = True
+        self._timer.cancel()
+        return self.posted
 
 
 class FrameComputed(Message):
@@ -218,6 +246,12 @@ class FrameDelivery:
         """Show the current state's frame: at once when computed before or quick to compute
         here, else when the worker has computed it."""
         if self.screen.has_class("small"):
+            self._panels()
+            self._status()
+            return
+        if not any(self.one(p).size.area for p in visible_panes(self.state)):
+            # before the first layout: the panels now (their height shapes the panes), the
+            # frame when the panes' own resize asks again, sized
             self._panels()
             self._status()
             return
@@ -344,13 +378,17 @@ class FrameDelivery:
                 if first.complete or job.superseded.is_set():
                     return
             fast = time.thread_time()
+            late = None
+            if job.hold:  # the pictures wait for the slow part HOLD_WAIT_S at most
+                late = _LatePost(partial(post, result=first))
             res = core_frame.compute_frame(
                 req, check=lambda: not (job.is_cancelled or job.superseded.is_set()))
+            went = late is not None and late.stop()  # the pictures went ahead
             if res is not None:
                 now = time.thread_time()
                 post(result=res, seconds=now - start if fresh else None,
                      slow_seconds=now - fast if fresh else None)
-            elif job.hold and not job.is_cancelled:  # superseded meanwhile: its pictures
+            elif job.hold and not went:  # superseded meanwhile: its pictures
                 post(result=first)
         except Exception as e:  # bad data, a user's kernel raising anything: a message
             post(error=e)
