@@ -31,7 +31,9 @@ timestamps the bytes the app writes back:
   synthetic MERL file, :func:`sample_files`) on every main view: key → the screen's last
   change (complete frame) for → and for the first parameter's −, and on the first view a →
   held 2 s at 30/s read at full speed: the longest time without output while held, and how
-  long the screen keeps changing after release.
+  long the screen keeps changing after release.  With ``--against REV --both``, REV's viewer
+  and this tree's are measured in turn, cell by cell, in one table: a slow spell of a shared
+  machine falls on both (separate runs minutes apart differed by up to 2×).
 
 Usage: ``python scripts/bench_app.py [--sizes 80x24,160x48,240x70] [--reps 20] [--views |
 --kinds] [--load N] [--write-docs]``; ``--load N`` runs N processes spinning on the CPU meanwhile (a
@@ -411,46 +413,52 @@ def hold(term: Term, key: bytes, hold_s: float = 2.0, rate_hz: float = 30.0
 
 
 def kinds_table(sizes, colors, reps: int, lines: list[str], root: str | Path = ROOT,
-                views: tuple[str, ...] | None = None) -> None:
+                views: tuple[str, ...] | None = None,
+                trees: list[tuple[str, str | Path]] | None = None) -> None:
     """Key → complete frame for every kind of model on every main view: θi (→, a new
     incidence each key) and the first parameter (−, a new value each key), p50 / p95 of the
     time to the screen's last change (``SETTLE_S`` of quiet after it); and on the map a held
-    →: the longest wait for a frame while held, the settling after release."""
+    →: the longest wait for a frame while held, the settling after release.  ``trees``:
+    ``(label, root)`` of trees measured in turn, cell by cell (a slow spell of the machine
+    falls on all of them), with a column saying which."""
     from tuibrdf.state.viewer import MAIN_VIEWS
 
     views = views or MAIN_VIEWS
-    emit(lines, "| size | colours | model | view | θi p50/p95 ms | parameter p50/p95 ms "
-         "| held →: longest gap / settles, ms |")
-    emit(lines, "|---|---|---|---|---|---|---|")
+    both = trees is not None
+    trees = trees or [("", root)]
+    emit(lines, "| size | colours | model | view |" + (" tree |" if both else "")
+         + " θi p50/p95 ms | parameter p50/p95 ms | held →: longest gap / settles, ms |")
+    emit(lines, "|---|---|---|---|" + ("---|" if both else "") + "---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
         for label, (argv, param_key) in sample_files(tmp).items():
-            for w, h in sizes:
-                for color in colors:
-                    for view in views:
-                        term = Term(w, h, color, [*argv, "--theta-i", "0", "--view", view],
-                                    root=root)
-                        try:
-                            term.until(b"\x1b[?1049h")  # the alternate screen: started
-                            # the first frame complete: 3 s without output (an energy table
-                            # or an albedo curve of a file model can take seconds, and the
-                            # partial repaint never sends the status line's text whole)
-                            term.drain(3.0)
-                            cells = []
-                            for key in ("right", param_key):
-                                if key is None:
-                                    cells.append("—")
-                                    continue
-                                done = [term.key_to_frame(KEYS[key])[2] for _ in range(reps)]
-                                cells.append(f"{statistics.median(done) * 1e3:.0f} / "
-                                             f"{pct(done, 0.95) * 1e3:.0f}")
-                            held = "—"
-                            if view == views[0]:
-                                gap, settle = hold(term, KEYS["right"])
-                                held = f"{gap * 1e3:.0f} / {settle * 1e3:.0f}"
-                        finally:
-                            term.close()
-                        emit(lines, f"| {w}×{h} | {color} | {label} | {view} | {cells[0]} | "
-                             f"{cells[1]} | {held} |")
+            for w, h, color, view, (tree, root) in (
+                    (w, h, c, v, t) for w, h in sizes for c in colors for v in views
+                    for t in trees):
+                term = Term(w, h, color, [*argv, "--theta-i", "0", "--view", view],
+                            root=root)
+                try:
+                    term.until(b"\x1b[?1049h")  # the alternate screen: started
+                    # the first frame complete: 3 s without output (an energy table
+                    # or an albedo curve of a file model can take seconds, and the
+                    # partial repaint never sends the status line's text whole)
+                    term.drain(3.0)
+                    cells = []
+                    for key in ("right", param_key):
+                        if key is None:
+                            cells.append("—")
+                            continue
+                        done = [term.key_to_frame(KEYS[key])[2] for _ in range(reps)]
+                        cells.append(f"{statistics.median(done) * 1e3:.0f} / "
+                                     f"{pct(done, 0.95) * 1e3:.0f}")
+                    held = "—"
+                    if view == views[0]:
+                        gap, settle = hold(term, KEYS["right"])
+                        held = f"{gap * 1e3:.0f} / {settle * 1e3:.0f}"
+                finally:
+                    term.close()
+                emit(lines, f"| {w}×{h} | {color} | {label} | {view} | "
+                     + (f"{tree} | " if both else "") + f"{cells[0]} | "
+                     f"{cells[1]} | {held} |")
 
 
 def emit(lines: list[str], line: str) -> None:
@@ -508,6 +516,9 @@ def main() -> int:
                     help="N other processes spinning on the CPU meanwhile (a shared machine)")
     ap.add_argument("--against", metavar="REV",
                     help="measure git revision REV's viewer instead of this tree's (git archive)")
+    ap.add_argument("--both", action="store_true",
+                    help="with --kinds --against REV: REV's viewer and this tree's in turn, "
+                         "cell by cell, in one table")
     ap.add_argument("--write-docs", action="store_true",
                     help="also write the table into docs/benchmarks.md (its own section)")
     args = ap.parse_args()
@@ -530,7 +541,7 @@ def main() -> int:
         name = "bench_app" + kind + ("-views" if args.views else "") + (
             "-kinds" if args.kinds else "") + (
             f"-load{args.load}" if args.load else "") + (
-            f"-at-{args.against}" if args.against else "")
+            f"-{'vs' if args.both else 'at'}-{args.against}" if args.against else "")
         doc = write_section(name, "\n".join(lines), command_line(), machine_line=started)
         print(f"written into {doc}")
     return 0
@@ -545,8 +556,10 @@ def run(args: argparse.Namespace) -> list[str]:
         views_table(sizes, colors, args.reps, lines, args.root)
         return lines
     if args.kinds:
+        trees = ([(args.against, args.root), ("this tree", ROOT)]
+                 if args.both and args.against else None)
         kinds_table(sizes, colors, args.reps, lines, args.root,
-                    tuple(args.only_views.split(",")) if args.only_views else None)
+                    tuple(args.only_views.split(",")) if args.only_views else None, trees)
         return lines
     kinds = ("param", "theta", "model", "mixed")
     emit(lines, "| size | colours | startup s | main view p50/p95 ms: param | θi | model | "

@@ -84,9 +84,10 @@ STUCK_S = 0.25
 #: waiting for it costs less than a second paint, which Textual holds until its next 1/60 s
 #: tick after the first
 HOLD_S = 0.016
-#: how long a held job's pictures wait for its slow part (two 60 Hz frames): a slow part
-#: slower than its kind's lately (a user's kernel, a new region of a table) lets them go
-HOLD_WAIT_S = 0.033
+#: how long a held job's pictures wait for its slow part (wall time): a slow part far
+#: slower than its kind's lately (a user's kernel, a new region of a table) lets them go;
+#: its usual jitter on a busy machine (the event loop drawing meanwhile) stays in one paint
+HOLD_WAIT_S = 0.1
 
 
 def built_in(material: Material) -> bool:
