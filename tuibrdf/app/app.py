@@ -59,12 +59,6 @@ from tuibrdf.state.viewer import ViewerState
 #: of any key it fell on; later ones scan only the objects made since (docs/benchmarks.md)
 FREEZE_S = 1.0
 
-
-def freeze_start_up() -> None:
-    """Keep the collector off what start-up made (``FREEZE_S``), and turn it back on if
-    ``tuibrdf view`` turned it off to start (cli/view.py)."""
-    gc.freeze()
-    gc.enable()
 FILE_POLL_S = 1.0  # how often a model file's mtime is checked (an edit redraws)
 #: colour levels of the maps: 256, as `render` (32 showed false contours on smooth diffuse
 #: lobes); a full truecolor update of a 110×46 map of Oren-Nayar at 60° is ≈ 90 KB instead of
@@ -73,6 +67,13 @@ LEVELS = DEFAULT_LEVELS
 #: the actions of the viewer itself (not of a modal screen)
 VIEWER_ACTIONS = frozenset({"state", "save", "load_next", "help", "type_value", "type_theta",
                             "write_figures", "checks"})
+
+
+def freeze_start_up() -> None:
+    """Keep the collector off what start-up made (``FREEZE_S``), and turn it back on if
+    ``tuibrdf view`` turned it off to start (cli/view.py)."""
+    gc.freeze()
+    gc.enable()
 
 
 def _list_presets() -> list[str]:

@@ -246,13 +246,10 @@ class FrameDelivery:
     def refresh_frame(self) -> None:
         """Show the current state's frame: at once when computed before or quick to compute
         here, else when the worker has computed it."""
-        if self.screen.has_class("small"):
-            self._panels()
-            self._status()
-            return
-        if not any(self.one(p).size.area for p in visible_panes(self.state)):
-            # before the first layout: the panels now (their height shapes the panes), the
-            # frame when the panes' own resize asks again, sized
+        # too small for the panes, or before the first layout: the panels now (their height
+        # shapes the panes), the frame when the panes' own resize asks again, sized
+        if self.screen.has_class("small") or not any(
+                self.one(p).size.area for p in visible_panes(self.state)):
             self._panels()
             self._status()
             return

@@ -69,7 +69,7 @@ def as_directions(w: Any, name: str) -> np.ndarray:
             return w
         if SQUARES_EXACT[0] <= lo and hi <= SQUARES_EXACT[1]:
             # finite, non-zero, and |w|² neither overflowed nor lost bits to underflow: one
-            # square root and one division (the scaled path below gives the same to an ulp)
+            # square root and one division (the scaled path below gives the same bits)
             return w / np.sqrt(n2)[..., None]
     # |w| without overflow (1e200² = inf) or underflow (1e-310² = 0): scale by the largest
     # component first (a subnormal vector keeps only the bits it has).  np.maximum propagates

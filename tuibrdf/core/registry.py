@@ -42,9 +42,10 @@ BROADCAST_KERNELS = frozenset(
 
 def registered_name(model: Model) -> str | None:
     """The registry name of the model whose kernel ``model`` runs: its own name, or that of
-    the registered model a file's model was made from (``tuibrdf view X.binary``'s model is
-    MERL's, named by the file); None for any other (a ``.brdf``, ``.py``, ``.bsdf`` file, a
-    plugin).  What per-model knowledge (integration hints, "measured data") is keyed by."""
+    the registered model a file's model was made from (a MERL file opened by its path, as
+    ``tuibrdf albedo X.binary`` does: MERL's model, named by the file); None for any other (a
+    ``.brdf``, ``.py``, ``.bsdf`` file, a plugin).  What per-model knowledge (integration
+    hints, "measured data") is keyed by."""
     reg = MODELS.get(model.name)
     if reg is not None and reg.kernel is model.kernel:
         return model.name
