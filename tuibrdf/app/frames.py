@@ -84,9 +84,10 @@ STUCK_S = 0.25
 #: waiting for it costs less than a second paint, which Textual holds until its next 1/60 s
 #: tick after the first
 HOLD_S = 0.016
-#: how long a held job's pictures wait for its slow part (wall time): a slow part far
-#: slower than its kind's lately (a user's kernel, a new region of a table) lets them go;
-#: its usual jitter on a busy machine (the event loop drawing meanwhile) stays in one paint
+#: how long a held job's pictures wait for it to end (wall time, from its start): a slow
+#: part far slower than its kind's lately (a user's kernel, a new region of a table) lets
+#: them go; its usual jitter on a busy machine (the event loop drawing meanwhile) stays in
+#: one paint
 HOLD_WAIT_S = 0.1
 
 
@@ -113,6 +114,9 @@ class FrameJob:
         self.superseded = threading.Event()
         #: its slow part is posted with its fast part (:data:`HOLD_S`)
         self.hold = False
+        #: a held job's fast part, once computed: the loop shows it if the slow part is late
+        #: (:data:`HOLD_WAIT_S`)
+        self.pictures: FrameResult | None = None
 
     def cancel(self) -> None:
         """A newer request wants the screen: this job's results are dropped."""
@@ -129,31 +133,6 @@ class FrameJob:
     @property
     def is_running(self) -> bool:
         return not self.done
-
-
-class _LatePost:
-    """Post ``post()`` from a timer thread after :data:`HOLD_WAIT_S` unless :meth:`stop`
-    comes first: a held job's pictures, when its slow part is slower than its kind's lately
-    (a lock orders the two posts: the pictures never arrive after the whole frame)."""
-
-    def __init__(self, post) -> None:
-        self._post, self._lock, self._stopped, self.posted = post, threading.Lock(), False, False
-        self._timer = threading.Timer(HOLD_WAIT_S, self._fire)
-        self._timer.daemon = True
-        self._timer.start()
-
-    def _fire(self) -> None:
-        with self._lock:
-            if not self._stopped:
-                self._post()
-                self.posted = True
-
-    def stop(self) -> bool:
-        """No post from now on; whether the pictures were posted already."""
-        with self._lock:
-            self._stopped = True
-        self._timer.cancel()
-        return self.posted
 
 
 class FrameComputed(Message):
@@ -343,6 +322,8 @@ class FrameDelivery:
             return alive[-1]
         job = FrameJob(req)
         job.hold = max(self._slow_costs.get(self._kind(req), (1.0,))) < HOLD_S
+        if job.hold:
+            self.set_timer(HOLD_WAIT_S, partial(self._held_too_long, job))
         self._jobs.append(job)
         self._queued = None
         threading.Thread(target=self._run_job, args=(job,), name="tuibrdf-frame",
@@ -376,17 +357,14 @@ class FrameDelivery:
                 if first.complete or job.superseded.is_set():
                     return
             fast = time.thread_time()
-            late = None
-            if job.hold:  # the pictures wait for the slow part HOLD_WAIT_S at most
-                late = _LatePost(partial(post, result=first))
+            job.pictures = first  # held: they wait for the slow part HOLD_WAIT_S at most
             res = core_frame.compute_frame(
                 req, check=lambda: not (job.is_cancelled or job.superseded.is_set()))
-            went = late is not None and late.stop()  # the pictures went ahead
             if res is not None:
                 now = time.thread_time()
                 post(result=res, seconds=now - start if fresh else None,
                      slow_seconds=now - fast if fresh else None)
-            elif job.hold and not went:  # superseded meanwhile: its pictures
+            elif job.hold:  # superseded meanwhile: its pictures
                 post(result=first)
         except Exception as e:  # bad data, a user's kernel raising anything: a message
             post(error=e)
@@ -416,6 +394,14 @@ class FrameDelivery:
             self._jobs.remove(job)
         if self._queued is not None and self._queued == self.request:
             self._worker, self._worker_for = self.compute(self._queued), self._queued
+
+    @survives
+    def _held_too_long(self, job: FrameJob) -> None:
+        """A held job still computing its slow part :data:`HOLD_WAIT_S` after it started: its
+        pictures now (``show_frame`` keeps a whole frame shown already, and drops them once
+        the request has moved on)."""
+        if not job.done and not job.is_cancelled and job.pictures is not None:
+            self.show_frame(job.pictures)
 
     def _stop_slow_timer(self) -> None:
         if self._slow_timer is not None:
