@@ -34,7 +34,9 @@ are read as information.  Float fields may be f32 or f64 (converted to f64).
    applies this factor only when the flag is set; powitacq always does — RGL files set it);
 6. that is ``f·cos θo``: tuibrdf divides by ``cos θo``, held at ``cos 89.9°`` within 0.1° of
    the horizon (measured values there are noisy and need not vanish: the division amplifies
-   them at most 573×); on the horizon itself the value is 0, as powitacq.
+   them at most 573×); on the horizon itself (θo = 90°) the value is the limit from above
+   (powitacq returns 0 there), so the closed hemisphere's largest value is one the kernel
+   gives; the albedo's f (``floor=False``) is 0 there.
 
 One ``wi`` for many ``wo`` (a map, the peak finder) mixes the (φi, θi) slices of the warps once
 (every lookup is linear in the slices) and keeps them with ``σ(u(wi))`` for the last few
@@ -561,7 +563,10 @@ def evaluate(data: RglData, wi: np.ndarray, wo: np.ndarray, clamp: bool = True,
         wi, wo = np.broadcast_arrays(wi, wo)
         wi = wi.reshape(-1, 3).copy()
         wo = wo.reshape(-1, 3).copy()
-    active = (wi[:, 2] > 0) & (wo[:, 2] > 0)
+    # wo on the horizon: the limit from above (the held cos θo), so f is continuous on the
+    # closed hemisphere and its supremum there is a value (powitacq returns 0); the file's
+    # own f (floor=False) has no finite limit there and stays 0
+    active = (wi[:, 2] > 0) & ((wo[:, 2] >= 0) if floor else (wo[:, 2] > 0))
     if data.reduction >= 2:  # into the measured half/quadrant (Mitsuba 3's mulsign_neg)
         sy = wi[:, 1]
         sx = wi[:, 0] if data.reduction == 4 else sy
@@ -624,7 +629,8 @@ def load_model(path: str, name: str) -> Model:
     return Model(
         name, title, (), partial(_kernel, data), rgb=True, reciprocal=False,
         summary="RGL-EPFL measured material (Dupuy & Jakob 2018), evaluated as powitacq",
-        horizon="0 on the horizon (as powitacq); cos θo held at cos 89.9° within 0.1° of it",
+        horizon=("cos θo held at cos 89.9° within 0.1° of the horizon, on it too (powitacq: "
+                 "0 on it)"),
         notes=tuple(notes),
     )
 
