@@ -17,6 +17,7 @@ from tuibrdf.core.directions import from_degrees, incident
 from tuibrdf.core.evaluate import evaluate
 from tuibrdf.core.material import Material
 from tuibrdf.core.views import frame as core_frame
+from tuibrdf.core.views import sections
 from tuibrdf.core.views.sections import PERPENDICULAR, great_circle
 
 SEED_CT = {"kd": 0.0, "f0": 0.04, "m": 0.07}
@@ -250,6 +251,29 @@ def test_fwhm_of_narrow_lobes_on_the_function(params, theta_i, width):
     side = res.sides[0]
     got = float(side.sections["fwhm"])
     want = _fwhm_by_bisection("cook-torrance", params, theta_i, side.section_center)
-    assert got == pytest.approx(want, abs=1e-4)  # 12 halvings of 1°, then a secant
+    assert got == pytest.approx(want, abs=1e-4)  # 1°/4096 brackets, then a secant
     if width is not None:
         assert got == pytest.approx(width, abs=0.006)
+
+
+def test_fwhm_takes_the_crossing_nearest_the_lobe_in_three_calls():
+    # a step lobe, 1 for |t| ≤ 10°, then a dip (0.4), a shoulder above half (0.8) and 0.1
+    # beyond 10.6°: the 1° samples bracket each side in [10°, 11°]; the crossing nearest the
+    # lobe is at 10° (a search that kept any crossing could end at the shoulder's, 10.6°).
+    # Three calls of the function: 16³ parts of the bracket, as 12 bisection steps
+    def g(t):
+        a = np.abs(t)
+        return np.select([a <= 10.0, a < 10.3, a < 10.6], [1.0, 0.4, 0.8], 0.1)
+
+    calls = []
+
+    def fn(w):
+        calls.append(len(w))
+        return g(np.degrees(np.arctan2(w[:, 0], w[:, 2])))
+
+    t = np.arange(-90.0, 91.0)
+    got = sections.fwhm(fn, np.array([0.0, 0.0, 1.0]), 0.0, t, g(t))
+    assert len(calls) == sections.FWHM_ROUNDS == 3
+    # each crossing inside [10°, 10° + 1°/4096] (the secant in the last bracket); 1e-9°:
+    # the rounding of the directions' angles
+    assert 20.0 - 1e-9 < got < 20.0 + 2.0 / 4096 + 1e-9
