@@ -449,6 +449,27 @@ def test_a_file_opened_by_its_path_is_the_merl_model(ggx_file):
     assert registered_name(get_model("ggx")) == "ggx"
 
 
+@pytest.mark.parametrize("theta_i", [0.0, 60.0, 85.0])
+def test_the_albedos_first_round_estimate_covers_its_error(ggx_file, theta_i):
+    """Measured data's albedo is the rule's first round (lobes.MEASURED_MAX_EVALS): its
+    estimate must cover its error against the same table integrated to convergence (400,000
+    evaluations, relative tolerance 1e-9; that reference's own estimate is added), and still
+    be small enough to print 3 digits."""
+    from tuibrdf.core.registry import get_model
+    from tuibrdf.core.sphere.albedo import albedo_rule
+    from tuibrdf.core.sphere.lobes import MEASURED_MAX_EVALS, Lobe
+
+    m = get_model(str(ggx_file))
+    v = m.resolve({})
+    got = albedo_rule(m, v, [theta_i])
+    ref = albedo_rule(m, v, [theta_i], rtol=1e-9,
+                      hint=Lobe("half", 0.004, max_evals=400_000))
+    assert got.evaluations[0] <= 3 * MEASURED_MAX_EVALS  # one round of panels
+    err = np.abs(got.value[0] - ref.value[0])
+    assert np.all(err <= got.error[0] + ref.error[0])
+    assert np.all(got.error[0] <= 1e-3 * got.value[0])
+
+
 def test_cli_eval_and_errors(ggx_file, tmp_path, capsys):
     rc = main(["eval", "merl", "-p", f"file={ggx_file}", "--theta-i", "30", "--theta-r", "30",
                "--phi-r", "0", "--json"])

@@ -9,10 +9,9 @@ cancelled by the albedo's cos θo.  (With the held cosine it would lose the part
 7.1e-5 of paper_white's albedo at θi = 0.)
 
 The rule is the adaptive one of :mod:`tuibrdf.core.sphere.albedo`, in the half-vector frame
-(the data is tabulated over the half vector), with a budget of :data:`RGL_MAX_EVALS`
-evaluations per incidence: the interpolated tables are only piecewise smooth, so the estimate
-(honest, larger) rather than more evaluations says how far it got.  The frame caches each
-(file, θi, φi) once computed.
+(the data is tabulated over the half vector), with measured data's budget of
+:data:`~tuibrdf.core.sphere.lobes.MEASURED_MAX_EVALS` evaluations per incidence (MERL's too).
+The frame caches each (file, θi, φi) once computed.
 """
 
 from __future__ import annotations
@@ -21,12 +20,7 @@ from functools import partial
 
 from tuibrdf.core.formats import rgl_bsdf
 from tuibrdf.core.params import Model
-from tuibrdf.core.sphere.lobes import Lobe
-
-#: Evaluations per incidence after which refinement stops: in effect the rule's first round
-#: (5,400–5,700 evaluations, 11,000–15,400 at θi ≥ 80° where the outer grading adds panels;
-#: ~0.5 µs each with the incidence's slices mixed once: 3–8 ms)
-RGL_MAX_EVALS = 4_000
+from tuibrdf.core.sphere.lobes import MEASURED_MAX_EVALS, Lobe
 
 
 def rgl_data(model: Model) -> rgl_bsdf.RglData | None:
@@ -46,4 +40,4 @@ def albedo_setup(model: Model):
     def kernel(wi, wo):
         return rgl_bsdf.evaluate(data, wi, wo, floor=False)
 
-    return kernel, Lobe("half", 1e-3, None, symmetric=False, max_evals=RGL_MAX_EVALS)
+    return kernel, Lobe("half", 1e-3, None, symmetric=False, max_evals=MEASURED_MAX_EVALS)
