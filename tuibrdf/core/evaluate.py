@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from tuibrdf.core.numerics import kernel_errstate
+from tuibrdf.core.numerics import check_errstate, kernel_errstate
 from tuibrdf.core.params import Model
 from tuibrdf.core.registry import BROADCAST_KERNELS, get_model
 
@@ -52,6 +52,14 @@ UNIT_TOL = 8 * 2.0**-52
 SQUARES_EXACT = (1e-290, 1e300)
 
 
+def _squared_norm(w: np.ndarray) -> np.ndarray:
+    """``x² + y² + z²`` of ``w (..., 3)``, summed in that order: elementwise ufuncs, so the same
+    bits on every CPU (einsum's 3-term sum took another order, and twice the time: 8.6 against
+    4.2 ms for 10⁶ vectors)."""
+    x, y, z = w[..., 0], w[..., 1], w[..., 2]
+    return x * x + y * y + z * z
+
+
 def as_directions(w: Any, name: str) -> np.ndarray:
     """``w`` as unit vectors of shape ``(..., 3)``, validated (see the module docstring)."""
     try:
@@ -63,7 +71,8 @@ def as_directions(w: Any, name: str) -> np.ndarray:
     if w.size:
         # the usual input, finite unit vectors, in one pass: |w|² then its range (a NaN makes
         # min and max NaN, an inf makes max inf: both fail the test and take the checks below)
-        n2 = np.einsum("...i,...i->...", w, w)
+        with check_errstate():  # an overflow or underflow here takes the scaled path
+            n2 = _squared_norm(w)
         lo, hi = n2.min(), n2.max()
         if 1.0 - UNIT_TOL <= lo and hi <= 1.0 + UNIT_TOL:
             return w
@@ -89,7 +98,7 @@ def as_directions(w: Any, name: str) -> np.ndarray:
     # apply) that puts the largest component in [1, 2): never lower, where a unit vector's
     # subnormal component would round (halving 5e-324 gives 0)
     s = np.ldexp(w, 1 - np.frexp(big)[1][..., None])  # big > 0 checked above
-    n = np.sqrt(np.einsum("...i,...i->...", s, s))  # in [1, 2√3)
+    n = np.sqrt(_squared_norm(s))  # in [1, 2√3)
     return s / n[..., None]
 
 

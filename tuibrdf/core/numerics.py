@@ -7,7 +7,8 @@ loud (``FloatingPointError``) rather than a NaN drawn as black on the screen.  U
 benign here (``exp(-tan²θh/m²)`` of a sharp lobe legitimately flushes to 0) and is ignored.
 
 Use :func:`kernel_errstate` around any evaluation of a model; nothing else in the package calls
-``np.errstate``.
+``np.errstate`` but the two named exceptions below (:func:`check_errstate`,
+:func:`shader_errstate`).
 """
 
 from __future__ import annotations
@@ -109,3 +110,15 @@ def snapped_rint(v) -> np.ndarray:
     """The nearest integer, halves to even (``np.rint``), decided on :func:`snap`'s value."""
     return np.rint(snap(v))
 
+
+
+#: The API's check of its directions (:func:`tuibrdf.core.evaluate.as_directions`) squares
+#: every component in one pass: a component beyond 1.3e154 overflows to inf, one below 1.5e-154
+#: underflows, and either sends that input to the exact, scaled path, which decides.  Those two
+#: are expected there; a division by zero or an invalid operation is still a bug.
+CHECK_ERRSTATE = {"divide": "raise", "over": "ignore", "invalid": "raise", "under": "ignore"}
+
+
+def check_errstate() -> np.errstate:
+    """Context manager applying :data:`CHECK_ERRSTATE` (the directions' one-pass check only)."""
+    return np.errstate(**CHECK_ERRSTATE)
