@@ -20,6 +20,7 @@ give ``(3,)`` per albedo and ``(n, 3)`` per curve.  The incidence is ``(θi, φi
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any, NamedTuple
 
@@ -112,7 +113,9 @@ def albedo_rule(model: Model, values: Mapping[str, Any],
     s, c = sincos_deg(np.append(thetas, check_phi_i(phi_i_deg)))
     st, ct = s[:-1], c[:-1]
     sp, cp = np.full(len(thetas), s[-1]), np.full(len(thetas), c[-1])
-    if hint is None and kernel is None:
+    # a .bsdf model exists only once its reader is loaded: the other models' first albedo
+    # (the viewer's first frame) does not import it (4 ms)
+    if hint is None and kernel is None and "tuibrdf.core.formats.rgl_bsdf" in sys.modules:
         from tuibrdf.core.sphere.measured_albedo import albedo_setup
 
         measured = albedo_setup(model)  # a .bsdf file: its own f to the horizon
