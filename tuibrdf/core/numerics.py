@@ -111,7 +111,6 @@ def snapped_rint(v) -> np.ndarray:
     return np.rint(snap(v))
 
 
-
 #: The API's check of its directions (:func:`tuibrdf.core.evaluate.as_directions`) squares
 #: every component in one pass: a component beyond 1.3e154 overflows to inf, one below 1.5e-154
 #: underflows, and either sends that input to the exact, scaled path, which decides.  Those two

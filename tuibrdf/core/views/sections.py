@@ -113,6 +113,7 @@ def fwhm(fn, center: np.ndarray, azimuth_deg: float, t_deg: np.ndarray, v: np.nd
     ia = np.array([left[-1] + 1 if len(left) else 0, right[0] - 1 if len(right) else len(v) - 1])
     ib = np.array([left[-1] if len(left) else 0, right[0] if len(right) else len(v) - 1])
     a, b, fa, fb = t[ia], t[ib], v[ia], v[ib]
+    side = np.arange(2)
     for _ in range(rounds if len(left) or len(right) else 0):
         # (2, SPLIT + 1) points per side, a … b; the inner ones evaluated, one call for both
         pts = np.concatenate([a[:, None], a[:, None] + (b - a)[:, None] * _FRACTIONS,
@@ -124,7 +125,6 @@ def fwhm(fn, center: np.ndarray, azimuth_deg: float, t_deg: np.ndarray, v: np.nd
         # there
         out = ~(vals >= half)
         j = np.argmax(out[:, 1:], axis=1) + 1
-        side = np.arange(2)
         j = np.where(out[side, j], j, FWHM_SPLIT)
         a, fa = pts[side, j - 1], vals[side, j - 1]
         b, fb = pts[side, j], vals[side, j]
