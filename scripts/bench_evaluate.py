@@ -5,7 +5,9 @@
 For each model: the best of ``--repeat`` calls (taken in turns) of
 ``tuibrdf.evaluate(model, {}, wi, wo)`` (validating and, where needed, normalising the
 directions) and of the kernel behind it,
-``evaluate_resolved`` with the parameters resolved once; the ratio is the price of the checks.
+``evaluate_resolved`` with the parameters resolved once, in one piece (as a bare numpy
+expression would be); ``evaluate`` checks and evaluates a block at a time, so the ratio is the
+price of the checks less what the blocks save.
 ``wi`` and ``wo`` are random unit vectors of the upper hemisphere (float64, C order), as a
 caller's own array usually is, and the same vectors ×2 (not unit: the normalising path).
 ``--write-docs`` writes the table into docs/benchmarks.md (section ``bench_evaluate``).

@@ -23,7 +23,7 @@ import math
 import numpy as np
 import pytest
 
-from tuibrdf.core.evaluate import evaluate, evaluate_resolved, f_cos
+from tuibrdf.core.evaluate import BLOCK, as_directions, evaluate, evaluate_resolved, f_cos
 from tuibrdf.core.registry import MODELS
 
 ANALYTIC = [m for m in MODELS.values() if not any(p.kind == "path" for p in m.params)]
@@ -129,6 +129,37 @@ def test_bad_directions_are_value_errors(wi, words):
 def test_wo_is_checked_too():
     with pytest.raises(ValueError, match="wo is the zero vector"):
         evaluate("lambert", {}, [0, 0, 1], [0.0, -0.0, 0.0])
+
+
+def _in_one_piece(m, wi, wo):
+    """``evaluate`` as one call over the whole inputs: the check, then the kernel."""
+    wi, wo = np.broadcast_arrays(as_directions(wi, "wi"), as_directions(wo, "wo"))
+    return evaluate_resolved(m, m.resolve({}), wi, wo)
+
+
+@pytest.mark.parametrize("model", ANALYTIC, ids=lambda m: m.name)
+def test_large_inputs_in_blocks_give_the_values_of_one_piece(model):
+    """``evaluate`` takes large inputs a block at a time (core/evaluate.py, BLOCK): each step
+    of a kernel is elementwise, so the values are those of one call over the whole inputs, bit
+    for bit, in every way the inputs broadcast, unit vectors (passed as they are) or not
+    (normalised); a bad direction in a later block is still named by its index in the whole
+    input.  (Unit and other vectors are not mixed here: the check passes a unit vector
+    unchanged only if all those checked with it are unit, in one piece or in a block; either
+    way it moves by a few ulps at most, module docstring.)"""
+    n = 2 * BLOCK + 37  # two whole blocks and a short one
+    rng = np.random.default_rng(11)
+    wi, wo = rng.normal(size=(2, n, 3))  # a third of them below the horizon, about
+    wi /= np.linalg.norm(wi, axis=-1, keepdims=True)
+    wo /= np.linalg.norm(wo, axis=-1, keepdims=True)
+    one = wi[5]
+    for a, b in [(wi, wo), (one, wo), (wi, one[None]), (wi[:, None], np.stack([wo, wi], 1)),
+                 (wi * 3.0, wo), (one, wo * 0.5)]:
+        np.testing.assert_array_equal(evaluate(model, {}, a, b), _in_one_piece(model, a, b),
+                                      err_msg=f"{model.name} {a.shape} {b.shape}")
+    bad = wo.copy()
+    bad[n - 2, 1] = np.nan
+    with pytest.raises(ValueError, match=rf"wo\[{n - 2}\] contains NaN"):
+        evaluate(model, {}, wi, bad)
 
 
 def test_below_the_horizon_is_zero_not_an_error():
