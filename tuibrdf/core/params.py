@@ -207,6 +207,14 @@ class Model:
     #: a user file's kernel *before* negative values are clamped to 0 (None: a built-in
     #: model), for the note saying how much is clamped (:mod:`tuibrdf.core.negatives`)
     raw_kernel: Callable[..., Any] | None = None
+    #: the function its albedo integrates, ``(wi, wo) -> f``, when it is not the kernel (a
+    #: ``.bsdf`` file's own f, all the way to the horizon: :func:`tuibrdf.core.formats.
+    #: rgl_bsdf.load_model`); None: the kernel
+    albedo_kernel: Callable[..., Any] | None = None
+    #: its values are measurements (a MERL table, an RGL ``.bsdf`` file): a comparison's
+    #: reference against a model (:func:`tuibrdf.core.sphere.compare.reference_side`), and
+    #: measured data's albedo budget (:func:`tuibrdf.core.sphere.lobes.lobe`)
+    measured: bool = False
 
     def param(self, name: str) -> Param:
         for p in self.params:

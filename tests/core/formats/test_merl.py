@@ -436,12 +436,11 @@ def test_a_file_opened_by_its_path_is_the_merl_model(ggx_file):
     another error), and both are measured data (the reference of a comparison)."""
     from tuibrdf.core.registry import get_model, registered_name
     from tuibrdf.core.sphere.albedo import albedo_rule
-    from tuibrdf.core.sphere.compare import is_measured
 
     by_path = get_model(str(ggx_file))
     named = get_model("merl")
     assert by_path.name != "merl" and registered_name(by_path) == "merl"
-    assert is_measured(by_path) and is_measured(named)
+    assert by_path.measured and named.measured
     a = albedo_rule(by_path, by_path.resolve({}), [30.0, 75.0])
     b = albedo_rule(named, named.resolve({"file": str(ggx_file)}), [30.0, 75.0])
     for field in ("value", "error", "evaluations"):

@@ -175,3 +175,20 @@ def test_a_broken_plugin_is_a_one_line_error_naming_why(plugin_dist):
 def test_unknown_name_is_still_a_close_match_error(plugin_dist):
     with pytest.raises(ValueError, match="unknown model 'lamberd' \\(did you mean 'lambert'"):
         get_model("lamberd")
+
+
+def test_a_model_file_cannot_name_its_own_albedo_kernel(tmp_path):
+    """``albedo_kernel`` (a ``.bsdf`` file's model has one: its own f to the horizon) would run
+    a function of the file's unguarded, so an exception from it would escape as a traceback:
+    a model file naming one is a one-line error; its albedo integrates its guarded kernel."""
+    f = write(tmp_path, MODEL_HEAD + textwrap.dedent("""\
+        def boom(wi, wo):
+            raise RuntimeError("not guarded")
+        MODEL = Model("m", "M", (Param("kd", "kd", 0.5, 0.0, 1.0),),
+                      lambda wi, wo, kd: np.full(np.broadcast_shapes(wi.shape, wo.shape)[:-1],
+                                                 kd / np.pi), albedo_kernel=boom)
+        """))
+    with pytest.raises(UserFileError) as e:
+        get_model(str(f))
+    assert str(e.value) == (f"{f}: MODEL.albedo_kernel is not for model files: the albedo "
+                            "integrates the kernel")

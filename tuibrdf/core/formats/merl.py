@@ -422,7 +422,7 @@ LOOKUP = Param("lookup", "lookup", "trilinear", kind="choice", choices=LOOKUPS,
                doc="nearest bin (as BRDFRead.cpp) or trilinear in bin coordinates")
 
 MERL = Model(
-    "merl", "MERL measured", (FILE, LOOKUP), _kernel, rgb=True, reciprocal=True,
+    "merl", "MERL measured", (FILE, LOOKUP), _kernel, rgb=True, reciprocal=True, measured=True,
     summary="measured isotropic BRDF (Matusik et al. 2003), 90×90×180 bins in (θh, θd, φd)",
     horizon="the data's value at the clamped last bins; 0 below the horizon",
     notes=("unmeasured (negative) bins are filled from the nearest valid θd bin, else 0",),

@@ -101,6 +101,9 @@ def load_python_model(path: str, name: str) -> Model:
         model.resolve({p.name: p.default for p in model.params})
     except ValueError as e:
         raise UserFileError(f"{path}: the declared defaults are invalid: {e}") from None
+    if model.albedo_kernel is not None:  # it would run unguarded: its errors tracebacks
+        raise UserFileError(f"{path}: MODEL.albedo_kernel is not for model files: the albedo "
+                            "integrates the kernel")
     guarded = _GuardedKernel(path, model.kernel, model.rgb)
     return replace(model, name=name, kernel=guarded, raw_kernel=guarded.values,
                    sampler=_sampler(path, module, model))

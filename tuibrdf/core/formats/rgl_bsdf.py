@@ -626,8 +626,14 @@ def load_model(path: str, name: str) -> Model:
         notes.append(f"'valid' mask: {data.n_invalid} invalid entries (not applied, as "
                      "powitacq and Mitsuba)")
     title = os.path.basename(path) + (f" — {data.description[:40]}" if data.description else "")
+    # The albedo ∫ f cos θo dωo of a file of f·cos θo is the integral of that f·cos θo
+    # itself: it integrates the file's own f, divided by cos θo all the way to the horizon
+    # (floor=False; the albedo's cos θo cancels the 1/cos θo), not the shown f, whose cos θo
+    # is held at cos 89.9° (it would lose the part beyond 89.9°: 7.1e-5 of paper_white's
+    # albedo at θi = 0)
     return Model(
         name, title, (), partial(_kernel, data), rgb=True, reciprocal=False,
+        albedo_kernel=partial(evaluate, data, floor=False), measured=True,
         summary="RGL-EPFL measured material (Dupuy & Jakob 2018), evaluated as powitacq",
         horizon=("cos θo held at cos 89.9° within 0.1° of the horizon, on it too (powitacq: "
                  "0 on it)"),

@@ -20,7 +20,6 @@ give ``(3,)`` per albedo and ``(n, 3)`` per curve.  The incidence is ``(θi, φi
 
 from __future__ import annotations
 
-import sys
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any, NamedTuple
 
@@ -80,12 +79,25 @@ def _resolve(model: str | Model, params: Mapping[str, Any] | None) -> tuple[Mode
     return m, m.resolve(params)
 
 
+def albedo_f(model: Model, values: Mapping[str, Any]) -> Callable[[np.ndarray, np.ndarray],
+                                                                  np.ndarray]:
+    """The f ``(wi, wo) -> f`` the albedo of ``model`` integrates: its kernel, or what it
+    names instead (:attr:`Model.albedo_kernel`: a ``.bsdf`` file's own f to the horizon)."""
+    if model.albedo_kernel is not None:
+        return model.albedo_kernel
+
+    def f(wi, wo):
+        return evaluate_resolved(model, values, wi, wo)
+
+    return f
+
+
 def _integrand(model: Model, values: Mapping[str, Any], wi: np.ndarray,
                wo: np.ndarray) -> np.ndarray:
     """The albedo's integrand ``f(wi, wo)·cos θo`` for many ``wo (n, 3)`` and one ``wi (3,)``
     (the uniform and adaptive mesh rules)."""
     wo = np.asarray(wo, dtype=float)
-    return f_cos(evaluate_resolved(model, values, np.broadcast_to(wi, wo.shape), wo), wo)
+    return f_cos(albedo_f(model, values)(np.broadcast_to(wi, wo.shape), wo), wo)
 
 
 def _scalar(x: np.ndarray) -> float | np.ndarray:
@@ -104,8 +116,8 @@ def albedo_rule(model: Model, values: Mapping[str, Any],
     """The default rule's whole result (:func:`tuibrdf.core.sphere.integrator.integrate`: value,
     error
     estimate, evaluations per incidence) at each incidence, in one batch.  ``hint`` replaces
-    the model's :func:`lobe` and ``kernel(wi, wo)`` its evaluation (the benchmarks and tests
-    count calls, or drop one part of the hint, through them)."""
+    the model's :func:`lobe` and ``kernel(wi, wo)`` its :func:`albedo_f` (the benchmarks and
+    tests count calls, or drop one part of the hint, through them)."""
     thetas = np.atleast_1d(np.asarray(thetas_deg, dtype=float))
     for t in thetas.tolist():
         check_theta_i(t)
@@ -113,21 +125,11 @@ def albedo_rule(model: Model, values: Mapping[str, Any],
     s, c = sincos_deg(np.append(thetas, check_phi_i(phi_i_deg)))
     st, ct = s[:-1], c[:-1]
     sp, cp = np.full(len(thetas), s[-1]), np.full(len(thetas), c[-1])
-    # a .bsdf model exists only once its reader is loaded: the other models' first albedo
-    # (the viewer's first frame) does not import it (4 ms)
-    if hint is None and kernel is None and "tuibrdf.core.formats.rgl_bsdf" in sys.modules:
-        from tuibrdf.core.sphere.measured_albedo import albedo_setup
-
-        measured = albedo_setup(model)  # a .bsdf file: its own f to the horizon
-        if measured is not None:
-            kernel, hint = measured
     hint = lobe(model, values, rtol) if hint is None else hint
-
-    def f(wi, wo):
-        return evaluate_resolved(model, values, wi, wo)
+    kernel = kernel or albedo_f(model, values)
 
     def run(azimuths, sel=slice(None)):
-        return integrator.integrate(kernel or f, hint.frame,
+        return integrator.integrate(kernel, hint.frame,
                                     integrator.cases(st[sel], ct[sel], sp[sel], cp[sel]),
                                     scale=hint.scale, radial_breaks=hint.breaks,
                                     symmetric=hint.symmetric, rtol=rtol, atol=ATOL,
@@ -162,12 +164,12 @@ def albedo_rule_counted(model: Model, values: Mapping[str, Any],
     """:func:`albedo_rule`'s result, its evaluations at the first incidence and the number of
     kernel calls it made (how the benchmarks and tests count the rule's rounds); ``kw`` as
     :func:`albedo_rule` takes them (but ``kernel``)."""
-    calls = 0
+    calls, g = 0, albedo_f(model, values)
 
     def f(wi, wo):
         nonlocal calls
         calls += 1
-        return evaluate_resolved(model, values, wi, wo)
+        return g(wi, wo)
 
     r = albedo_rule(model, values, thetas_deg, phi_i_deg, kernel=f, **kw)
     return r, int(r.evaluations[0]), calls

@@ -34,7 +34,6 @@ from tuibrdf.core.conventions import REC709
 from tuibrdf.core.directions import check_phi_i, check_theta_i, incident, mirror, sincos_deg
 from tuibrdf.core.evaluate import evaluate_resolved
 from tuibrdf.core.params import Model
-from tuibrdf.core.registry import registered_name
 from tuibrdf.core.sphere import integrator
 from tuibrdf.core.sphere.albedo import ATOL, DEFAULT_RTOL, MAX_EVALS, albedo_rule
 from tuibrdf.core.sphere.lobes import Lobe, lobe
@@ -81,14 +80,9 @@ class Numbers:
         return d
 
 
-def is_measured(model: Model) -> bool:
-    """Whether ``model`` is measured data (a MERL or an RGL ``.bsdf`` file)."""
-    return registered_name(model) == "merl" or model.summary.startswith("RGL-EPFL measured")
-
-
 def reference_side(model_a: Model, model_b: Model) -> str:
     """``"a"`` when A is measured and B is not (the data is the reference), else ``"b"``."""
-    return "a" if is_measured(model_a) and not is_measured(model_b) else "b"
+    return "a" if model_a.measured and not model_b.measured else "b"
 
 
 def _columns(model: Model, values: Mapping[str, Any], wi, wo, rgb: bool) -> np.ndarray:
