@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from tests import ROOT
 from tests.rgl_writer import expected, material, write_tensor
 from tuibrdf.core.directions import incident
 from tuibrdf.core.evaluate import evaluate_resolved
@@ -90,3 +91,19 @@ def test_reference_is_converged(theta_i):
     a = reference_albedo(theta_i)
     b = reference_albedo(theta_i, panels=(128, 32))
     assert np.all(np.abs(a - b) < 1e-12 * b)
+
+
+def test_a_bsdf_file_is_measured_data(model):
+    """Its model says so (``Model.measured``): against a model it is the comparison's
+    reference, on either side, and its albedo takes measured data's budget (the rule's first
+    round: an interpolated table is only piecewise smooth), where a model file gets the
+    default's."""
+    from tuibrdf.core.sphere.compare import reference_side
+    from tuibrdf.core.sphere.lobes import MEASURED_MAX_EVALS, lobe
+
+    ggx = get_model("ggx")
+    assert (reference_side(model, ggx), reference_side(ggx, model)) == ("a", "b")
+    assert reference_side(model, model) == "b"  # two measurements: B, as two models
+    assert lobe(model, {}, 1e-5).max_evals == MEASURED_MAX_EVALS
+    minnaert = get_model(str(ROOT / "docs" / "examples" / "minnaert.py"))
+    assert lobe(minnaert, minnaert.resolve({}), 1e-5).max_evals is None
