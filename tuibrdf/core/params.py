@@ -213,7 +213,7 @@ class Model:
     albedo_kernel: Callable[..., Any] | None = None
     #: its values are measurements (a MERL table, an RGL ``.bsdf`` file): a comparison's
     #: reference against a model (:func:`tuibrdf.core.sphere.compare.reference_side`), and
-    #: measured data's albedo budget (:func:`tuibrdf.core.sphere.lobes.lobe`)
+    #: measured data's albedo budget (:func:`tuibrdf.core.sphere.albedo.albedo_rule`)
     measured: bool = False
 
     def param(self, name: str) -> Param:

@@ -30,7 +30,7 @@ from tuibrdf.core.evaluate import evaluate_resolved, f_cos
 from tuibrdf.core.params import Model
 from tuibrdf.core.registry import get_model
 from tuibrdf.core.sphere import integrator
-from tuibrdf.core.sphere.lobes import Lobe, lobe
+from tuibrdf.core.sphere.lobes import MEASURED_MAX_EVALS, Lobe, lobe
 from tuibrdf.core.sphere.mesh import hemisphere, refine_adaptive
 
 #: Uniform level of ``method="uniform"``: 20,641 vertices.
@@ -125,7 +125,10 @@ def albedo_rule(model: Model, values: Mapping[str, Any],
     s, c = sincos_deg(np.append(thetas, check_phi_i(phi_i_deg)))
     st, ct = s[:-1], c[:-1]
     sp, cp = np.full(len(thetas), s[-1]), np.full(len(thetas), c[-1])
-    hint = lobe(model, values, rtol) if hint is None else hint
+    if hint is None:
+        hint = lobe(model, values, rtol)
+        if model.measured:  # measured data's albedo: in effect the rule's first round
+            hint = hint._replace(max_evals=MEASURED_MAX_EVALS)
     kernel = kernel or albedo_f(model, values)
 
     def run(azimuths, sel=slice(None)):

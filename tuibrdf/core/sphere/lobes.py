@@ -384,15 +384,10 @@ LOBE_HINTS: dict[str, Callable[[Mapping[str, Any], float], Lobe]] = {
 #: Any other model: the half-vector frame (a specular lobe at the pole for every θi), graded
 #: down to the narrowest built-in lobe, no symmetry assumed.
 DEFAULT_LOBE = Lobe("half", 1e-3, None, False)
-#: other measured data's (a ``.bsdf`` file: :attr:`Model.measured`): the default, in the
-#: half-vector frame over which the data is tabulated, on measured data's budget
-MEASURED_LOBE = DEFAULT_LOBE._replace(max_evals=MEASURED_MAX_EVALS)
 
 
 def lobe(model: Model, values: Mapping[str, Any], rtol: float) -> Lobe:
     """The integration hint for ``model`` at relative tolerance ``rtol`` (the albedo's, e.g.
     :data:`tuibrdf.core.sphere.albedo.DEFAULT_RTOL`; see :data:`LOBE_HINTS`)."""
     name = registered_name(model)
-    if name in LOBE_HINTS:
-        return LOBE_HINTS[name](values, rtol)
-    return MEASURED_LOBE if model.measured else DEFAULT_LOBE
+    return LOBE_HINTS[name](values, rtol) if name in LOBE_HINTS else DEFAULT_LOBE
