@@ -65,7 +65,7 @@ def test_the_views_looser_table_stays_honest():
     # 1e-5: each entry must still lie within its estimate of the same albedo at 1e-9
     # (whose own estimate is added), and the estimate within the tolerance asked
     from tuibrdf.core.sphere.albedo import albedo_rule
-    from tuibrdf.core.sphere.energy import VIEW_RTOL, theta_of_mu, view_table
+    from tuibrdf.core.sphere.energy import VIEW_RTOL, e_avg_resolved, theta_of_mu, view_table
 
     m = MODELS["ggx"]
     v = m.resolve({"kd": 0.0})
@@ -75,3 +75,8 @@ def test_the_views_looser_table_stays_honest():
         ref = albedo_rule(m, vals, theta_of_mu(t.mu), rtol=1e-9)
         assert np.all(np.abs(t.E[i] - ref.value) <= t.error[i] + ref.error)
         assert np.all(t.error[i] <= VIEW_RTOL * np.abs(t.E[i]) + 1e-13)
+        # E_avg's μ panels at a tolerance in proportion (1e-4, not the CLI's 1e-6): within
+        # its estimate of E_avg at the CLI's tolerances, and that estimate within VIEW_RTOL
+        avg, avg_err = e_avg_resolved(m, vals)
+        assert abs(t.E_avg[i] - avg) <= t.E_avg_error[i] + avg_err
+        assert t.E_avg_error[i] <= VIEW_RTOL * abs(t.E_avg[i])

@@ -29,7 +29,9 @@ from tuibrdf.core.sphere.integrator.rules import WG15, WK15, X15
 MAX_N = 4096
 #: Largest table (parameter values × values of μ).
 MAX_CELLS = 1 << 20
-#: Relative tolerance of E_avg's μ quadrature (its |K − G| per panel); absolute floor below.
+#: Relative tolerance of E_avg's μ quadrature (its |K − G| per panel) when the albedos are
+#: integrated to the albedo's default tolerance (1e-5); in proportion to theirs otherwise (the
+#: viewer's table: 1e-4); absolute floor below.
 AVG_RTOL = 1e-6
 AVG_ATOL = 1e-12
 #: Bisection rounds of E_avg's μ panels at most (2⁶ panels at the finest).
@@ -126,10 +128,10 @@ def check_table(model: Model, name: str, lo: float, hi: float, n: int, mu_n: int
 
 
 def _avg_panels(e_of: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
-                first: tuple[np.ndarray, np.ndarray] | None = None):
-    """``2∫₀¹ E(μ) μ dμ`` and its error by adaptive K15/G7 over μ; ``e_of(mu)`` gives the albedo
-    and its error at the nodes (one batch per round).  ``first``: the albedos at the first
-    round's nodes, if already computed."""
+                first: tuple[np.ndarray, np.ndarray] | None = None, rtol: float = AVG_RTOL):
+    """``2∫₀¹ E(μ) μ dμ`` and its error by adaptive K15/G7 over μ to relative tolerance
+    ``rtol`` per panel; ``e_of(mu)`` gives the albedo and its error at the nodes (one batch
+    per round).  ``first``: the albedos at the first round's nodes, if already computed."""
     lo, hi = np.array([0.0]), np.array([1.0])
     total, err_total = 0.0, 0.0
     for rnd in range(AVG_MAX_ROUNDS + 1):
@@ -152,7 +154,7 @@ def _avg_panels(e_of: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
         q = quad if quad.ndim == 1 else quad.max(axis=-1)
         # refining μ below the albedos' own error gains nothing: that error is the floor
         pr = prop if prop.ndim == 1 else prop.max(axis=-1)
-        tol = np.maximum(AVG_RTOL * np.abs(k if k.ndim == 1 else k.max(axis=-1)),
+        tol = np.maximum(rtol * np.abs(k if k.ndim == 1 else k.max(axis=-1)),
                          np.maximum(pr, AVG_ATOL))
         done = (q <= tol) | (rnd == AVG_MAX_ROUNDS)
         total = total + k[done].sum(axis=0)
@@ -204,7 +206,7 @@ def energy_table(model: Model, params: Mapping[str, Any] | None, name: str, lo: 
             rr = albedo_rule(model, vals, theta_of_mu(m), phi_i, rtol=rtol)
             return np.asarray(rr.value, dtype=float), np.asarray(rr.error, dtype=float)
 
-        a, da = _avg_panels(e_of, (e[mu_n:], de[mu_n:]))
+        a, da = _avg_panels(e_of, (e[mu_n:], de[mu_n:]), AVG_RTOL * (rtol / DEFAULT_RTOL))
         avgs.append(a)
         avg_errs.append(da)
         if progress is not None:
@@ -221,9 +223,11 @@ def energy_table(model: Model, params: Mapping[str, Any] | None, name: str, lo: 
 VIEW_N, VIEW_MU_N = 12, 16
 #: and each of its albedos' relative tolerance: blocks of colour and a verdict printed with its
 #: error (the estimate is as honest at any tolerance), recomputed at every step of another
-#: parameter.  Against the albedo's 1e-5, CPU ms per table: gltf over metallic 289 → 150,
-#: phong over n 275 → 197, cook-torrance over m 1333 → 970, ggx over α 1201 → 1082 (sharp
-#: lobes: E_avg's rounds), with errors up to 1.1e-4; `tuibrdf energy` keeps 1e-5
+#: parameter; E_avg's μ panels follow it (1e-4, :data:`AVG_RTOL`).  Against the albedo's
+#: 1e-5 and E_avg's 1e-6, CPU ms per table: gltf over metallic 289 → 161, phong over n 275 →
+#: 162, cook-torrance over m 1333 → 232, ggx over α 1201 → 241 (sharp lobes had taken up to 7
+#: rounds of E_avg's μ panels a row at 1e-6), with errors up to 1.1e-4 (E) and 3e-4 (E_avg,
+#: relative); `tuibrdf energy` keeps 1e-5 and 1e-6
 VIEW_RTOL = 1e-3
 _VIEW_CACHE: dict[tuple, tuple[Model, EnergyTable]] = {}
 _VIEW_CACHE_SIZE = 8
