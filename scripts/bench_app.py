@@ -48,6 +48,7 @@ import argparse
 import contextlib
 import fcntl
 import glob
+import math
 import os
 import pty
 import select
@@ -274,8 +275,14 @@ def latency(w: int, h: int, color: str, reps: int, root: str | Path = ROOT,
         # "-" from Kd = 0.2 in steps of 0.01 and → from θi = 0°: a material or an incidence
         # never seen before at every key (no albedo from the cache); then → and + in turn
         # (each key another than the one before, still never seen before)
+        # (a model without parameters, a measured file: "-" and "+" change nothing)
+        from tuibrdf.core.registry import get_model
+
+        stepped = bool(get_model(model).params)
         for name, seq in (("param", ("minus",)), ("theta", ("right",)),
                           ("mixed", ("right", "plus")), ("model", ("m",))):
+            if not stepped and name in ("param", "mixed"):
+                continue
             times, sizes = [], []
             settled = []
             ratios = []
@@ -303,9 +310,9 @@ def latency(w: int, h: int, color: str, reps: int, root: str | Path = ROOT,
 
 
 def catch_up(w: int, h: int, color: str, rate: float = 1e6, hold_s: float = 2.0,
-             root: str | Path = ROOT) -> float:
+             root: str | Path = ROOT, model: str = "phong") -> float:
     """Seconds the screen keeps changing after a held → is released, reader at ``rate`` B/s."""
-    term = Term(w, h, color, ["phong", "--theta-i", "0"], root=root)
+    term = Term(w, h, color, [model, "--theta-i", "0"], root=root)
     try:
         term.until("sr⁻¹".encode())
         term.drain()
@@ -569,7 +576,9 @@ def run(args: argparse.Namespace) -> list[str]:
     for w, h in sizes:
         for color in colors:
             r = latency(w, h, color, args.reps, args.root, args.model)
-            cu = float("nan") if args.no_catch_up else catch_up(w, h, color, root=args.root)
+            cu = float("nan") if args.no_catch_up else catch_up(w, h, color, root=args.root,
+                                                                 model=args.model)
+            r |= {k: (math.nan,) * 7 for k in kinds if k not in r}  # (no parameter to step)
             ms = [f"{r[k][0] * 1e3:.0f} / {r[k][1] * 1e3:.0f}" for k in kinds]
             done = [f"{r[k][3] * 1e3:.0f} / {r[k][4] * 1e3:.0f}" for k in kinds]
             least = r["theta"][5]
