@@ -1,9 +1,12 @@
 """How long ``tuibrdf energy`` takes: the table E(μ, p) with E_avg of a few models, in process
 (:func:`tuibrdf.core.sphere.energy.energy_table`), repeated.
 
-    python scripts/bench_energy.py [--runs 3] [--n 32] [--mu-n 32] [--write-docs]
+    python scripts/bench_energy.py [--runs 3] [--n 32] [--mu-n 32] [--view] [--write-docs]
 
-Prints the median and the minimum per table and the largest error estimate in it;
+Prints the median and the minimum per table and the largest error estimate in it.  ``--view``:
+the viewer's energy view instead, its table over the parameter's whole range (12 × 16, each
+albedo to 1e-3; :func:`tuibrdf.core.sphere.energy.view_table`), which a step of another
+parameter computes again, CPU ms (section ``bench_energy-view``);
 ``--write-docs`` also writes the table into docs/benchmarks.md (scripts/benchdoc.py: its own
 section, with the command, the machine and the date).
 """
@@ -39,10 +42,13 @@ def main() -> int:
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--n", type=int, default=32)
     ap.add_argument("--mu-n", type=int, default=32)
+    ap.add_argument("--view", action="store_true", help="the viewer's energy view's table")
     ap.add_argument("--write-docs", action="store_true",
                     help="also write the table into docs/benchmarks.md (its own section)")
     a = ap.parse_args()
     started = machine()
+    if a.view:
+        return view(a, started)
     lines = [f"`tuibrdf energy` tables of {a.n} parameter values × {a.mu_n} values of μ, "
              f"E_avg included, {a.runs} runs each:", "",
              "| model | parameter | grid | median s | min s | error bound |",
@@ -60,6 +66,38 @@ def main() -> int:
     print("\n".join(lines))
     if a.write_docs:
         doc = write_section("bench_energy", "\n".join(lines), command_line(),
+                            machine_line=started)
+        print(f"written into {doc}")
+    return 0
+
+
+def view(a, started: str) -> int:
+    """The ``--view`` table (module docstring)."""
+    from tuibrdf.core.registry import get_model
+    from tuibrdf.core.sphere import energy
+
+    lines = [f"The energy view's table (E over 12 parameter values × 16 values of μ, and each "
+             f"row's E_avg) over the parameter's whole range, the other parameters as in the "
+             f"`tuibrdf energy` table above; CPU ms, {a.runs} runs each:", "",
+             "| model | parameter | median ms | min ms | largest error of E | of E_avg, relative |",
+             "|---|---|---|---|---|---|"]
+    for name, params, p, _, log in CASES:
+        if log:  # (the view takes its own grid: the linear case is the same table)
+            continue
+        model = get_model(name)
+        values = model.resolve(params)
+        times = []
+        for _ in range(a.runs):
+            energy._VIEW_CACHE.clear()  # (the view keeps its last tables)
+            t0 = time.process_time()
+            t = energy.view_table(model, values, model.param(p))
+            times.append(time.process_time() - t0)
+        rel = float((t.E_avg_error / abs(t.E_avg).clip(1e-300)).max())
+        lines.append(f"| {name} | {p} | {statistics.median(times) * 1e3:.0f} | "
+                     f"{min(times) * 1e3:.0f} | {t.error_bound:.0e} | {rel:.0e} |")
+    print("\n".join(lines))
+    if a.write_docs:
+        doc = write_section("bench_energy-view", "\n".join(lines), command_line(),
                             machine_line=started)
         print(f"written into {doc}")
     return 0
