@@ -141,13 +141,13 @@ def evaluate(
     return evaluate_resolved(m, values, wi, wo)
 
 
-#: :func:`evaluate` takes large inputs about this many direction pairs at a time (along their first
-#: axis), so that each block's check, the kernel's temporaries and its values stay in the
-#: CPU's cache (2¹⁶ pairs: 3 MiB of directions): the inputs are read from memory once, not
-#: once by the check and again by each step of the kernel.  On 10⁶ pairs, ggx took 98 ms in
-#: one piece against 79 ms for its kernel alone, and 60 ms in blocks (docs/benchmarks.md,
-#: bench_evaluate).  Each step of a built-in kernel is elementwise: the same bits either way
-#: (tested)
+#: :func:`evaluate` takes large inputs about this many direction pairs at a time (along
+#: their first axis), so that each block's check, the kernel's temporaries and its values stay
+#: in the CPU's cache (2¹⁶ pairs: 3 MiB of directions): the inputs are read from memory once,
+#: not once by the check and again by each step of the kernel.  On 10⁶ pairs ggx's took 107
+#: ms in one piece and 56 ms in blocks, against 98 ms for its kernel alone in one piece
+#: (docs/benchmarks.md, bench_evaluate).  Each step of a built-in kernel is elementwise: the
+#: same bits either way (tested)
 BLOCK = 1 << 16
 
 
