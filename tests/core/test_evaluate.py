@@ -156,6 +156,9 @@ def test_large_inputs_in_blocks_give_the_values_of_one_piece(model):
                  (wi * 3.0, wo), (one, wo * 0.5)]:
         np.testing.assert_array_equal(evaluate(model, {}, a, b), _in_one_piece(model, a, b),
                                       err_msg=f"{model.name} {a.shape} {b.shape}")
+    # empty along a later axis (no pair in any block): the empty result, as in one piece
+    empty = evaluate(model, {}, np.zeros((n, 0, 3)) + [0.0, 0.0, 1.0], one)
+    assert empty.shape == _in_one_piece(model, np.zeros((n, 0, 3)), one).shape
     bad = wo.copy()
     bad[n - 2, 1] = np.nan
     with pytest.raises(ValueError, match=rf"wo\[{n - 2}\] contains NaN"):

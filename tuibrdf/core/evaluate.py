@@ -131,8 +131,9 @@ def evaluate(
     values = m.resolve(params)
     wi, wo = _as_array(wi, "wi"), _as_array(wo, "wo")
     shape = np.broadcast_shapes(wi.shape, wo.shape)
-    if m.kernel in BROADCAST_KERNELS and len(shape) > 1:
-        blocks = shape[0] // max(1, BLOCK // math.prod(shape[1:-1]))
+    inner = math.prod(shape[1:-1])  # pairs per row of the first axis (0: an empty input)
+    if m.kernel in BROADCAST_KERNELS and len(shape) > 1 and inner:
+        blocks = shape[0] // max(1, BLOCK // inner)
         if blocks >= 2:
             out = _in_blocks(m, values, wi, wo, shape, blocks)
             if out is not None:
