@@ -63,10 +63,14 @@ def main() -> int:
             bound = table.error_bound
         lines.append(f"| {name} | {p} {lo:g}…{hi:g} | {'geometric' if log else 'linear'} | "
                      f"{statistics.median(times):.2f} | {min(times):.2f} | {bound:.0e} |")
+    return report(lines, "bench_energy", a.write_docs, started)
+
+
+def report(lines: list[str], section: str, write: bool, started: str) -> int:
+    """Print the table and, with ``--write-docs``, write it as ``section`` of the docs."""
     print("\n".join(lines))
-    if a.write_docs:
-        doc = write_section("bench_energy", "\n".join(lines), command_line(),
-                            machine_line=started)
+    if write:
+        doc = write_section(section, "\n".join(lines), command_line(), machine_line=started)
         print(f"written into {doc}")
     return 0
 
@@ -95,12 +99,7 @@ def view(a, started: str) -> int:
         rel = float((t.E_avg_error / abs(t.E_avg).clip(1e-300)).max())
         lines.append(f"| {name} | {p} | {statistics.median(times) * 1e3:.0f} | "
                      f"{min(times) * 1e3:.0f} | {t.error_bound:.0e} | {rel:.0e} |")
-    print("\n".join(lines))
-    if a.write_docs:
-        doc = write_section("bench_energy-view", "\n".join(lines), command_line(),
-                            machine_line=started)
-        print(f"written into {doc}")
-    return 0
+    return report(lines, "bench_energy-view", a.write_docs, started)
 
 
 if __name__ == "__main__":
