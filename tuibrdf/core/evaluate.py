@@ -162,17 +162,20 @@ def _in_blocks(m: Model, values: Mapping[str, Any], wi: np.ndarray, wo: np.ndarr
     try:  # an input broadcast along the first axis is checked once, not per block
         wi, wo = (as_directions(w, n) if k else w for w, n, k in zip((wi, wo), ("wi", "wo"),
                                                                        whole, strict=True))
-        out = None
-        for j in range(blocks):
-            rows = slice(j * shape[0] // blocks, (j + 1) * shape[0] // blocks)
-            a, b = (w if k else as_directions(w[rows], n)
-                    for w, n, k in zip((wi, wo), ("wi", "wo"), whole, strict=True))
-            f = evaluate_resolved(m, values, *np.broadcast_arrays(a, b))
-            if out is None:
-                out = np.empty(shape[:1] + f.shape[1:], dtype=f.dtype)
-            out[rows] = f
     except ValueError:
         return None
+    out = None
+    for j in range(blocks):
+        rows = slice(j * shape[0] // blocks, (j + 1) * shape[0] // blocks)
+        try:  # (only the checks: what the kernel raises is the caller's)
+            a, b = (w if k else as_directions(w[rows], n)
+                    for w, n, k in zip((wi, wo), ("wi", "wo"), whole, strict=True))
+        except ValueError:
+            return None
+        f = evaluate_resolved(m, values, *np.broadcast_arrays(a, b))
+        if out is None:
+            out = np.empty(shape[:1] + f.shape[1:], dtype=f.dtype)
+        out[rows] = f
     return out
 
 
