@@ -166,3 +166,37 @@ async def test_a_narrow_panel_cuts_its_rows_with_an_ellipsis_at_its_width():
                 assert row == text[:width - 1] + "…"
             else:
                 assert row == text.ljust(width)
+
+
+async def test_a_model_of_another_panel_height_draws_its_sections_once_at_their_new_size():
+    # below BOTH_PANELS_H the panel's height follows the model's rows: the new model's
+    # sections are drawn once the layout has given them their new size, not first at the
+    # old one and again on the resize that follows
+    from tuibrdf.app import frames
+    from tuibrdf.app.widgets import drawn_size
+
+    app = BrdfApp(ViewerState(sides=[Side.of("lambert")]), sync=True)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        before = app.query_one("#incidence").size.height
+        drawn = []
+        pane = frames.panes.pane
+
+        def spy(view, res, k, w, h, look):
+            drawn.append((view, w, h))
+            return pane(view, res, k, w, h, look)
+
+        frames.panes.pane = spy
+        try:
+            await pilot.press("m")
+            await pilot.pause()
+            await pilot.pause()
+        finally:
+            frames.panes.pane = pane
+        assert app.state.side.material.name != "lambert"
+        pics = {p: app.query_one(f"#{p}") for p in ("incidence", "perpendicular")}
+        assert pics["incidence"].size.height != before  # the panel's height did change
+        for view, w, h in drawn:
+            if view in pics:
+                assert (w, h) == drawn_size(*pics[view].size), (view, w, h)
+        assert sorted(v for v, _, _ in drawn if v in pics) == sorted(pics)  # each once

@@ -311,6 +311,10 @@ class DrawnRows(Rows):
     """Rows a widget draws from its own content (:meth:`_draw`), its height following them:
     the parameter panel and the status line."""
 
+    #: its last rows asked for another height: the screen is laid out again before the next
+    #: paint, and the panes below move (until then their sizes are the old ones)
+    moving = False
+
     def _draw(self) -> None:
         raise NotImplementedError
 
@@ -321,7 +325,9 @@ class DrawnRows(Rows):
         below them blank: :meth:`Rows.render_line`)."""
         floor = self.styles.min_height  # a panel as tall as the longest model's (layout.py)
         floor = int(floor.value) if floor is not None and floor.unit == Unit.CELLS else 0
-        if max(len(lines) + self.styles.gutter.height, floor) != self.outer_size.height:
+        self.moving = max(len(lines) + self.styles.gutter.height, floor) != \
+            self.outer_size.height
+        if self.moving:
             self._strips = [Strip(line, width) for line in lines]
             self._lines = lines
             self.refresh(layout=True)
@@ -332,6 +338,7 @@ class DrawnRows(Rows):
 
     @survives
     def on_resize(self, event) -> None:
+        self.moving = False
         if self._strips and event.size.width == self._strips[0].cell_length:
             return  # a new height for rows already drawn at this width
         self._draw()
