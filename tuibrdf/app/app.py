@@ -227,7 +227,7 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
                 self._relayout = False
                 arrange(self)
                 if self._panels_move():  # drawn at the panes' sizes after the layout, once
-                    self.call_after_refresh(self._after_layout, change)
+                    self.call_after_refresh(self._update, change)
                     return
             self.refresh_frame()
         except NoMatches:  # keys still queued while the app closes: no widgets left
@@ -236,20 +236,12 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
     def _panels_move(self) -> bool:
         """Draw the panels; whether one of them takes another height (a model with another
         number of parameters, below :data:`layout.BOTH_PANELS_H`), which moves the panes: a
-        frame drawn before the layout would be drawn again at their new sizes."""
+        frame drawn before the layout would be drawn again at their new sizes, so
+        :meth:`_update` draws it after the layout (unless a newer change, a pane's resize say,
+        has come by then)."""
         self._panels()
         return any(self.one(p).moving for p in ("panel-a", "panel-b")
                    if self.one(p).display)
-
-    @survives
-    def _after_layout(self, change: int) -> None:
-        """The frame, once the layout :meth:`_panels_move` asked for has given the panes their
-        sizes (a resize of a pane since then has asked for it already: a newer change)."""
-        if change == self._changes:
-            try:
-                self.refresh_frame()
-            except NoMatches:
-                pass
 
     @survives
     async def run_action(self, action, default_namespace=None) -> bool:

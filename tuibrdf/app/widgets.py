@@ -275,6 +275,13 @@ class Picture(Rows):
             scrolled(self.pane, steps)
 
 
+def min_cells(widget: Widget) -> int:
+    """``widget``'s min-height in cells (a panel as tall as the longest model's, layout.py);
+    0 when it has none, or one in other units."""
+    floor = widget.styles.min_height
+    return int(floor.value) if floor is not None and floor.unit == Unit.CELLS else 0
+
+
 class QuietStatic(Static):
     """A ``Static`` updated only when its text changes, and re-laid out (which costs a layout
     and compositing of the whole screen) only when its height may change: a new number of
@@ -290,9 +297,7 @@ class QuietStatic(Static):
             rows = text.plain.count("\n") + 1
         else:
             rows = len(text.wrap(self.app.console, width))  # Rich's own word wrap
-        floor = self.styles.min_height
-        floor = int(floor.value) if floor is not None and floor.unit == Unit.CELLS else 0
-        return max(rows + self.styles.gutter.height, floor), width
+        return max(rows + self.styles.gutter.height, min_cells(self)), width
 
     def show_text(self, text: Text) -> None:
         key = (text.plain, tuple(text.spans), str(text.style))  # Text == ignores the style
@@ -312,7 +317,8 @@ class DrawnRows(Rows):
     the parameter panel and the status line."""
 
     #: its last rows asked for another height: the screen is laid out again before the next
-    #: paint, and the panes below move (until then their sizes are the old ones)
+    #: paint, and the panes below move (until then their sizes are the old ones); False until
+    #: it has drawn rows (it asked for nothing)
     moving = False
 
     def _draw(self) -> None:
@@ -323,9 +329,7 @@ class DrawnRows(Rows):
         height of its own other than the widget's (its rows and gutter, at least its
         min-height) lays the screen out again, these rows drawn in the same paint (the rows
         below them blank: :meth:`Rows.render_line`)."""
-        floor = self.styles.min_height  # a panel as tall as the longest model's (layout.py)
-        floor = int(floor.value) if floor is not None and floor.unit == Unit.CELLS else 0
-        self.moving = max(len(lines) + self.styles.gutter.height, floor) != \
+        self.moving = max(len(lines) + self.styles.gutter.height, min_cells(self)) != \
             self.outer_size.height
         if self.moving:
             self._strips = [Strip(line, width) for line in lines]
