@@ -1,6 +1,6 @@
 """The viewer's start-up: spawn → its first frame (the map's colour bar unit ``sr⁻¹``) and →
-its complete screen (the last byte before the terminal stays quiet: the footer's keys come
-after the picture) in a pseudo-terminal, as ``scripts/bench_app.py`` measures it, repeated.
+its complete screen (the last byte before the terminal stays quiet: whatever comes after
+the picture) in a pseudo-terminal, as ``scripts/bench_app.py`` measures it, repeated.
 
     python scripts/bench_startup.py [--runs 12] [--size 160x48] [--against REV] [--write-docs]
 
@@ -43,8 +43,7 @@ Minimal().run()
 
 def timed(term: Term, marker: bytes) -> tuple[float, float]:
     """Seconds from the spawn to ``marker`` and to the complete screen: the last byte
-    before :data:`bench_app.IDLE_S` of quiet (the footer's keys, say, come after the
-    picture)."""
+    before :data:`bench_app.IDLE_S` of quiet (what comes after the picture)."""
     try:
         seen = term.until(marker)
         return seen - term.t0, max(seen, term.drain()) - term.t0

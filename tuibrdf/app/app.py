@@ -14,7 +14,7 @@ import numpy as np
 from textual.app import App, ComposeResult, SystemCommand
 from textual.containers import Container, Horizontal, Vertical
 from textual.css.query import NoMatches
-from textual.widgets import Footer, Static
+from textual.widgets import Static
 
 from tuibrdf.app import keys
 from tuibrdf.app.figures import FigureWriter
@@ -31,7 +31,7 @@ from tuibrdf.app.textual_internals import (
     coalesce_resize_signals,
     guard_input_parsing,
 )
-from tuibrdf.app.widgets import ParamPanel, Picture, QuietStatic, StatusLine
+from tuibrdf.app.widgets import KeyBar, ParamPanel, Picture, QuietStatic, StatusLine
 from tuibrdf.core.conventions import fmt_number
 from tuibrdf.core.directions import from_degrees
 from tuibrdf.core.views.frame import FrameRequest, FrameResult, section_directions
@@ -153,7 +153,7 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
                     yield Picture("perpendicular", id="perpendicular")
             yield StatusLine(id="status")
         yield QuietStatic(id="toosmall")
-        yield Footer(compact=True, show_command_palette=False)
+        yield KeyBar()
 
     @survives
     def on_mount(self) -> None:

@@ -134,6 +134,20 @@ BINDINGS = [Binding(k.keys, k.action, k.short, show=k.footer, key_display=k.disp
             for k in KEYS]
 
 
+def footer_items() -> list[tuple[tuple[Key, ...], str]]:
+    """What the footer shows, in the table's order: the keys of a group together with the
+    group's name (``←→ θi``), every other footer key with its own label."""
+    items: list[tuple[tuple[Key, ...], str]] = []
+    for k in KEYS:
+        if not k.footer:
+            continue
+        if k.group and items and items[-1][1] == k.group:
+            items[-1] = (items[-1][0] + (k,), k.group)
+        else:
+            items.append(((k,), k.group or k.short))
+    return items
+
+
 #: the help screen's key column
 KEY_COLUMN = 12
 

@@ -49,7 +49,6 @@ Picture { border-title-color: $text-muted; }
 #toosmall { width: 1fr; height: 1fr; content-align: center middle; display: none; }
 Screen.small #toosmall { display: block; }
 Screen.small #root { display: none; }
-Footer.-compact FooterLabel { margin-right: 1; }
 """
 
 

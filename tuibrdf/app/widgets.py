@@ -11,6 +11,7 @@ from rich.console import RenderableType
 from rich.segment import Segment
 from rich.style import Style
 from rich.text import Text
+from textual import events
 from textual.css.scalar import Unit
 from textual.filter import ANSIToTruecolor
 from textual.geometry import Region
@@ -20,6 +21,7 @@ from textual.widget import Widget
 from textual.widgets import Static
 
 from tuibrdf.app.guard import survives
+from tuibrdf.app.keys import footer_items
 from tuibrdf.app.textual_internals import styles_key
 from tuibrdf.core.conventions import fmt_number
 from tuibrdf.render.lines import BLANK, fit_row, pane_lines, render_rows
@@ -566,3 +568,79 @@ class StatusLine(DrawnRows):
         self._text = self._fitted(width)
         if width >= 1:  # (else not laid out yet: drawn by on_resize)
             self._place(self._rows(width), width)
+
+
+class KeyBar(Widget):
+    """The footer: the key table's footer keys (:func:`~tuibrdf.app.keys.footer_items`) on one
+    line, as many whole ones as fit; a click on a key presses it.
+
+    Not Textual's ``Footer``: that one composes a widget per key only after the screen's first
+    refresh, so its keys came about 90 ms after the first picture, and the screen was complete
+    at 650 ms against 561 without it (``python scripts/bench_startup.py``); this one is drawn
+    with the first frame, from the table, in one line of text."""
+
+    ALLOW_SELECT = False
+    COMPONENT_CLASSES = {"keybar--key", "keybar--label"}
+    DEFAULT_CSS = """
+    KeyBar { dock: bottom; height: 1; background: $footer-background;
+             color: $footer-foreground; pointer: pointer; }
+    KeyBar > .keybar--key { color: $footer-key-foreground; background: $footer-key-background;
+                            text-style: bold; }
+    KeyBar > .keybar--label { color: $footer-description-foreground;
+                              background: $footer-description-background; }
+    """
+    #: the gap between two items
+    GAP = "  "
+
+    def __init__(self, **kw) -> None:
+        super().__init__(**kw)
+        self._items = footer_items()
+        #: what a click at each cell presses: ``(x0, x1, key name)``, from the last render
+        self._targets: list[tuple[int, int, str]] = []
+
+    def render(self) -> Text:
+        key_style = self.get_component_rich_style("keybar--key")
+        label_style = self.get_component_rich_style("keybar--label")
+        text, targets, width = Text(" "), [], self.size.width
+        for keys, label in self._items:
+            if not all(self._acts(k.action) for k in keys):
+                continue  # (a modal screen is open: the viewer's keys wait)
+            item = sum(cell_len(k.shown) for k in keys) + 1 + cell_len(label)
+            gap = self.GAP if len(text) > 1 else ""
+            if text.cell_len + len(gap) + item > width:
+                break  # whole items only: a key cut mid-word reads as another key
+            text.append(gap)
+            start = text.cell_len
+            for k in keys:
+                x = text.cell_len
+                text.append(k.shown, key_style)
+                targets.append((x, text.cell_len, k.keys.split(",")[0]))
+            text.append(" " + label, label_style)
+            if len(keys) == 1:  # a single key's label presses it too
+                targets[-1] = (start, text.cell_len, targets[-1][2])
+        self._targets = targets
+        return text
+
+    def _acts(self, action: str) -> bool:
+        """Whether the app acts on ``action`` now (``App.check_action``)."""
+        name, _, _ = action.partition("(")
+        return self.app.check_action(name, ()) is not False
+
+    @survives
+    def on_mount(self) -> None:
+        # drawn again when the screen's bindings change (a modal screen opens or closes)
+        self.screen.bindings_updated_signal.subscribe(self, self._bindings_changed)
+
+    @survives
+    def on_unmount(self) -> None:
+        self.screen.bindings_updated_signal.unsubscribe(self)
+
+    def _bindings_changed(self, screen) -> None:
+        self.refresh()
+
+    @survives
+    def on_mouse_down(self, event: events.MouseDown) -> None:
+        for x0, x1, key in self._targets:
+            if x0 <= event.x < x1:
+                self.app.simulate_key(key)
+                return
