@@ -84,6 +84,10 @@ async def test_a_click_on_a_footer_key_presses_it():
         await pilot.click(KeyBar, offset=(FOOTER.index("model"), 0))  # a single key's label
         await pilot.pause()
         assert app.state.side.model != "phong"
+        await pilot.hover(KeyBar, offset=(FOOTER.index("compare"), 0))  # its help line
+        assert app.query_one(KeyBar).tooltip == "compare two models (B starts as A)"
+        await pilot.hover(KeyBar, offset=(FOOTER.index("θi"), 0))
+        assert app.query_one(KeyBar).tooltip is None
         await pilot.click(KeyBar, offset=(FOOTER.index("? help"), 0))
         await pilot.pause()
         assert app.screen.query("VerticalScroll")

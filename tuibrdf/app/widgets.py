@@ -21,7 +21,7 @@ from textual.widget import Widget
 from textual.widgets import Static
 
 from tuibrdf.app.guard import survives
-from tuibrdf.app.keys import footer_items
+from tuibrdf.app.keys import Key, footer_items
 from tuibrdf.app.textual_internals import styles_key
 from tuibrdf.core.conventions import fmt_number
 from tuibrdf.render.lines import BLANK, fit_row, pane_lines, render_rows
@@ -595,8 +595,8 @@ class KeyBar(Widget):
     def __init__(self, **kw) -> None:
         super().__init__(**kw)
         self._items = footer_items()
-        #: what a click at each cell presses: ``(x0, x1, key name)``, from the last render
-        self._targets: list[tuple[int, int, str]] = []
+        #: the key at each cell: ``(x0, x1, key)``, from the last render
+        self._targets: list[tuple[int, int, Key]] = []
 
     def render(self) -> Text:
         key_style = self.get_component_rich_style("keybar--key")
@@ -614,7 +614,7 @@ class KeyBar(Widget):
             for k in keys:
                 x = text.cell_len
                 text.append(k.shown, key_style)
-                targets.append((x, text.cell_len, k.keys.split(",")[0]))
+                targets.append((x, text.cell_len, k))
             text.append(" " + label, label_style)
             if len(keys) == 1:  # a single key's label presses it too
                 targets[-1] = (start, text.cell_len, targets[-1][2])
@@ -638,9 +638,18 @@ class KeyBar(Widget):
     def _bindings_changed(self, screen) -> None:
         self.refresh()
 
+    def _at(self, x: int) -> Key | None:
+        return next((k for x0, x1, k in self._targets if x0 <= x < x1), None)
+
     @survives
     def on_mouse_down(self, event: events.MouseDown) -> None:
-        for x0, x1, key in self._targets:
-            if x0 <= event.x < x1:
-                self.app.simulate_key(key)
-                return
+        k = self._at(event.x)
+        if k is not None:
+            self.app.simulate_key(k.keys.split(",")[0])
+
+    @survives
+    def on_mouse_move(self, event: events.MouseMove) -> None:
+        k = self._at(event.x)  # the key's help line (the help screen's) as its tooltip
+        tip = None if k is None else k.help
+        if tip != self.tooltip:
+            self.tooltip = tip
