@@ -35,8 +35,11 @@ CASES = [
 
 
 def main() -> int:
+    from tuibrdf.cli.memory import keep_freed_memory
     from tuibrdf.core.registry import get_model
     from tuibrdf.core.sphere.energy import energy_table
+
+    keep_freed_memory()  # as `tuibrdf energy` and the viewer run (tuibrdf/cli/memory.py)
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=3)

@@ -15,6 +15,7 @@ from collections.abc import Collection
 from tuibrdf import __version__
 from tuibrdf.cli import text
 from tuibrdf.cli.common import Parser, UsageError, isatty, unknown
+from tuibrdf.cli.memory import keep_freed_memory
 
 #: (name, module, one-line help) — the order of ``tuibrdf --help``; the module is
 #: ``tuibrdf.cli.<module>``, imported when its command runs (:func:`build_parser`)
@@ -111,6 +112,7 @@ def _main(argv: list[str] | None) -> int:
         parser.print_help()
         sys.stdout.flush()
         return 0
+    keep_freed_memory()  # (cli/memory.py: numpy's temporaries reuse their pages)
     try:
         code = args.run(args)
         sys.stdout.flush()
