@@ -8,6 +8,7 @@ terminal model written here (cursor moves, SGR, text).  No timings.
 
 from __future__ import annotations
 
+import asyncio
 import re
 import threading
 import unicodedata
@@ -231,6 +232,36 @@ async def test_a_slow_frame_lets_the_status_line_go_ahead(monkeypatch):
         release.set()
         assert await wait_for(pilot, lambda: app.frame.request.theta_i == 31.0
                               and app.frame.complete and "a(θi)=" in status())
+
+
+async def test_the_status_line_follows_a_held_key_while_the_frames_are_slow(monkeypatch):
+    # every frame but θi 30°'s is held (a user's slow kernel, an energy table of a .brdf):
+    # keys 10 ms apart, closer than PENDING_S, for 200 ms; the status line shows a newer θi
+    # while they come (the timer was put off by every key: θi 30° until the last)
+    core_frame.clear_caches()
+    monkeypatch.setattr(frames, "INLINE_S", 0.0)
+    release = threading.Event()
+    real = core_frame.compute_frame
+
+    def compute(req, **kw):
+        if req.theta_i != 30.0 and threading.current_thread() is not threading.main_thread():
+            release.wait(10.0)
+        return real(req, **kw)
+
+    monkeypatch.setattr(core_frame, "compute_frame", compute)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
+    async with app.run_test(size=(120, 36)) as pilot:
+        assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        status = lambda: str(app.query_one("#status").render())  # noqa: E731
+        seen = []
+        for _ in range(20):  # (pilot.press waits for the screen: a held key does not)
+            app.simulate_key("right")
+            await asyncio.sleep(0.01)
+            seen.append(status())
+        release.set()
+        assert any("θi 30°" not in s for s in seen[:-1]), seen[-3:]
+        assert await wait_for(pilot, lambda: app.frame.request.theta_i == 50.0
+                              and app.frame.complete)
 
 
 async def test_a_held_frames_pictures_go_ahead_of_a_slow_albedo(monkeypatch):

@@ -18,7 +18,8 @@ own.  The job posts the fast part (maps, sections, peak) and the slow part (albe
 curve) in one message when the slow part of its kind was quick lately (:data:`HOLD_S`; each
 message is a paint, and a second paint waits for Textual's next 1/60 s tick), else each as
 soon as it has it (:class:`FrameComputed`); a frame not there after :data:`PENDING_S` lets
-the panels and the status line go ahead of it.
+the panels and the status line go ahead of it (counted from the first key it waits for, so
+they follow a held key).
 So the kernel of a model read from a user's file (``.py``, ``.brdf``, ``.bsdf``) or from
 measured data (MERL) never runs on the event loop (in sync mode, for tests, every frame
 does).  A user's kernel may never return: a frame still coming after :data:`SLOW_S` says
@@ -173,11 +174,11 @@ class FrameDelivery:
             self.one(f"panel-{'ab'[i]}").show(self.state, i)
 
     @survives
-    def _pending(self, req: FrameRequest) -> None:
-        """The frame of ``req`` is slow to come: show the panels and the status line (its
-        numbers "…") now rather than with it."""
+    def _pending(self) -> None:
+        """The current request's frame is slow to come: show the panels and the status line
+        (its numbers "…") now rather than with it."""
         self._pending_timer = None
-        if req == self.request and (self.frame is None or self.frame.request != req):
+        if self.frame is None or self.frame.request != self.request:
             self._panels()
             self._status()
 
@@ -263,9 +264,9 @@ class FrameDelivery:
             return
         if done is not None:  # its fast part: shown now, the rest from the worker
             self.show_frame(done)
-        else:
-            self._stop_pending()
-            self._pending_timer = self.set_timer(PENDING_S, partial(self._pending, req))
+        elif self._pending_timer is None:  # (a key held meanwhile does not put it off: the
+            # panels and status line then follow the keys every PENDING_S)
+            self._pending_timer = self.set_timer(PENDING_S, self._pending)
         if not on_its_way:
             if busy and not self._worker.stuck():  # wait for it: its pictures still show
                 self._worker.superseded.set()
