@@ -575,9 +575,9 @@ class KeyBar(Widget):
     line, as many whole ones as fit; a click on a key presses it.
 
     Not Textual's ``Footer``: that one composes a widget per key only after the screen's first
-    refresh, so its keys came about 90 ms after the first picture, and the screen was complete
-    at 650 ms against 561 without it (``python scripts/bench_startup.py``); this one is drawn
-    with the first frame, from the table, in one line of text."""
+    refresh, so its keys came about 90 ms after the first picture; this one is drawn with the
+    first frame, from the table, as one line of text (start-up to the complete screen 610 →
+    513 ms, ``python scripts/bench_startup.py``)."""
 
     ALLOW_SELECT = False
     COMPONENT_CLASSES = {"keybar--key", "keybar--label"}
