@@ -200,15 +200,16 @@ def test_a_span_starts_where_it_starts_unless_inside_a_wide_character():
     assert "漢" in _cells(strip, 3, 5, ColorSystem.TRUECOLOR)[1]  # never split into spaces
 
 
-def held_compute(monkeypatch, slow_only: bool):
-    """``core_frame.compute_frame`` held by an event for θi = 31° (its albedo part only, or the
-    whole frame), in the frame worker (every frame goes there: none on the event loop)."""
+def held_compute(monkeypatch, slow_only: bool, held=lambda theta_i: theta_i == 31.0):
+    """``core_frame.compute_frame`` held by an event for the θi that ``held`` names (31°; its
+    albedo part only, or the whole frame), in the frame worker (every frame goes there: none
+    on the event loop)."""
     monkeypatch.setattr(frames, "INLINE_S", 0.0)
     release = threading.Event()
     real = core_frame.compute_frame
 
     def compute(req, **kw):
-        if req.theta_i == 31.0 and (not slow_only or kw.get("slow", True)) and \
+        if held(req.theta_i) and (not slow_only or kw.get("slow", True)) and \
                 threading.current_thread() is not threading.main_thread():
             release.wait(10.0)
         return real(req, **kw)
@@ -239,16 +240,7 @@ async def test_the_status_line_follows_a_held_key_while_the_frames_are_slow(monk
     # keys 10 ms apart, closer than PENDING_S, for 200 ms; the status line shows a newer θi
     # while they come (the timer was put off by every key: θi 30° until the last)
     core_frame.clear_caches()
-    monkeypatch.setattr(frames, "INLINE_S", 0.0)
-    release = threading.Event()
-    real = core_frame.compute_frame
-
-    def compute(req, **kw):
-        if req.theta_i != 30.0 and threading.current_thread() is not threading.main_thread():
-            release.wait(10.0)
-        return real(req, **kw)
-
-    monkeypatch.setattr(core_frame, "compute_frame", compute)
+    release = held_compute(monkeypatch, slow_only=False, held=lambda theta_i: theta_i != 30.0)
     app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
     async with app.run_test(size=(120, 36)) as pilot:
         assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)

@@ -30,8 +30,13 @@ class Key:
     group: str | None = None
 
     @property
+    def key(self) -> str:
+        """The first of its keys (the one the footer presses)."""
+        return self.keys.split(",")[0]
+
+    @property
     def shown(self) -> str:
-        return self.display or self.keys.split(",")[0]
+        return self.display or self.key
 
 
 def _s(method: str, *args: object) -> str:

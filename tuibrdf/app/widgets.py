@@ -645,7 +645,7 @@ class KeyBar(Widget):
     def on_mouse_down(self, event: events.MouseDown) -> None:
         k = self._at(event.x)
         if k is not None:
-            self.app.simulate_key(k.keys.split(",")[0])
+            self.app.simulate_key(k.key)
 
     @survives
     def on_mouse_move(self, event: events.MouseMove) -> None:
