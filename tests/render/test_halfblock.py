@@ -255,3 +255,40 @@ def test_plain_map_top_of_the_disc_has_no_gap():
         render_view("map", m, m.resolve({}), 30.0, 64, 18, color="none"))
     first = buf.getvalue().splitlines()[1].strip()
     assert first and set(first) == {RING_CHAR}, first
+
+
+def test_shades_draw_each_channel_on_evenly_spaced_levels_and_keep_the_palette():
+    # shades=64: every drawn channel is round(k·255/63) for the k nearest to the palette's
+    # value v (k = round(v·63/255): never a tie, (2k+1)·255/126 is not an integer); the
+    # palette itself (what an export reads) is untouched, and without shades the colours
+    # are drawn as given
+    vals = np.arange(256)
+    pal = np.stack([vals, vals[::-1], (vals * 7) % 256], axis=1).astype(np.uint8)
+    index = np.arange(256).reshape(2, 128)  # one cell per pair of palette entries
+    img = HalfBlockImage(index, pal, shades=64)
+    drawn = [(seg.style.color.triplet, seg.style.bgcolor.triplet)
+             for row in img.rows("truecolor") for seg in row for _ in seg.text]
+    assert len(drawn) == 128
+    for c, (top, bottom) in enumerate(drawn):
+        for got, want in ((top, pal[c]), (bottom, pal[128 + c])):
+            for g, v in zip(got, want.tolist(), strict=True):
+                assert g == round(round(v * 63 / 255) * 255 / 63)
+    assert np.array_equal(img.palette, pal)
+    exact = HalfBlockImage(index, pal).rows("truecolor")
+    assert exact[0][0] == Segment("▀", rgb_style(tuple(pal[0]), tuple(pal[128])))
+    # neighbours that land on one shade merge into one run; 256 colours ignore shades
+    grey = np.array([[100, 101, 102, 103]], dtype=np.uint8).T.repeat(3, axis=1)
+    merged = HalfBlockImage(np.array([[0, 1, 2, 3]] * 2), grey, shades=64)
+    assert [len(seg.text) for seg in merged.rows("truecolor")[0]] == [4]  # all → 101.19 → 101
+    assert (HalfBlockImage(np.array([[0, 1, 2, 3]] * 2), grey, shades=64).rows("256")
+            == HalfBlockImage(np.array([[0, 1, 2, 3]] * 2), grey).rows("256"))
+
+
+def test_rgb_colour_pictures_are_drawn_in_shades_colour_maps_are_not():
+    from tuibrdf.render.colormap import colorize
+    from tuibrdf.render.halfblock import SHADES
+
+    rgb = np.random.default_rng(3).random((4, 4, 3))
+    assert colorize(rgb, "grey", rgb_mode="color").shades == SHADES == 64
+    assert colorize(rgb, "grey", rgb_mode="luminance").shades is None
+    assert colorize(rgb[..., 0], "viridis").shades is None

@@ -33,12 +33,12 @@ def test_lit_view_fits_and_is_deterministic(kind, color):
 
 
 def test_truecolor_picture_is_drawn_on_64_levels_per_channel():
-    # quantise_rgb: every value one of round(k·255/63), k = 0…63, and within half a step
+    # quantise_channels: every value one of round(k·255/63), k = 0…63, and within half a step
     # (255/126 ≈ 2.02) of the 8-bit input; 0 and 255 kept
-    from tuibrdf.render.lit_view import quantise_rgb
+    from tuibrdf.render.halfblock import quantise_channels
 
     img = np.arange(256, dtype=np.uint8).reshape(16, 16, 1).repeat(3, axis=2)
-    q = quantise_rgb(img)
+    q = quantise_channels(img, 64)
     allowed = {round(k * 255 / 63) for k in range(64)}
     assert set(np.unique(q).tolist()) <= allowed
     assert np.max(np.abs(q.astype(int) - img.astype(int))) <= 255 / 126

@@ -39,7 +39,7 @@ from tuibrdf.core.conventions import fmt_value, luminance
 from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.numerics import snapped_floor, snapped_rint
 from tuibrdf.render import CMAPS
-from tuibrdf.render.halfblock import TRANSPARENT, HalfBlockImage, register_ramp
+from tuibrdf.render.halfblock import SHADES, TRANSPARENT, HalfBlockImage, register_ramp
 
 RGB_MODES: tuple[str, ...] = ("color", "luminance")
 DEFAULT_LEVELS = 256
@@ -268,11 +268,14 @@ def quantise(t: np.ndarray, levels: int = DEFAULT_LEVELS) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Colored:
-    """A colour-mapped picture: ``index`` into ``palette`` (−1 transparent) and its scale."""
+    """A colour-mapped picture: ``index`` into ``palette`` (−1 transparent) and its scale;
+    ``shades``: how a terminal draws it (:class:`~tuibrdf.render.halfblock.HalfBlockImage`),
+    :data:`~tuibrdf.render.halfblock.SHADES` for RGB colours, None for a colour map's."""
 
     index: np.ndarray
     palette: np.ndarray
     scale: Scale
+    shades: int | None = None
 
 
 def colorize(
@@ -308,7 +311,7 @@ def colorize(
             index[~nan] = inverse
             ch = np.stack([codes // (levels * levels), (codes // levels) % levels, codes % levels])
             pal = snapped_rint(ch.T * (255.0 / (levels - 1))).astype(np.uint8).reshape(-1, 3)
-            return Colored(index, pal, scale)
+            return Colored(index, pal, scale, SHADES)
     scale = scale or Scale.for_values(v, log, decades)
     return Colored(quantise(scale.normalise(v), levels), palette(cmap, levels), scale)
 

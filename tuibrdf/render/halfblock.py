@@ -64,6 +64,21 @@ ASCII_RAMP = " .:-=+*#%@"
 RING_CHAR = "~"
 #: index of a pixel that shows the terminal's own background
 TRANSPARENT = -1
+#: shades per channel of a photograph-like picture in truecolor (the lit views, a map in RGB
+#: colours): each 8-bit channel is drawn on the nearest of 64 evenly spaced values (≤ 2/255
+#: off).  Nearly every pixel of such a picture is a colour of its own and every new colour is
+#: a new terminal style: a lit sphere had ~2,600 runs of equal cells instead of ~1,750 and
+#: cost ~15–20 ms a key instead of ~4; disney.brdf's map met 980 new colour pairs a key
+#: instead of 245, and its rows took 9.5 ms to build instead of 3.1.  Only the drawing is
+#: quantised: the image's palette, which exports read, keeps every bit
+SHADES = 64
+
+
+def quantise_channels(rgb: np.ndarray, levels: int = SHADES) -> np.ndarray:
+    """8-bit colours rounded to the nearest of ``levels`` evenly spaced values (0 and 255
+    kept); each rounding decided on the snapped value (core.numerics.snap)."""
+    step = 255.0 / (levels - 1)  # levels ≥ 2
+    return snapped_rint(snapped_rint(np.asarray(rgb) / step) * step).astype(np.uint8)
 
 
 @dataclass(frozen=True)
@@ -268,8 +283,10 @@ class HalfBlockImage:
 
     ``index``: ``(H_px, W_px)`` ints in ``[-1, L)``; ``palette``: ``(L, 3)`` values in 0–255;
     ``marks``: glyphs drawn over cells.  ``color_system`` fixes the output; ``None`` follows the
-    console it is printed to.  :meth:`rows` gives the per-row segment lists, each exactly
-    :attr:`width` cells long (a Textual widget wraps them in ``Strip`` objects).
+    console it is printed to.  ``shades``: in truecolor, each channel is drawn on that many
+    levels (:func:`quantise_channels`; for photograph-like pictures, :data:`SHADES`).
+    :meth:`rows` gives the per-row segment lists, each exactly :attr:`width` cells long (a
+    Textual widget wraps them in ``Strip`` objects).
     """
 
     def __init__(
@@ -279,6 +296,7 @@ class HalfBlockImage:
         marks: Sequence[Mark] = (),
         color_system: ColorSystem | None = None,
         ring: int | None = None,
+        shades: int | None = None,
     ) -> None:
         index = np.asarray(index)
         palette = np.asarray(palette)
@@ -292,6 +310,8 @@ class HalfBlockImage:
             raise ValueError(f"index values must lie in [-1, {len(palette)})")
         if color_system is not None and color_system not in COLOR_SYSTEMS:
             raise ValueError(f"color system {color_system!r}: expected one of {COLOR_SYSTEMS}")
+        if shades is not None and not 2 <= shades <= 256:
+            raise ValueError(f"shades must lie in 2..256, got {shades}")
         self.index = index.astype(np.int64)
         self.palette = palette.astype(np.uint8)
         self.marks = tuple(marks)
@@ -299,6 +319,7 @@ class HalfBlockImage:
         #: a palette index that is a guide, not data (the map's horizon ring): plain text
         #: draws it with :data:`RING_CHAR`, never a character of the density ramp
         self.ring = ring
+        self.shades = shades
         self.width = int(index.shape[1])
         self.height = (int(index.shape[0]) + 1) // 2
         self._rows: dict[str, list[list[Segment]]] = {}
@@ -311,6 +332,7 @@ class HalfBlockImage:
         mask: np.ndarray | None = None,
         marks: Sequence[Mark] = (),
         color_system: ColorSystem | None = None,
+        shades: int | None = None,
     ) -> HalfBlockImage:
         """From an ``(H_px, W_px, 3)`` RGB image (0–255); pixels where ``mask`` is False are
         transparent.  The palette is the sorted set of distinct colours."""
@@ -324,7 +346,7 @@ class HalfBlockImage:
         if mask is not None:
             index = np.where(mask, index, TRANSPARENT)
         palette = np.stack([colors >> 16, (colors >> 8) & 255, colors & 255], axis=1)
-        return cls(index, palette, marks, color_system)
+        return cls(index, palette, marks, color_system, shades=shades)
 
     # -- segments ------------------------------------------------------------------------------
 
@@ -410,7 +432,9 @@ class HalfBlockImage:
             colors = np.append(xterm_indices(self.palette), -1)  # index -1: the appended -1
             base = 257
         else:
-            p = self.palette.astype(np.int64)
+            p = self.palette if self.shades is None else quantise_channels(self.palette,
+                                                                           self.shades)
+            p = p.astype(np.int64)
             colors = np.append((p[:, 0] << 16) | (p[:, 1] << 8) | p[:, 2], -1)
             base = (1 << 24) + 1
         top, bottom = colors[top], colors[bottom]

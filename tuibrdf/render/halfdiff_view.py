@@ -137,7 +137,7 @@ def slice_picture(name: str, f: np.ndarray, valid: np.ndarray, th: np.ndarray, t
         vmax = slice_scale((f, valid, th, td), phi_d_deg)
     scale = Scale(vmax if vmax > 0 else 1.0, log)  # all zero: the lowest colour, no division
     col = colorize(data, cmap, levels=levels, log=log, rgb_mode=rgb_mode, scale=scale)
-    image = HalfBlockImage(col.index, col.palette, color_system=color)
+    image = HalfBlockImage(col.index, col.palette, color_system=color, shades=col.shades)
     labels = [""] * rows
     for deg in (90, 45, 0):  # θd of the cell rows: row r covers pixels 2r, 2r+1 from the top
         r = min(int((90.0 - deg) / 90.0 * rows), rows - 1)

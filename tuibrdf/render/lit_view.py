@@ -8,9 +8,8 @@ dim sky colour (nothing in plain text).  The title gives the brightest radiance 
 the exposure and gamma, and how much of the surface clips at white.
 
 Tone mapping: ``clamp(exposure · L, 0, 1) ^ (1/γ)`` (a pure power law, γ = 2.2 by default).  In
-truecolor the 8-bit result is drawn on :data:`LEVELS` levels per channel (≤ 2/255 off): a
-shaded sphere then has ~1,750 runs of equal cells instead of ~2,600, and a key's picture
-costs ~4 ms instead of ~15–20 ms (every new colour is a new terminal style).
+truecolor the 8-bit result is drawn on :data:`~tuibrdf.render.halfblock.SHADES` levels per
+channel (≤ 2/255 off; an export keeps every bit).
 """
 
 from __future__ import annotations
@@ -20,23 +19,13 @@ from rich.console import Group
 
 from tuibrdf.core.conventions import fmt_value
 from tuibrdf.core.display import DISPLAY
-from tuibrdf.core.numerics import snapped_rint
 from tuibrdf.core.views.lit import DEFAULT_FOV_DEG
 from tuibrdf.core.views.lit import tone_map as tone_map_core
-from tuibrdf.render.halfblock import HalfBlockImage
+from tuibrdf.render.halfblock import SHADES, HalfBlockImage
 from tuibrdf.render.text import title
 
-#: levels per channel of the drawn picture (see the module docstring)
-LEVELS = 64
 #: above the plane's horizon (colour modes only): dark enough never to read as lit surface
 SKY_RGB = (26, 32, 52)
-
-
-def quantise_rgb(img: np.ndarray, levels: int = LEVELS) -> np.ndarray:
-    """8-bit colours rounded to the nearest of ``levels`` evenly spaced values (0 and 255
-    kept); each rounding decided on the snapped value (core.numerics.snap)."""
-    step = 255.0 / (levels - 1)  # levels ≥ 2
-    return snapped_rint(snapped_rint(img / step) * step).astype(np.uint8)
 
 
 def lit_picture(kind: str, name: str, theta_i_deg: float, rad: np.ndarray, mask: np.ndarray,
@@ -46,13 +35,11 @@ def lit_picture(kind: str, name: str, theta_i_deg: float, rad: np.ndarray, mask:
     """Title + the half-block picture of radiance ``rad`` (``(px_h, px_w, 3)``, the frame's)
     tone-mapped with ``exposure`` and ``gamma``."""
     img = tone_map_core(rad, exposure, gamma)
-    if color == "truecolor":  # 256 colours and plain text quantise on their own
-        img = quantise_rgb(img)
     n_surface = int(np.count_nonzero(mask))
     if kind == "plane" and color != "none":
         img = np.where(mask[..., None], img, np.array(SKY_RGB, dtype=np.uint8))
         mask = np.ones_like(mask)
-    image = HalfBlockImage.from_rgb(img, mask=mask, color_system=color)
+    image = HalfBlockImage.from_rgb(img, mask=mask, color_system=color, shades=SHADES)
     lum = rad.max(axis=-1)
     peak = float(lum.max()) if lum.size else 0.0
     clipped = int(np.count_nonzero(lum * exposure >= 1.0))

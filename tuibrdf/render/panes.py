@@ -253,7 +253,8 @@ def map_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
         r, c = geometry(px_w, px_h).to_pixel(np.asarray(res.request.probe, dtype=float))
         marks = [mk for mk in marks if (mk.row, mk.col) != (r // 2, c)]
         marks.append(Mark(r // 2, c, **PROBE_MARK))
-    image = HalfBlockImage(index, pal, marks, color_system=look.color, ring=ring_index)
+    image = HalfBlockImage(index, pal, marks, color_system=look.color, ring=ring_index,
+                           shades=col.shades)
     own = shown_scale(side, "map", look)
     bar_cmap = "grey" if (data.ndim == 3 and look.rgb == "color") else look.cmap
     bar = colorbar(scale, bar_cmap, w, levels=look.levels, unit=_unit(cosine),
