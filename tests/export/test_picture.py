@@ -57,3 +57,13 @@ def test_rich_shows_the_half_block_picture():
 def test_bad_parameter_fails_when_made():
     with pytest.raises(ValueError):
         tuibrdf.picture("phong", {"n": -1})
+
+
+def test_a_lit_sphere_exports_every_bit_of_its_tone_mapped_colours():
+    # the terminal draws photograph-like pictures on 64 shades a channel (halfblock.SHADES);
+    # an export must not: a smooth sphere's 8-bit shading takes values between those shades
+    p = tuibrdf.picture("phong", {"n": 20}, theta_i=30, view="sphere", size=128)
+    rgb = np.asarray(PIL.open(io.BytesIO(p._repr_png_())).convert("RGB"))
+    shades = {round(k * 255 / 63) for k in range(64)}
+    values = set(np.unique(rgb).tolist())
+    assert len(values - shades) > 50
