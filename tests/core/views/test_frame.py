@@ -116,8 +116,7 @@ def test_each_pane_is_evaluated_once_and_a_repeated_frame_is_free(monkeypatch):
     core_frame.compute_frame(req, slow=False)
     n_map = int(geometry(*px).inside.sum())
     n_sections = 3 * len(core_frame.SECTION_THETAS)  # both planes and the peak section: one call
-    pts, _, tri = core_frame.solid_samples()
-    n_solid = len(pts) + 3 * len(tri)
+    n_solid = len(core_frame.solid_directions()[0])
     assert calls.count(n_map) == 1 and calls.count(n_sections) == 1
     assert calls.count(n_solid) == 1
     calls.clear()
@@ -300,3 +299,27 @@ def test_sincos_deg_of_one_angle_is_the_array_path_to_the_bit(t):
         k = round(float(t) % 360.0 / 90.0) % 4
         assert (float(s1), float(c1)) == ((0.0, 1.0), (1.0, 0.0), (0.0, -1.0), (-1.0, 0.0))[k]
 
+
+
+def test_the_solid_is_evaluated_once_at_each_distinct_direction():
+    # a barycentric grid of s = SOLID_SUBDIV steps on each triangle of the mesh: its corners
+    # are the V vertices, each of the E edges has s − 1 points inside, each of the F faces
+    # (s − 1)(s − 2)/2 inside; the face corners repeat vertices.  Every sample and corner is
+    # one of those directions to within a few ulps (the same point made from two triangles)
+    from tuibrdf.core.sphere.mesh import hemisphere
+
+    mesh = hemisphere(core_frame.SOLID_LEVEL)
+    s = core_frame.SOLID_SUBDIV
+    faces = np.sort(mesh.faces, axis=1)
+    edges = {tuple(e) for f in faces.tolist() for e in ((f[0], f[1]), (f[1], f[2]), (f[0], f[2]))}
+    want = len(mesh.vertices) + (s - 1) * len(edges) + (s - 1) * (s - 2) // 2 * len(faces)
+    distinct, take = core_frame.solid_directions()
+    assert len(distinct) == want
+    pts, _, tri = core_frame.solid_samples()
+    every = np.concatenate([pts, tri.reshape(-1, 3)])
+    assert take.shape == (len(every),)
+    assert np.max(np.abs(distinct[take] - every)) <= 4 * 2.0**-52
+    mat = Material("ggx", {"alpha": 0.3})
+    f = core_frame.solid_values(mat, incident(40.0), False)
+    assert np.allclose(f, evaluate("ggx", {"alpha": 0.3}, incident(40.0), every), rtol=1e-12,
+                       atol=0.0)

@@ -444,11 +444,31 @@ def solid_samples(level: int = SOLID_LEVEL, subdiv: int = SOLID_SUBDIV):
     return pts, face, tri
 
 
-def solid_values(m: Material, wi: np.ndarray, cosine: bool = False) -> np.ndarray:
-    """``f`` at the samples then at the face corners, in one kernel call: ``(S + 3F, ...)``."""
+@lru_cache(maxsize=1)
+def solid_directions() -> tuple[np.ndarray, np.ndarray]:
+    """``(distinct (U, 3), take (S + 3F,))``: the solid's samples then its face corners
+    (:func:`solid_samples`) as ``distinct[take]``.  Neighbouring triangles share their edges'
+    and corners' samples, and every corner is a sample too: 11,641 directions instead of
+    33,280 (a measured ``.bsdf``'s solid took 12.3 ms a θi, about as many times more).  Two
+    samples are one direction when they agree to 2⁻⁴⁰ (a shared point computed from two
+    triangles differs in its last bits; mesh points are ~0.02 rad apart): the first one
+    stands for both."""
     pts, _, tri = solid_samples()
-    wo = np.concatenate([pts, tri.reshape(-1, 3)])
-    g = f_or_f_cos(m.model, m.values, wi, wo, cosine)
+    every = np.concatenate([pts, tri.reshape(-1, 3)])
+    key = np.rint(every * 2.0**40).astype(np.int64)  # |components| ≤ 1: exact integers
+    _, first, take = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    distinct = every[first]
+    take = take.reshape(-1)
+    for arr in (distinct, take):
+        arr.setflags(write=False)
+    return distinct, take
+
+
+def solid_values(m: Material, wi: np.ndarray, cosine: bool = False) -> np.ndarray:
+    """``f`` at the samples then at the face corners, ``(S + 3F, ...)``, from one kernel call
+    at their distinct directions (:func:`solid_directions`)."""
+    distinct, take = solid_directions()
+    g = np.asarray(f_or_f_cos(m.model, m.values, wi, distinct, cosine))[take]
     g.setflags(write=False)
     return g
 
