@@ -425,6 +425,14 @@ def extra_values(m: Material, req: FrameRequest) -> tuple:
     raise ValueError(f"unknown view {e!r}")
 
 
+def _barycentric(subdiv: int) -> np.ndarray:
+    """``(B, 3)`` integer weights ``(i, j, subdiv − i − j)`` of a triangle's barycentric grid,
+    ``(i, j)`` row-major."""
+    i, j = np.meshgrid(np.arange(subdiv + 1), np.arange(subdiv + 1), indexing="ij")
+    keep = i + j <= subdiv
+    return np.stack([i[keep], j[keep], subdiv - i[keep] - j[keep]], axis=1)
+
+
 @lru_cache(maxsize=4)
 def solid_samples(level: int = SOLID_LEVEL, subdiv: int = SOLID_SUBDIV):
     """``(dirs (S, 3), face of each sample (S,), face corners (F, 3, 3))``: each triangle of
@@ -432,9 +440,7 @@ def solid_samples(level: int = SOLID_LEVEL, subdiv: int = SOLID_SUBDIV):
     from tuibrdf.core.sphere.mesh import hemisphere
 
     mesh = hemisphere(level)
-    i, j = np.meshgrid(np.arange(subdiv + 1), np.arange(subdiv + 1), indexing="ij")
-    keep = i + j <= subdiv
-    b = np.stack([i[keep], j[keep], subdiv - i[keep] - j[keep]], axis=1) / subdiv  # (B, 3)
+    b = _barycentric(subdiv) / subdiv  # (B, 3)
     tri = mesh.vertices[mesh.faces]  # (F, 3, 3)
     pts = np.einsum("bk,fkd->fbd", b, tri).reshape(-1, 3)
     pts /= np.linalg.norm(pts, axis=1, keepdims=True)  # points of a unit-sphere mesh: norm > 0
@@ -449,15 +455,25 @@ def solid_directions() -> tuple[np.ndarray, np.ndarray]:
     """``(distinct (U, 3), take (S + 3F,))``: the solid's samples then its face corners
     (:func:`solid_samples`) as ``distinct[take]``.  Neighbouring triangles share their edges'
     and corners' samples, and every corner is a sample too: 11,641 directions instead of
-    33,280 (a measured ``.bsdf``'s solid took 12.3 ms a θi, about as many times more).  Two
-    samples are one direction when they agree to 2⁻⁴⁰ (a shared point computed from two
-    triangles differs in its last bits; mesh points are ~0.02 rad apart): the first one
-    stands for both."""
+    33,280 (a measured ``.bsdf``'s solid took 12.3 ms a θi, about as many times more).  A
+    sample is named by the mesh vertices it is made of and their integer weights (the same
+    name from every triangle that shares it, whatever the bits of its coordinates on this
+    CPU); the first sample of a name stands for all."""
+    from tuibrdf.core.sphere.mesh import hemisphere
+
     pts, _, tri = solid_samples()
-    every = np.concatenate([pts, tri.reshape(-1, 3)])
-    key = np.rint(every * 2.0**40).astype(np.int64)  # |components| ≤ 1: exact integers
-    _, first, take = np.unique(key, axis=0, return_index=True, return_inverse=True)
-    distinct = every[first]
+    faces = hemisphere(SOLID_LEVEL).faces  # (F, 3)
+    w = np.broadcast_to(_barycentric(SOLID_SUBDIV), (len(faces), len(pts) // len(faces), 3))
+    ids = np.where(w > 0, faces[:, None, :], -1)  # a vertex of weight 0 is not part of it
+    corners = np.zeros(faces.shape + (2, 3), dtype=np.int64)  # (F, 3, [ids, weights], 3)
+    corners[..., 0, :2], corners[..., 0, 2] = -1, faces
+    corners[..., 1, 2] = SOLID_SUBDIV
+    order = np.argsort(ids, axis=-1, kind="stable")
+    name = np.concatenate([np.take_along_axis(ids, order, -1).reshape(-1, 3),
+                           np.take_along_axis(w, order, -1).reshape(-1, 3)], axis=1)
+    name = np.concatenate([name, corners.reshape(-1, 6)])
+    _, first, take = np.unique(name, axis=0, return_index=True, return_inverse=True)
+    distinct = np.concatenate([pts, tri.reshape(-1, 3)])[first]
     take = take.reshape(-1)
     for arr in (distinct, take):
         arr.setflags(write=False)
