@@ -300,7 +300,6 @@ def test_sincos_deg_of_one_angle_is_the_array_path_to_the_bit(t):
         assert (float(s1), float(c1)) == ((0.0, 1.0), (1.0, 0.0), (0.0, -1.0), (-1.0, 0.0))[k]
 
 
-
 def test_the_solid_is_evaluated_once_at_each_distinct_direction():
     # a barycentric grid of s = SOLID_SUBDIV steps on each triangle of the mesh: its corners
     # are the V vertices, each of the E edges has s − 1 points inside, each of the F faces
