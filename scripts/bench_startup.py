@@ -5,7 +5,9 @@ the picture) in a pseudo-terminal, as ``scripts/bench_app.py`` measures it, repe
     python scripts/bench_startup.py [--runs 12] [--size 160x48] [--against REV] [--write-docs]
 
 Beside it, in every round, a minimal Textual app (one ``Static``, its text the marker waited
-for): the floor any Textual program starts from on this machine, and the ratio to it.
+for): the floor any Textual program starts from on this machine, and the ratio to it; and
+the same app importing numpy first: the floor of a Textual program that computes with
+numpy, as the viewer's first frame does.
 ``--against REV`` starts git revision REV's viewer (``git archive``) too, the two trees one
 after the other in every round, so a slow spell of the machine falls on both.  The package's
 bytecode is written first (as an install or a first run writes it).  Prints the median and the
@@ -39,6 +41,8 @@ class Minimal(App):
 
 Minimal().run()
 """
+#: the floor of a program that needs numpy for its first screen
+NUMPY_APP = "import numpy  # noqa: F401\n" + MINIMAL_APP
 
 
 def timed(term: Term, marker: bytes) -> tuple[float, float]:
@@ -78,13 +82,16 @@ def main() -> int:
         for tree in trees.values():
             fresh_bytecode({k: v for k, v in os.environ.items()
                             if k != "PYTHONDONTWRITEBYTECODE"} | {"PYTHONPATH": tree})
-        script = os.path.join(tmp, "minimal_app.py")
-        with open(script, "w", encoding="utf-8") as f:
-            f.write(MINIMAL_APP)
-        floor = "a minimal Textual app"
-        times: dict[str, list[tuple[float, float]]] = {name: [] for name in [floor, *trees]}
+        floor, with_numpy = "a minimal Textual app", "the same, importing numpy first"
+        scripts = {}
+        for name, text in ((floor, MINIMAL_APP), (with_numpy, NUMPY_APP)):
+            scripts[name] = os.path.join(tmp, f"app{len(scripts)}.py")
+            with open(scripts[name], "w", encoding="utf-8") as f:
+                f.write(text)
+        times: dict[str, list[tuple[float, float]]] = {name: [] for name in [*scripts, *trees]}
         for _ in range(a.runs):
-            times[floor].append(minimal_frame(script, w, h))
+            for name, script in scripts.items():
+                times[name].append(minimal_frame(script, w, h))
             for name, tree in trees.items():
                 times[name].append(first_frame(tree, w, h))
     base = [statistics.median(t[k] for t in times[floor]) for k in (0, 1)]

@@ -145,8 +145,10 @@ _OK_M2 = np.array([[0.2104542553, 0.7936177850, -0.0040720468],
                    [1.9779984951, -2.4285922050, 0.4505937099],
                    [0.0259040371, 0.7827717662, -0.8086757660]])
 _XTERM_LAB = oklab(XTERM[16:])
-#: colour-map ramps (:func:`register_ramp`) → their xterm indices, lightness never falling
-_RAMPS: dict[bytes, np.ndarray] = {}
+#: colour-map ramps (:func:`register_ramp`, as bytes) → their xterm indices, lightness never
+#: falling; None until a picture is first drawn in 256 colours (a ramp's choice costs ≈ 5 ms,
+#: which a truecolor viewer's first frame need not wait for)
+_RAMPS: dict[bytes, np.ndarray | None] = {}
 
 
 def ramp_to_xterm(ramp: np.ndarray) -> np.ndarray:
@@ -168,9 +170,7 @@ def ramp_to_xterm(ramp: np.ndarray) -> np.ndarray:
 def register_ramp(ramp: np.ndarray) -> None:
     """Declare ``ramp`` (``(L, 3)`` uint8, dark to light) a colour map's palette: a picture whose
     palette begins with it is drawn in 256 colours with :func:`ramp_to_xterm`."""
-    key = np.ascontiguousarray(ramp, dtype=np.uint8).tobytes()
-    if key not in _RAMPS:
-        _RAMPS[key] = ramp_to_xterm(ramp)
+    _RAMPS.setdefault(np.ascontiguousarray(ramp, dtype=np.uint8).tobytes(), None)
 
 
 def xterm_indices(palette: np.ndarray) -> np.ndarray:
@@ -179,8 +179,10 @@ def xterm_indices(palette: np.ndarray) -> np.ndarray:
     (the ring, marks, an RGB picture's colours)."""
     pal = np.ascontiguousarray(palette, dtype=np.uint8)
     for key, xi in _RAMPS.items():
-        n = len(xi)
+        n = len(key) // 3
         if len(pal) >= n and pal[:n].tobytes() == key:
+            if xi is None:
+                xi = _RAMPS[key] = ramp_to_xterm(np.frombuffer(key, np.uint8).reshape(n, 3))
             return np.concatenate([xi, to_xterm(pal[n:])]) if len(pal) > n else xi
     return to_xterm(pal)
 
