@@ -77,3 +77,52 @@ def test_sharp_lobe_curve_matches_an_independent_rule():
     for t in (0.0, 45.0, 75.0, 87.0):
         k = int(np.flatnonzero(thetas == t)[0])
         assert a[k] == pytest.approx(reference("cook-torrance", p, t, 400, 1600), rel=3e-3)
+
+
+def cells(text):
+    """Every cell of a Rich ``Text`` as (character, style), row by row."""
+    con = Console(width=400, color_system="truecolor")
+    return [[(ch, seg.style or None) for seg in line.render(con) for ch in seg.text]
+            for line in text.split("\n", allow_blank=True)]
+
+
+_T = core_frame.CURVE_THETAS
+_A = 0.5 + 0.2 * np.cos(np.radians(_T))
+MARKER_CASES = {  # one curve, one above 1 (the line a = 1 crossed), a legend, crossing curves
+    "one": [("x", _A)],
+    "above one": [("x", 1.3 - 0.4 * np.sin(np.radians(_T)) ** 2)],
+    "compare": [("A: x", _A), ("B: y", 0.6 * _A)],
+    "channels": [("R", _A), ("G", 0.9 * _A), ("B", 0.8 * _A)],
+    "crossing": [("A", _A), ("B", _A[::-1])],
+}
+
+
+@pytest.mark.parametrize("case", MARKER_CASES)
+@pytest.mark.parametrize("color", ["truecolor", "none"])
+def test_marker_drawn_on_the_kept_plot_is_plotexts_own(case, color):
+    # the θi marker is drawn on a copy of the plot plotext drew without it; the reference is
+    # plotext drawing the marker itself: the same cells (character and colour) at every size
+    # and θi, including the legend's corner (θi near 0) and points off the θi grid
+    from tuibrdf.render import albedo_plot as ap
+
+    curves = MARKER_CASES[case]
+    styles = [ap._curve_style(j, c) for j, c in enumerate(curves)]
+    top = ap.nice_top(max(float(np.max(a)) for _, a in curves))
+    for w, h in ((70, 20), (40, 8), (121, 41)):
+        for theta in (0.0, 0.5, 1.0, 2.0, 14.7, 29.99, 30.0, 45.25, 60.0, 89.5, 90.0):
+            want = ap.plot_body(ap._build(_T, curves, styles, top, w, h, theta, color), color)
+            got = ap.albedo_plot(_T, curves, w, h, theta_i_deg=theta, color=color)
+            assert cells(got) == cells(want), (w, h, theta)
+
+
+def test_theta_key_builds_no_plot(monkeypatch):
+    # a new θi on the same curves moves the marker on the kept plot: plotext is not asked
+    from tuibrdf.render import albedo_plot as ap
+
+    built = []
+    build = ap._build
+    monkeypatch.setattr(ap, "_build", lambda *a: built.append(a[6]) or build(*a))
+    curves = [("x", 0.9 * _A)]  # not drawn by another test: not kept yet
+    for theta in (10.0, 11.0, 12.5):
+        ap.albedo_plot(_T, curves, 66, 18, theta_i_deg=theta)
+    assert built == [None]  # the plot without its marker, once

@@ -35,7 +35,7 @@ from tuibrdf.core.sphere.horizon import HORIZON_DEG, Horizon, PeakScale
 from tuibrdf.core.sphere.peak import Peak
 from tuibrdf.core.views.frame import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
 from tuibrdf.core.views.hemimap import geometry
-from tuibrdf.render.albedo_plot import albedo_plot, plot_body
+from tuibrdf.render.albedo_plot import albedo_plot
 from tuibrdf.render.colormap import (
     DEFAULT_LEVELS,
     LOG_DECADES,
@@ -520,7 +520,7 @@ def albedo_pane(res: FrameResult, w: int, h: int, look: Look) -> RenderableType:
     top = max(float(np.max(s.curve)) for s in res.sides)
     over = any(s.curve_exceeds_one() for s in res.sides)
     flag = f"a>1 (max {fmt_value(top)}): not energy-conserving" if over else ""
-    text = albedo_plot(CURVE_THETAS, curves, w, h - 1, theta_i_deg=t, color=look.color)
+    plot = albedo_plot(CURVE_THETAS, curves, w, h - 1, theta_i_deg=t, color=look.color)
     if len(res.sides) == 1:
         s0 = res.sides[0]
         parts = [(s0.material.label, 2),
@@ -529,7 +529,7 @@ def albedo_pane(res: FrameResult, w: int, h: int, look: Look) -> RenderableType:
         parts = [("directional albedo a(θi) = ∫ f cos θr dω", 0), ("(line: a = 1)", 2),
                  (flag, 1)]
     style = "bold red" if over and look.color != "none" else ""
-    return Group(title(parts, w, style=style), plot_body(text, look.color))
+    return Group(title(parts, w, style=style), plot)
 
 
 # ---------------------------------------------------------------------------------- both
