@@ -52,8 +52,9 @@ def albedo_plot(
     key = (thetas.tobytes(), tuple((label, np.asarray(a).tobytes(), tuple(st))
                                    for (label, a, *st) in curves), width, height, color)
     top = nice_top(max(float(np.max(a)) for _, a, *_ in curves))
+    labels = [label for label, *_ in curves]
     plot = _PLOTS.get(key, lambda: _Plot(_build(thetas, curves, styles, top, width, height,
-                                                None, color), top, len(curves) > 1, color))
+                                                None, color), top, labels, color))
     if theta_i_deg is None:
         return plot.text()
     points = [float(on_axis_grid(np.interp(theta_i_deg, thetas, on_axis_grid(a, top)), top))
@@ -66,7 +67,7 @@ def albedo_plot(
             or (len(curves) > 1 and (color == "none" or len(set(colours)) < len(colours)))):
         return plot_body(_build(thetas, curves, styles, top, width, height, theta_i_deg,
                                 color), color)
-    return _marked(plot, float(theta_i_deg), points, colours, [label for label, *_ in curves])
+    return _marked(plot, float(theta_i_deg), points, colours)
 
 
 def _curve_style(j: int, curve: tuple) -> tuple[str, object, str]:
@@ -116,16 +117,18 @@ _PLOTS = LRU(8)
 
 
 class _Plot:
-    """A plot without its marker: its rows, and where plotext put its canvas (the area
-    inside the axes, found from the axes' corners; ``axes`` None when it has none: a plot
-    too small for them is drawn by plotext, marker and all)."""
+    """A plot without its marker: its rows, where plotext put its canvas (the area inside
+    the axes, found from the axes' corners; ``axes`` None when it has none: a plot too small
+    for them is drawn by plotext, marker and all) and its legend's box."""
 
-    def __init__(self, text: str, top: float, legend: bool, color: str) -> None:
+    def __init__(self, text: str, top: float, labels: list[str], color: str) -> None:
         self.rows = plot_body(text, color).split("\n", allow_blank=True)
         self.color = color
-        self.legend = legend
         self.top = top  # the y axis' end
         self.axes = None
+        #: the legend's columns and its rows (the canvas' first): plotext draws one for
+        #: several curves, 3 marker cells and the padded labels, where it fits
+        self.legend: tuple[range, int] = (range(0), 0)
         plain = [r.plain for r in self.rows]
         top_rows = [i for i, r in enumerate(plain) if "┌" in r]
         bottom_rows = [i for i, r in enumerate(plain) if "└" in r]
@@ -134,11 +137,19 @@ class _Plot:
             c0, c1 = plain[b].index("└") + 1, plain[b].find("┘")
             if c1 > c0 and b - t > 1:
                 self.axes = (t, b, c0, c1)  # rows of the axes, first and last canvas column
+                width = 3 + max(len(label) + 2 for label in labels)
+                if len(labels) > 1 and c1 - c0 >= width and b - t - 1 >= len(labels):
+                    self.legend = (range(c0, c0 + width), len(labels))
 
     def text(self) -> Text:
-        body = Text("\n").join(self.rows)
-        body.no_wrap = True
-        return body
+        return _joined(self.rows)
+
+
+def _joined(rows: list[Text]) -> Text:
+    """Rows as one non-wrapping ``Text``."""
+    body = Text("\n").join(rows)
+    body.no_wrap = True
+    return body
 
 
 def _matrix_cell(value: float, lo: float, hi: float, bins: int) -> int:
@@ -147,20 +158,16 @@ def _matrix_cell(value: float, lo: float, hi: float, bins: int) -> int:
     return math.floor(round(0.5 + (bins - 1) * (value - lo) / (hi - lo), 8))
 
 
-def _marked(plot: _Plot, theta: float, points: list[float], colours: list, labels: list[str]
-            ) -> Text:
+def _marked(plot: _Plot, theta: float, points: list[float], colours: list) -> Text:
     """``plot`` with the θi marker as plotext draws it: a line at θi where nothing else is
     drawn (crossing the line a = 1 as ``┼``, ticking both x axes), then each curve's point
     ``o`` unless a later curve drew over its cell; a legend (drawn last) hides both."""
     t, b, c0, c1 = plot.axes
     rows = list(plot.rows)
-    hc, wc = b - t - 1, c1 - c0
-    col = c0 + _matrix_cell(theta, *X_LIM, wc)
-    legend = range(0)
-    if plot.legend:  # plotext's legend box: 3 marker cells and the padded labels, top rows
-        width = 3 + max(len(label) + 2 for label in labels)
-        if wc >= width and hc >= len(labels):
-            legend = range(c0, c0 + width)
+    hc = b - t - 1
+    col = c0 + _matrix_cell(theta, *X_LIM, c1 - c0)
+    columns, legend_rows = plot.legend
+    under_legend = col in columns  # then the legend's rows t + 1 … t + legend_rows hide it
     none = plot.color == "none"
 
     def put(i: int, ch: str, style) -> None:  # the cell's style kept, unless one is given
@@ -171,7 +178,7 @@ def _marked(plot: _Plot, theta: float, points: list[float], colours: list, label
 
     line = None if none else _style(INCIDENT_COLOR)
     for i in range(t + 1, b):
-        if col in legend and i - t <= len(labels):
+        if under_legend and i - t <= legend_rows:
             continue
         ch = rows[i].plain[col]
         if ch == " ":
@@ -183,16 +190,14 @@ def _marked(plot: _Plot, theta: float, points: list[float], colours: list, label
     styles = [None if none else _style(c) for c in colours]
     for j, value in enumerate(points):
         i = b - 1 - _matrix_cell(value, 0.0, plot.top, hc)
-        if col in legend and i - t <= len(labels):
+        if under_legend and i - t <= legend_rows:
             continue
         drawn = plot.rows[i][col:col + 1]  # as plotext drew it, before the marker
         style = drawn.spans[0].style if drawn.spans else None
         if any(style == s for s in styles[j + 1:]):
             continue  # a later curve drew this cell, over the point
         put(i, "o", styles[j])
-    body = Text("\n").join(rows)
-    body.no_wrap = True
-    return body
+    return _joined(rows)
 
 
 @lru_cache(maxsize=64)
