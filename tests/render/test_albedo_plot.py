@@ -115,6 +115,22 @@ def test_marker_drawn_on_the_kept_plot_is_plotexts_own(case, color):
             assert cells(got) == cells(want), (w, h, theta)
 
 
+@pytest.mark.parametrize("case", ["compare", "channels"])
+def test_marker_beside_the_legend_is_plotexts_own(case):
+    # θi from 0° to 15.5° by 0.5° puts the marker's line in every column of the legend's box
+    # and just past it (the legend is drawn last: it hides the line and the points)
+    from tuibrdf.render import albedo_plot as ap
+
+    curves = MARKER_CASES[case]
+    styles = [ap._curve_style(j, c) for j, c in enumerate(curves)]
+    top = ap.nice_top(max(float(np.max(a)) for _, a in curves))
+    for theta in np.arange(0.0, 16.0, 0.5):
+        want = ap.plot_body(ap._build(_T, curves, styles, top, 70, 20, theta, "truecolor"),
+                            "truecolor")
+        got = ap.albedo_plot(_T, curves, 70, 20, theta_i_deg=theta)
+        assert cells(got) == cells(want), theta
+
+
 def test_theta_key_builds_no_plot(monkeypatch):
     # a new θi on the same curves moves the marker on the kept plot: plotext is not asked
     from tuibrdf.render import albedo_plot as ap
