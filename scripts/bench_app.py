@@ -70,6 +70,8 @@ SETTLE_S = 0.15
 #: Textual asks whether the terminal has synchronized output (DECRQM mode 2026) at start-up;
 #: the reply "mode 2026 is set-able, currently reset" is what terminals that have it answer
 SYNC_QUERY, SYNC_REPLY = b"\x1b[?2026$p", b"\x1b[?2026;2$y"
+#: the end of a synchronized update (one paint of the screen, once the query is answered)
+ESU = b"\x1b[?2026l"
 KEYS = {"right": b"\x1b[C", "left": b"\x1b[D", "plus": b"+", "minus": b"-", "m": b"m",
         "q": b"q", "v": b"v", "d": b"d", "D": b"D", "x": b"x", "X": b"X", "y": b"y", "Y": b"Y"}
 #: issue 13's views: how many ``v`` from the map reach each, and the view's own key pair
@@ -394,29 +396,36 @@ def sample_files(tmp: str | Path) -> dict[str, tuple[list[str], str | None]]:
 
 
 def hold(term: Term, key: bytes, hold_s: float = 2.0, rate_hz: float = 30.0
-         ) -> tuple[float, float]:
+         ) -> tuple[float, float, int, int]:
     """A key held ``hold_s`` seconds (``rate_hz`` repeats), the pty read as fast as it comes:
     (the longest time without output while it is held, after its first 0.1 s; the time from
-    the last key to the screen's last change)."""
+    the last key to the screen's last change; the paints from the first key to the screen's
+    last change, each one synchronized update's end (ESU); the keys sent).  With keys every
+    1/rate s, the longest gap cannot be below that interval plus the spread of the frames'
+    latencies; paints ≥ keys says that no key's frame was skipped."""
     t_start = t_next = time.perf_counter()
     t_end = t_start + hold_s
-    last_key, frames = t_start, []
+    last_key, frames, keys, paints = t_start, [], 0, 0
     while time.perf_counter() < t_end:
         if time.perf_counter() >= t_next:
             os.write(term.fd, key)
+            keys += 1
             last_key = time.perf_counter()
             t_next += 1 / rate_hz
         got = term.read(0.001)
         if got:  # the screen changed (a θi key changes the pictures and the status line)
             frames.append(got[0])
+            paints += got[1].count(ESU)
     last = last_key
     while True:
         got = term.read(IDLE_S)
         if got is None:
             break
         last = got[0]
+        paints += got[1].count(ESU)
     marks = [t_start + 0.1] + [t for t in frames if t > t_start + 0.1] + [t_end]
-    return max(b - a for a, b in zip(marks, marks[1:], strict=False)), max(0.0, last - last_key)
+    return (max(b - a for a, b in zip(marks, marks[1:], strict=False)),
+            max(0.0, last - last_key), paints, keys)
 
 
 def kinds_table(sizes, colors, reps: int, lines: list[str], root: str | Path = ROOT,
@@ -434,7 +443,8 @@ def kinds_table(sizes, colors, reps: int, lines: list[str], root: str | Path = R
     both = trees is not None
     trees = trees or [("", root)]
     emit(lines, "| size | colours | model | view |" + (" tree |" if both else "")
-         + " θi p50/p95 ms | parameter p50/p95 ms | held →: longest gap / settles, ms |")
+         + " θi p50/p95 ms | parameter p50/p95 ms | held →: longest gap / settles, ms / "
+         "paints of keys |")
     emit(lines, "|---|---|---|---|" + ("---|" if both else "") + "---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
         for label, (argv, param_key) in sample_files(tmp).items():
@@ -459,8 +469,8 @@ def kinds_table(sizes, colors, reps: int, lines: list[str], root: str | Path = R
                                      f"{pct(done, 0.95) * 1e3:.0f}")
                     held = "—"
                     if view == views[0]:
-                        gap, settle = hold(term, KEYS["right"])
-                        held = f"{gap * 1e3:.0f} / {settle * 1e3:.0f}"
+                        gap, settle, paints, keys = hold(term, KEYS["right"])
+                        held = f"{gap * 1e3:.0f} / {settle * 1e3:.0f} / {paints} of {keys}"
                 finally:
                     term.close()
                 emit(lines, f"| {w}×{h} | {color} | {label} | {view} | "
