@@ -1,7 +1,7 @@
 """Where a key's time goes in the running viewer: a timeline of each key's phases.
 
-    python scripts/timeline_keys.py [--model phong] [--key right] [--keys 40] [--size 160x48]
-                                    [--load N]
+    python scripts/timeline_keys.py [--model phong] [--view map] [--key right] [--keys 40]
+                                    [--size 160x48] [--load N]
 
 ``--key right,-`` sends the keys in turn (→, −, →, …).
 
@@ -135,8 +135,8 @@ def cpu_seconds(pid: int) -> tuple[float, float]:
     return total * 1e-9, main * 1e-9
 
 
-def drive(model: str, key: str, n: int, w: int,
-          h: int) -> tuple[list[float], list, list, tuple[float, float]]:
+def drive(model: str, key: str, n: int, w: int, h: int, view: str = "map"
+          ) -> tuple[list[float], list, list, tuple[float, float]]:
     out = tempfile.mktemp(suffix=".marks")
     # the viewer of this script's tree (the child's sys.path[0] is scripts/, and an installed
     # tuibrdf would come next): a copy of an older tree times that tree
@@ -146,7 +146,7 @@ def drive(model: str, key: str, n: int, w: int,
     pid, fd = pty.fork()
     if pid == 0:
         os.execvpe(sys.executable, [sys.executable, __file__, "--child", out, model,
-                                    "--color", "truecolor"], env)
+                                    "--color", "truecolor", "--view", view], env)
     fcntl.ioctl(fd, termios.TIOCSWINSZ, struct.pack("HHHH", h, w, 0, 0))
     sends: list[float] = []
     reads: list[float] = []
@@ -243,19 +243,20 @@ def main() -> int:
                     help=f"one of {', '.join(sorted(KEYS))}, or several, comma-separated")
     ap.add_argument("--keys", type=int, default=40)
     ap.add_argument("--size", default="160x48")
+    ap.add_argument("--view", default="map", help="the view the viewer opens on")
     ap.add_argument("--load", type=int, default=0, metavar="N",
                     help="N other processes spinning on the CPU meanwhile (a shared machine)")
     args = ap.parse_args()
     if not all(k in KEYS for k in args.key.split(",")):
         ap.error(f"--key: expected keys among {', '.join(sorted(KEYS))}, comma-separated")
     w, h = (int(v) for v in args.size.split("x"))
-    print(f"{args.model}, key {args.key!r} × {args.keys}, {w}×{h}, truecolor"
+    print(f"{args.model}, {args.view}, key {args.key!r} × {args.keys}, {w}×{h}, truecolor"
           + (f", {args.load} spinning processes" if args.load else ""))
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from bench_app import loaded
 
     with loaded(args.load):
-        sends, marks, reads, cpu = drive(args.model, args.key, args.keys, w, h)
+        sends, marks, reads, cpu = drive(args.model, args.key, args.keys, w, h, args.view)
     print(table(sends, marks, reads))
     print(steps(sends, marks))
     print("CPU per key ms: all threads {:.2f}, event loop {:.2f}".format(*(t * 1e3 for t in cpu)))
