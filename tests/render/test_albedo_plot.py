@@ -97,38 +97,37 @@ MARKER_CASES = {  # one curve, one above 1 (the line a = 1 crossed), a legend, c
 }
 
 
+def assert_marker_is_plotexts_own(curves, sizes, thetas, color="truecolor"):
+    """The viewer's plot of ``curves`` with its θi marker (drawn on the kept plot) against
+    plotext drawing the marker itself: the same cells, character and colour, at every size
+    and θi."""
+    from tuibrdf.render import albedo_plot as ap
+
+    styles = [ap._curve_style(j, c) for j, c in enumerate(curves)]
+    top = ap.nice_top(max(float(np.max(a)) for _, a in curves))
+    for w, h in sizes:
+        for theta in thetas:
+            want = ap.plot_body(ap._build(_T, curves, styles, top, w, h, theta, color), color)
+            got = ap.albedo_plot(_T, curves, w, h, theta_i_deg=theta, color=color)
+            assert cells(got) == cells(want), (w, h, theta)
+
+
 @pytest.mark.parametrize("case", MARKER_CASES)
 @pytest.mark.parametrize("color", ["truecolor", "none"])
 def test_marker_drawn_on_the_kept_plot_is_plotexts_own(case, color):
     # the θi marker is drawn on a copy of the plot plotext drew without it; the reference is
     # plotext drawing the marker itself: the same cells (character and colour) at every size
     # and θi, including the legend's corner (θi near 0) and points off the θi grid
-    from tuibrdf.render import albedo_plot as ap
-
-    curves = MARKER_CASES[case]
-    styles = [ap._curve_style(j, c) for j, c in enumerate(curves)]
-    top = ap.nice_top(max(float(np.max(a)) for _, a in curves))
-    for w, h in ((70, 20), (40, 8), (121, 41)):
-        for theta in (0.0, 0.5, 1.0, 2.0, 14.7, 29.99, 30.0, 45.25, 60.0, 89.5, 90.0):
-            want = ap.plot_body(ap._build(_T, curves, styles, top, w, h, theta, color), color)
-            got = ap.albedo_plot(_T, curves, w, h, theta_i_deg=theta, color=color)
-            assert cells(got) == cells(want), (w, h, theta)
+    assert_marker_is_plotexts_own(
+        MARKER_CASES[case], ((70, 20), (40, 8), (121, 41)),
+        (0.0, 0.5, 1.0, 2.0, 14.7, 29.99, 30.0, 45.25, 60.0, 89.5, 90.0), color)
 
 
 @pytest.mark.parametrize("case", ["compare", "channels"])
 def test_marker_beside_the_legend_is_plotexts_own(case):
     # θi from 0° to 15.5° by 0.5° puts the marker's line in every column of the legend's box
     # and just past it (the legend is drawn last: it hides the line and the points)
-    from tuibrdf.render import albedo_plot as ap
-
-    curves = MARKER_CASES[case]
-    styles = [ap._curve_style(j, c) for j, c in enumerate(curves)]
-    top = ap.nice_top(max(float(np.max(a)) for _, a in curves))
-    for theta in np.arange(0.0, 16.0, 0.5):
-        want = ap.plot_body(ap._build(_T, curves, styles, top, 70, 20, theta, "truecolor"),
-                            "truecolor")
-        got = ap.albedo_plot(_T, curves, 70, 20, theta_i_deg=theta)
-        assert cells(got) == cells(want), theta
+    assert_marker_is_plotexts_own(MARKER_CASES[case], ((70, 20),), np.arange(0.0, 16.0, 0.5))
 
 
 def test_theta_key_builds_no_plot(monkeypatch):
