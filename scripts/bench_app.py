@@ -15,7 +15,7 @@ timestamps the bytes the app writes back:
   that change: the app's own screen before and after the key is replayed through ``pyte`` (a
   terminal emulator) when installed, each changed cell costing its character plus the shortest
   SGR that sets its colours; without pyte the minimum is not reported.
-* **CPU per key**: the viewer's CPU time (all threads, ``/proc/PID/task/*/schedstat``) over
+* **CPU per key**: the viewer's CPU time (all threads, ended ones too: :func:`process_cpu`) over
   the keys of each kind, per key: what a loaded machine inflates far less than latency.
 * **catch-up**: a key held 2 s (30 repeats/s) while the reader drains the pty at ~1 MB/s;
   the time from the last key until the output stops (idle ``IDLE_S``).
@@ -47,7 +47,6 @@ from __future__ import annotations
 import argparse
 import contextlib
 import fcntl
-import glob
 import math
 import os
 import pty
@@ -77,6 +76,18 @@ KEYS = {"right": b"\x1b[C", "left": b"\x1b[D", "plus": b"+", "minus": b"-", "m":
 #: issue 13's views: how many ``v`` from the map reach each, and the view's own key pair
 VIEW_KEYS = {"sphere": (3, ("right", "left")), "plane": (4, ("right", "left")),
              "slice": (5, ("y", "Y")), "theta-h": (6, ("d", "D")), "theta-d": (7, ("d", "D"))}
+
+
+def process_cpu(pid: int) -> float:
+    """CPU seconds process ``pid`` has used so far, every thread, those that have ended too
+    (each frame job's thread ends with its frame): its process CPU clock, in nanoseconds
+    (``clock_gettime`` of ``MAKE_PROCESS_CPUCLOCK(pid, CPUCLOCK_SCHED)``, Linux's encoding of
+    another process's clock id).  Summing ``/proc/PID/task/*/schedstat`` instead misses the
+    threads that have ended."""
+    try:
+        return time.clock_gettime(((~pid) << 3) | 2)
+    except OSError:  # the process has ended
+        return 0.0
 
 
 class Term:
@@ -128,16 +139,9 @@ class Term:
         return t, data
 
     def cpu(self) -> float:
-        """CPU seconds the viewer has used so far, every thread (``/proc``, nanoseconds): a
-        cost a loaded machine inflates far less than latency."""
-        total = 0
-        for task in glob.glob(f"/proc/{self.pid}/task/*/schedstat"):
-            try:
-                with open(task) as f:
-                    total += int(f.read().split()[0])
-            except (OSError, ValueError, IndexError):  # a thread that just ended
-                pass
-        return total * 1e-9
+        """CPU seconds the viewer has used so far, every thread, ended ones too: a cost a
+        loaded machine inflates far less than latency (:func:`process_cpu`)."""
+        return process_cpu(self.pid)
 
     def cells(self) -> dict:
         """The emulated screen: (row, col) → (char, fg, bg, bold, reverse)."""

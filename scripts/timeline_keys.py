@@ -23,7 +23,7 @@ the keys, the first two left out as warm-up):
 
 Then the steps between some of them, timed key by key (``show → paint``: from the frame
 drawn to the compositor's start), and the
-viewer's CPU time per key over the keys (``/proc/PID/task/*/schedstat``): all its threads,
+viewer's CPU time per key over the keys (its process CPU clock): all its threads,
 and its main thread (the event loop) alone: what a loaded machine inflates far less than the
 times above.
 
@@ -34,7 +34,6 @@ from __future__ import annotations
 
 import argparse
 import fcntl
-import glob
 import os
 import pty
 import select
@@ -121,18 +120,16 @@ def child(out: str, argv: list[str]) -> None:
 
 
 def cpu_seconds(pid: int) -> tuple[float, float]:
-    """CPU seconds used so far by every thread of ``pid``, and by its main thread."""
-    total = main = 0
-    for task in glob.glob(f"/proc/{pid}/task/*/schedstat"):
-        try:
-            with open(task) as f:
-                ns = int(f.read().split()[0])
-        except (OSError, ValueError, IndexError):  # a thread that just ended
-            continue
-        total += ns
-        if task == f"/proc/{pid}/task/{pid}/schedstat":
-            main = ns
-    return total * 1e-9, main * 1e-9
+    """CPU seconds used so far by every thread of ``pid`` (ended ones too: the frame jobs'
+    threads end with their frames) and by its main thread."""
+    from bench_app import process_cpu  # (not at the top: this file also runs as the viewer)
+
+    try:
+        with open(f"/proc/{pid}/task/{pid}/schedstat") as f:
+            main = int(f.read().split()[0]) * 1e-9
+    except (OSError, ValueError, IndexError):  # the process has ended
+        main = 0.0
+    return process_cpu(pid), main
 
 
 def drive(model: str, key: str, n: int, w: int, h: int, view: str = "map"
