@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from tests.render.test_views import to_text
 from tuibrdf.core.directions import incident
@@ -47,6 +48,19 @@ def test_a_model_without_a_real_parameter_says_so():
     m = MODELS["abc"]
     out = to_text(render_view("energy", m, m.resolve({}), 30, 60, 20, color="none"))
     assert "no real parameter" in out
+
+
+@pytest.mark.parametrize("width", [12, 30, 45])
+def test_that_note_is_whole_in_a_narrow_pane(width):
+    # compare mode's pane of a MERL file: the sentence wraps, no word is cut off
+    m = MODELS["abc"]
+    out = to_text(render_view("energy", m, m.resolve({}), 40, width, 20, color="none"),
+                  width=width)
+    lines = [s.rstrip() for s in out.rstrip("\n").split("\n")]
+    assert max(len(s) for s in lines) <= width and len(lines) <= 20
+    assert "…" not in out
+    assert " ".join(lines).split() == ("abc: no real parameter for an energy table E(μ, p); "
+                                        "its albedo at θi is on the status line").split()
 
 
 def test_check_report_draws_verdicts_and_maps():

@@ -8,6 +8,8 @@ from 0 to 1, or to the largest value when the model gains energy.
 
 from __future__ import annotations
 
+import textwrap
+
 import numpy as np
 from rich.console import Group
 from rich.text import Text
@@ -31,10 +33,11 @@ def energy_picture(name: str, view, width: int, height: int, *, cmap: str = "vir
                    levels: int = DEFAULT_LEVELS, color: str = "truecolor") -> Group:
     """The view of :class:`~tuibrdf.core.sphere.energy.EnergyView` ``view`` (None: the model
     has no real parameter) in ``width × height`` cells."""
-    if view is None:
-        note = Text(f"{name}: no real parameter for an energy table")
-        note.truncate(int(width), overflow="ellipsis")
-        return Group(note)
+    if view is None:  # said whole, wrapped to the pane (a compare pane is narrow)
+        note = (f"{name}: no real parameter for an energy table E(μ, p); its albedo at θi "
+                "is on the status line")
+        lines = textwrap.wrap(note, max(int(width), 1), break_long_words=True)
+        return Group(*(Text(line) for line in lines[:max(int(height), 1)]))
     t = view.table
     img_w, rows = int(width) - MARGIN - STRIP_GAP - STRIP_W, int(height) - 6
     if img_w < 4 or rows < 2:  # too small for the picture: the verdict alone
