@@ -163,3 +163,79 @@ def test_the_z_buffer_keeps_the_nearest_fragment_and_the_first_of_a_tie():
         hit, won = nearest_fragments(pid, depth, n_pix)
         assert dict(zip(hit.tolist(), won.tolist(), strict=True)) == want
         assert hit.tolist() == sorted(want)
+
+
+def _rasterise_by_loop(x, y, depth, px_w, px_h):
+    """:func:`rasterise`'s contract as a loop: triangle by triangle, every pixel centre of its
+    bounding box (decided on the snapped corners) row by row, kept where the three edge
+    functions agree in sign to 1e-9 of the doubled area (at least 1e-9)."""
+    from tuibrdf.core.numerics import snap
+
+    pid, zs, tris = [], [], []
+    for t in range(len(x)):
+        (x0, x1, x2), (y0, y1, y2) = x[t].tolist(), y[t].tolist()
+        lo_x = max(int(np.ceil(snap(min(x0, x1, x2) - 0.5))), 0)
+        hi_x = min(int(np.floor(snap(max(x0, x1, x2) - 0.5))), px_w - 1)
+        lo_y = max(int(np.ceil(snap(min(y0, y1, y2) - 0.5))), 0)
+        hi_y = min(int(np.floor(snap(max(y0, y1, y2) - 0.5))), px_h - 1)
+        for iy in range(lo_y, hi_y + 1):
+            for ix in range(lo_x, hi_x + 1):
+                cx, cy = ix + 0.5, iy + 0.5
+                ax, bx, qx = x0 - cx, x1 - cx, x2 - cx
+                ay, by, qy = y0 - cy, y1 - cy, y2 - cy
+                w0, w1, w2 = bx * qy - qx * by, qx * ay - ax * qy, ax * by - bx * ay
+                area = w0 + w1 + w2
+                eps = 1e-9 * max(abs(area), 1.0)
+                if area != 0 and (min(w0, w1, w2) >= -eps or max(w0, w1, w2) <= eps):
+                    pid.append(iy * px_w + ix)
+                    zs.append((w0 * depth[t, 0] + w1 * depth[t, 1] + w2 * depth[t, 2]) / area)
+                    tris.append(t)
+    return np.array(pid, dtype=np.int64), np.array(zs), np.array(tris, dtype=np.int64)
+
+
+KINDS = ["any", "slivers", "on centres", "ninths", "flat edges", "tiny"]
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_rasterise_covers_what_a_loop_over_each_box_covers(kind):
+    """The same fragments, in the same order (the z-buffer's tie-break) and with the same
+    depths, as the loop over each triangle's box: slivers across many columns (a lobe clipped
+    at the scale; scanned over their own extent on each row), corners and edges on pixel
+    centres (and on a grid of thirds, sixths or ninths of a pixel, where an edge's x on a row
+    rounds off a centre that lies on it), horizontal edges, triangles of nearly no area."""
+    from tuibrdf.render.solid import rasterise
+
+    rng = np.random.default_rng(KINDS.index(kind))
+    for _ in range(12):
+        n, w, h = int(rng.integers(1, 60)), int(rng.integers(1, 50)), int(rng.integers(1, 50))
+        if kind == "any":
+            x, y = rng.uniform(-5, w + 5, (n, 3)), rng.uniform(-5, h + 5, (n, 3))
+        elif kind == "slivers":  # two corners close, the third far along x or y
+            x = rng.uniform(0, w, (n, 1)) + rng.normal(0, 0.05, (n, 3))
+            y = rng.uniform(0, h, (n, 1)) + rng.normal(0, 0.05, (n, 3))
+            far = rng.uniform(-40, 40, n)
+            x[::2, 2] += far[::2]
+            y[1::2, 2] += far[1::2]
+            x[1::2, 2] += 0.3 * far[1::2]
+        elif kind == "on centres":
+            x = rng.integers(0, w + 1, (n, 3)) + rng.choice([0.0, 0.5], (n, 3))
+            y = rng.integers(0, h + 1, (n, 3)) + rng.choice([0.0, 0.5], (n, 3))
+        elif kind == "ninths":  # boxes wider than solid.WIDE_BOX: scanned over the extent
+            q = int(rng.choice([3, 6, 9]))
+            x, y = rng.integers(0, q * w, (n, 3)) / q, rng.integers(0, q * h, (n, 3)) / q
+            x[:, 2] = x[:, 0] + rng.integers(6, 30, n) * rng.choice([-1, 1], n)
+            # a few ulps off: a corner that snaps onto a centre's row lies just beyond it
+            y[::4] = np.nextafter(y[::4], y[::4] + rng.choice([-1.0, 1.0], (len(y[::4]), 3)))
+        elif kind == "flat edges":
+            x = rng.integers(-2, w + 2, (n, 3)) + 0.5
+            y = rng.integers(-2, h + 2, (n, 3)) + 0.5
+            y[:, 1] = y[:, 0]
+            x[::3, 2] = x[::3, 0]
+        else:
+            x = rng.uniform(0, w, (n, 1)) + rng.normal(0, 1e-7, (n, 3))
+            y = rng.uniform(0, h, (n, 1)) + rng.normal(0, 1e-7, (n, 3))
+            x[::2] = x[::2, :1]  # a vertical segment: no area
+        depth = rng.normal(size=(n, 3))
+        got, want = rasterise(x, y, depth, w, h), _rasterise_by_loop(x, y, depth, w, h)
+        for g, e in zip(got, want, strict=True):
+            np.testing.assert_array_equal(g, e)

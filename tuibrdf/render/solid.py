@@ -39,6 +39,9 @@ from tuibrdf.render.sections import radius
 from tuibrdf.render.text import LIGHT_RGB, RING_RGB
 
 SHADE_LEVELS = 64
+#: a triangle whose bounding box is wider than this many pixel columns is scanned row by row
+#: over its own extent (:func:`rasterise`); a narrower one over its box, which costs less
+WIDE_BOX = 4
 AXIS_RGB = RING_RGB
 
 
@@ -75,7 +78,8 @@ def _grid_triangles(n_faces: int, subdiv: int) -> np.ndarray:
 def rasterise(x: np.ndarray, y: np.ndarray, depth: np.ndarray, px_w: int, px_h: int):
     """Fragments ``(pixel id, depth, triangle)`` of triangles with corners ``x, y (T, 3)``
     (pixel units, x to the right, y down) and corner depths ``(T, 3)``: every pixel whose
-    centre lies inside a triangle or on its edges, all triangles at once (no Python loop)."""
+    centre lies inside a triangle or on its edges, all triangles at once (no Python loop),
+    triangle by triangle, each one's row by row (the z-buffer's order)."""
     x0, x1, x2 = x.T
     y0, y1, y2 = y.T
     # first and last pixel centres (c + 0.5) inside each triangle's bounding box, on screen,
@@ -83,18 +87,29 @@ def rasterise(x: np.ndarray, y: np.ndarray, depth: np.ndarray, px_w: int, px_h: 
     # width lies on a pixel centre, and the matrix product that projects it rounds by CPU
     lo_x = np.maximum(snapped_ceil(np.minimum(np.minimum(x0, x1), x2) - 0.5), 0).astype(np.int64)
     hi_x = np.minimum(snapped_floor(np.maximum(np.maximum(x0, x1), x2) - 0.5), px_w - 1)
-    lo_y = np.maximum(snapped_ceil(np.minimum(np.minimum(y0, y1), y2) - 0.5), 0).astype(np.int64)
-    hi_y = np.minimum(snapped_floor(np.maximum(np.maximum(y0, y1), y2) - 0.5), px_h - 1)
+    y_lo, y_hi = np.minimum(np.minimum(y0, y1), y2), np.maximum(np.maximum(y0, y1), y2)
+    lo_y = np.maximum(snapped_ceil(y_lo - 0.5), 0).astype(np.int64)
+    hi_y = np.minimum(snapped_floor(y_hi - 0.5), px_h - 1)
     nx = np.maximum(hi_x.astype(np.int64) - lo_x + 1, 0)
     ny = np.maximum(hi_y.astype(np.int64) - lo_y + 1, 0)
-    count = nx * ny
-    hit = np.nonzero(count)[0]  # most triangles of a small solid hold no pixel centre
-    count = count[hit]
-    tri = np.repeat(hit, count)
-    local = np.arange(len(tri)) - np.repeat(np.cumsum(count) - count, count)
-    nxt = nx[tri]  # ≥ 1: only triangles with a candidate pixel are repeated
-    ix = lo_x[tri] + local % nxt
-    iy = lo_y[tri] + local // nxt
+    # the box's rows of each triangle that has a pixel centre in its box (most triangles of a
+    # small solid have none)
+    hit = np.nonzero(nx * ny)[0]
+    tri, iy = _spread(hit, lo_y[hit], ny[hit])
+    # on each row of a box wider than WIDE_BOX columns, only its columns within a pixel of the
+    # triangle's own extent along the row's centre line: a sliver's box (a lobe clipped at
+    # the scale stretches triangles across the picture) holds 30 times the centres its rows
+    # do.  The edge test below decides, as it does in the box; the extent is only a bound, a
+    # pixel wide of it
+    first, last = lo_x[tri], hi_x[tri].astype(np.int64)
+    wide = np.flatnonzero(nx[tri] > WIDE_BOX)
+    if len(wide):
+        t = tri[wide]
+        xl, xr = _row_extent(x[t], y[t], np.clip(iy[wide] + 0.5, y_lo[t], y_hi[t]))
+        first[wide] = np.maximum(first[wide], np.ceil(xl - 0.5).astype(np.int64) - 1)
+        last[wide] = np.minimum(last[wide], np.floor(xr - 0.5).astype(np.int64) + 1)
+    row, ix = _spread(np.arange(len(tri)), first, np.maximum(last - first + 1, 0))
+    tri, iy = tri[row], iy[row]
     cx, cy = ix + 0.5, iy + 0.5
     ax, bx, qx = x0[tri] - cx, x1[tri] - cx, x2[tri] - cx
     ay, by, qy = y0[tri] - cy, y1[tri] - cy, y2[tri] - cy
@@ -113,6 +128,31 @@ def rasterise(x: np.ndarray, y: np.ndarray, depth: np.ndarray, px_w: int, px_h: 
     z = (w0[inside] * depth[tri, 0] + w1[inside] * depth[tri, 1]
          + w2[inside] * depth[tri, 2]) / area  # area ≠ 0 for every kept fragment
     return iy[inside] * px_w + ix[inside], z, tri
+
+
+def _spread(owner: np.ndarray, start: np.ndarray, count: np.ndarray):
+    """``(owner, value)`` for each of ``count[k]`` consecutive integers from ``start[k]``,
+    ``owner[k]`` repeated alongside, in order of k."""
+    own = np.repeat(owner, count)
+    offset = np.arange(len(own)) - np.repeat(np.cumsum(count) - count, count)
+    return own, np.repeat(start, count) + offset
+
+
+def _row_extent(x: np.ndarray, y: np.ndarray, yc: np.ndarray):
+    """Least and greatest x of triangles ``x, y (n, 3)`` on the lines ``y = yc (n,)``, each
+    within its triangle's y-range: where the line crosses an edge.  A horizontal edge on the
+    line counts as its first end (t = 0); its other end is where the next edge starts."""
+    xl = np.full(len(yc), np.inf)
+    xr = np.full(len(yc), -np.inf)
+    for a, b in ((0, 1), (1, 2), (2, 0)):
+        xa, xb, ya, yb = x[:, a], x[:, b], y[:, a], y[:, b]
+        on = (np.minimum(ya, yb) <= yc) & (yc <= np.maximum(ya, yb))
+        dy = yb - ya
+        t = np.divide(yc - ya, dy, out=np.zeros(len(yc)), where=dy != 0.0)
+        at = xa + t * (xb - xa)
+        xl = np.where(on, np.minimum(xl, at), xl)
+        xr = np.where(on, np.maximum(xr, at), xr)
+    return xl, xr
 
 
 def solid_image(
