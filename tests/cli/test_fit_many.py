@@ -65,7 +65,25 @@ def test_several_files_in_a_pool(files, tmp_path, capsys):
     assert [d["file"] for d in docs] == [str(files["ggx"]), str(missing), str(files["ggx"])]
     assert "error" in docs[1] and "missing.binary" in docs[1]["error"]
     assert docs[0]["fits"] == docs[2]["fits"]  # deterministic, whichever process ran it
-    assert len([ln for ln in err.splitlines() if ln.startswith("fitted ")]) == 3
+    # not a terminal: no progress (each file's line is), one line says one failed
+    assert err.splitlines() == ['tuibrdf: error: 1 of 3 files could not be fitted: see their '
+                                '"error" lines']
+
+
+def test_several_files_show_their_progress_on_a_terminal(files, tmp_path, monkeypatch,
+                                                          capsys):
+    import tuibrdf.cli.fit as cli_fit
+
+    monkeypatch.setattr(cli_fit, "isatty", lambda stream: True)
+    rc = main(["fit", str(files["ggx"]), str(tmp_path / "missing.binary"), "--model",
+               "lambert", "--mean", "--stride", STRIDE, "--jobs", "1"])
+    err = capsys.readouterr().err
+    assert rc == 2
+    progress, error = err.split("\n")[:2]
+    # one line rewritten in place: "\r" before each file's count
+    assert [p.split(" … ")[0] for p in progress.split("\r")[1:]] == [
+        "fitted 1/2 files (0 failed)", "fitted 2/2 files (1 failed)"]
+    assert error.startswith("tuibrdf: error: 1 of 2 files could not be fitted")
 
 
 @pytest.mark.parametrize("argv, needle", [

@@ -9,22 +9,29 @@ parameters that ended at a bound of their range, and a poor fit (a fit / data al
 outside 1/1.25–1.25×, or ``rel_l2`` of the fit against the data above 0.5 at θi = 0, 30 or 60°
 in some channel: :mod:`tuibrdf.core.sphere.compare`).  Progress goes to stderr while it runs.
 Several files: one compact JSON object per line and per file, in the order given, fitted by
-``--jobs N`` processes (:class:`concurrent.futures.ProcessPoolExecutor`), a progress line on
-stderr as each ends; a file that cannot be fitted is a line ``{"file": …, "error": …}`` and
-the exit status 2.  ``--compare`` opens the viewer on data (A) against the fit (B), the
-numbers of ``tuibrdf compare`` in its status line (one parameter set: an RGB model or
-``--mean``).  A file named after a MERL material
-(``gold-metallic-paint.binary``) also gets the residuals of the published ABC and SGD fits of
-that material (models ``abc``, ``sgd``) on the same objective, for comparison.  A missing or
-malformed file, an unknown model or one without continuous parameters: one line on stderr,
-exit 2.
+``--jobs N`` processes (:class:`concurrent.futures.ProcessPoolExecutor`), on a terminal a
+progress line on stderr rewritten as each ends; a file that cannot be fitted is a line
+``{"file": …, "error": …}``, and then one line on stderr says how many failed, exit status 2.
+``--compare`` opens the viewer on data (A) against the fit (B), the numbers of ``tuibrdf
+compare`` in its status line (one parameter set: an RGB model or ``--mean``).  A file named
+after a MERL material (``gold-metallic-paint.binary``) also gets the residuals of the
+published ABC and SGD fits of that material (models ``abc``, ``sgd``) on the same objective,
+for comparison.  A missing or malformed file, an unknown model or one without continuous
+parameters: one line on stderr, exit 2.
 """
 
 from __future__ import annotations
 
 import argparse
 
-from tuibrdf.cli.common import UsageError, fmt_params, json_params, parse_params, print_json
+from tuibrdf.cli.common import (
+    UsageError,
+    fmt_params,
+    isatty,
+    json_params,
+    parse_params,
+    print_json,
+)
 from tuibrdf.core.conventions import fmt_number
 
 #: ``tuibrdf.core.fit.STRIDE``, repeated so that ``--help`` does not import numpy (a test
@@ -171,6 +178,7 @@ def run_many(args: argparse.Namespace, fixed: dict) -> int:
 
     start = time.perf_counter()
     n, done, failed = len(args.file), 0, 0
+    live = isatty(sys.stderr)  # elsewhere each file's line on stdout is the progress
     with ProcessPoolExecutor(max_workers=min(args.jobs, n)) as pool:
         futures = [pool.submit(_fit_job, f, args.model, fixed, args.stride, args.mean)
                    for f in args.file]
@@ -179,9 +187,14 @@ def run_many(args: argparse.Namespace, fixed: dict) -> int:
             done += 1
             failed += "error" in doc
             print(json.dumps(doc, ensure_ascii=True, allow_nan=False), flush=True)
-            print(f"fitted {done}/{n} files ({failed} failed) … "
-                  f"{time.perf_counter() - start:.1f} s", file=sys.stderr, flush=True)
-    return 2 if failed else 0
+            if live:  # one line, rewritten as each file ends
+                print(f"\rfitted {done}/{n} files ({failed} failed) … "
+                      f"{time.perf_counter() - start:.1f} s", end="\n" if done == n else "",
+                      file=sys.stderr, flush=True)
+    if failed:  # one line says so, as for every error (each file's line says why)
+        raise UsageError(f"{failed} of {n} files could not be fitted: see their \"error\" "
+                         "lines")
+    return 0
 
 
 def run_one(args: argparse.Namespace, model, fixed: dict) -> int:
