@@ -475,3 +475,27 @@ async def test_panel_columns_line_up_with_long_labels():
         # "▶ " or "  ", the label column, then the value right-aligned in 8 cells
         ends = {len(line[:2 + width + 8].rstrip()) for line in lines}
         assert ends == {2 + width + 8}, lines
+
+
+async def test_a_frame_that_cannot_be_computed_says_its_albedo_will_not_come(tmp_path):
+    # a user's kernel that returns NaN: every pane and the status line say why, and the
+    # albedo is "—" (not computed), not "…" (still computing); the next good frame shows it
+    path = tmp_path / "half_nan.py"
+    path.write_text(
+        "import numpy as np\n"
+        "from tuibrdf.core.params import Model, Param\n"
+        "A = Param('a', 'a', 0.5, 0.0, 1.0, 0.1, doc='NaN from 0.55 on')\n"
+        "def f(wi, wo, a):\n"
+        "    return np.where(a > 0.55, np.nan, a / np.pi) + 0.0 * wo[..., 2]\n"
+        "MODEL = Model('half-nan', 'Half NaN', (A,), f)\n", encoding="utf-8")
+    app = make(str(path))
+    async with app.run_test(size=(120, 36)) as pilot:
+        await pilot.pause()
+        assert "a(θi)=0.5" in status(app)  # a/π: albedo a
+        await pilot.press("plus")  # a = 0.6: NaN
+        await pilot.pause()
+        assert "cannot compute this frame" in status(app) and "a(θi) —" in status(app)
+        assert "…" not in status(app).split("\n")[0]
+        await pilot.press("minus")
+        await pilot.pause()
+        assert "a(θi)=0.5" in status(app)

@@ -133,6 +133,7 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         self._relayout = False  # a change since the last update may show other panes
         self._preset_names: list[str] = []  # the saved presets, for the command palette
         self._widgets: dict[str, object] = {}  # id → widget (BrdfApp.one)
+        self._failed_request: FrameRequest | None = None  # the last one that could not be drawn
 
     # -- layout ------------------------------------------------------------------------------
     def get_default_screen(self) -> ViewerScreen:

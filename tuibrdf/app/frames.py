@@ -428,6 +428,7 @@ class FrameDelivery:
     @survives
     def _failed(self, req: FrameRequest, error: Exception) -> None:
         if req == self.request:
+            self._failed_request = req  # the status line says its numbers will not come
             self._stop_slow_timer()
             for pane in visible_panes(self.state):
                 self.one(pane).show(Text(f"cannot draw: {error}"), None)
@@ -503,5 +504,7 @@ class FrameDelivery:
 
     def _status(self) -> None:
         self.one("status").show_forms(
-            partial(status_text, self.state, self.frame, self.look, self._loading, self.message),
+            partial(status_text, self.state, self.frame, self.look, self._loading, self.message,
+                    failed=self._failed_request is not None
+                    and self._failed_request == self.request),
             TERSE_FORMS)

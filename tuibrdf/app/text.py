@@ -44,9 +44,11 @@ TERSE_FORMS = 4
 
 
 def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
-                loading: dict[str, float], message: str, terse: int = 0) -> Text:
+                loading: dict[str, float], message: str, terse: int = 0, *,
+                failed: bool = False) -> Text:
     """θi, then each side's albedo and peak from the frame on screen when it is the current
-    state's (else "…"), then the view, scale, colour map and the last message.  ``terse``
+    state's (else "…" while it is computed, "—" when it ``failed``: the message says why),
+    then the view, scale, colour map and the last message.  ``terse``
     (0 … TERSE_FORMS − 1) shortens the numbers for a narrow line, least useful first: 1 the
     probe's f·cos θr left out (f and θr are shown), 2 the peaks' directions too, 3 the peaks
     (each map's title and colour bar show them)."""
@@ -69,8 +71,9 @@ def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
         line.append_text(probe_text(frame, terse))
         line.append_text(energy_text(frame))
     else:
+        mark = "—" if failed else "…"
         for i in range(len(s.sides)):
-            line.append(f"  {'AB'[i]}: a=…" if s.compare else "  a(θi) …")
+            line.append(f"  {'AB'[i]}: a={mark}" if s.compare else f"  a(θi) {mark}")
     second = Text()
     scale = "log (3 decades)" if (s.slice_log if s.view == "slice" else s.log) else "linear"
     second.append(f"{VIEW_TITLES[s.view]} · {scale} · {s.cmap}"
