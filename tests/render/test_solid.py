@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from tuibrdf.core.material import Material
-from tuibrdf.core.views.frame import FrameRequest, compute_frame
+from tuibrdf.core.views.frame import SOLID_SUBDIV, FrameRequest, compute_frame, solid_samples
 from tuibrdf.render.halfblock import TRANSPARENT
 from tuibrdf.render.solid import SHADE_LEVELS, camera
 from tuibrdf.render.solid import solid_image as draw
@@ -239,3 +239,36 @@ def test_rasterise_covers_what_a_loop_over_each_box_covers(kind):
         got, want = rasterise(x, y, depth, w, h), _rasterise_by_loop(x, y, depth, w, h)
         for g, e in zip(got, want, strict=True):
             np.testing.assert_array_equal(g, e)
+
+
+def test_a_face_with_two_corners_at_zero_has_the_normal_of_its_surface():
+    """The solid of f = 1 but 0 on the horizon (a lobe rising to the horizon, where f is 0):
+    the outer faces with two corners on the horizon still have samples off it, so they are
+    drawn and need a normal, which the plane of their corners (two at the origin) does not
+    give.  Theirs is their deformed surface's vector area, which Stokes' theorem gives from
+    the boundary alone: ½ Σ p_k × p_k+1 around the face's edge samples; every other face keeps
+    its corners' plane."""
+    from tuibrdf.render.solid import _grid_triangles, face_normals
+
+    dirs, face, corner_dirs = solid_samples()
+    horizon = np.abs(dirs[:, 2]) < 1e-12
+    pts = np.where(horizon, 0.0, 1.0)[:, None] * dirs
+    n_faces, s = len(corner_dirs), SOLID_SUBDIV
+    zero = np.abs(corner_dirs[..., 2]) < 1e-12
+    corners = np.where(zero, 0.0, 1.0)[..., None] * corner_dirs
+    n = face_normals(corners, pts, _grid_triangles(n_faces, s))
+    # a face's samples: (i, j) row-major, i + j ≤ s; its edge from (0,0) along i, then back
+    # along the hypotenuse and down j (the small triangles' winding)
+    ij = [(i, j) for i in range(s + 1) for j in range(s + 1) if i + j <= s]
+    loop = ([(i, 0) for i in range(s)] + [(s - k, k) for k in range(s)]
+            + [(0, s - k) for k in range(s)])
+    edge = np.array([ij.index(v) for v in loop])
+    ring = pts[:n_faces * len(ij)].reshape(n_faces, len(ij), 3)[:, edge]
+    area = 0.5 * np.cross(ring, np.roll(ring, -1, axis=1)).sum(axis=1)
+    two = zero.sum(axis=1) == 2
+    assert two.sum() >= 16  # the outer ring's faces that sit on the horizon
+    want = area[two] / np.linalg.norm(area[two], axis=1)[:, None]
+    np.testing.assert_allclose(n[two], want, atol=1e-9)
+    plane = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])[~two]
+    np.testing.assert_allclose(n[~two], plane / np.linalg.norm(plane, axis=1)[:, None],
+                               atol=1e-12)

@@ -14,8 +14,9 @@
   the samples are also splatted, so a triangle thinner than a pixel still shows.
 - Z-buffer: the nearest fragment per pixel wins (depths compared to 1e-9 of a pixel; ties
   broken by fragment order: deterministic).
-- Shading: Lambert-like, ``0.2 + 0.8·|n·l|`` with ``n`` the triangle normal of the *deformed*
-  surface and ``l`` a light over the camera's left shoulder, quantised through the colour map.
+- Shading: Lambert-like, ``0.2 + 0.8·|n·l|`` with ``n`` the face normal of the *deformed*
+  surface (its corners' plane, or where they span none its own small triangles') and ``l`` a
+  light over the camera's left shoulder, quantised through the colour map.
 - Log (``log=True``): the radius is the decade position ``1 + log10(f / max) / 3`` clipped at 0,
   as in the sections (:func:`.sections.radius`).
 - Axes hint: the surface's outline (circle of radius ``max|p|`` in z = 0) and the normal N in
@@ -73,6 +74,23 @@ def _grid_triangles(n_faces: int, subdiv: int) -> np.ndarray:
     out = out.reshape(-1, 3)
     out.setflags(write=False)
     return out
+
+
+def face_normals(corners: np.ndarray, pts: np.ndarray, tris: np.ndarray) -> np.ndarray:
+    """Unit normals ``(F, 3)`` of the deformed faces: the plane of each face's corners
+    ``corners (F, 3, 3)``; where they span none, the direction of the face's own surface, the
+    sum of its small triangles' cross products (``tris``, face by face as
+    :func:`_grid_triangles` lists them, into the sample points ``pts``).  Two corners at 0
+    with the samples between them not (a lobe rising to the horizon, where f is 0): without
+    that, those faces were drawn in the darkest shade among their neighbours.  A face of no
+    area at all (f = 0) keeps n = 0."""
+    n = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    flat = np.flatnonzero(~np.any(n, axis=1))
+    if len(flat):
+        p0, p1, p2 = (pts[tris.reshape(len(n), -1, 3)[flat][..., k]] for k in range(3))
+        n[flat] = np.cross(p1 - p0, p2 - p0).sum(axis=1)
+    nn = np.linalg.norm(n, axis=1)
+    return n / np.where(nn > 0, nn, 1.0)[:, None]
 
 
 def rasterise(x: np.ndarray, y: np.ndarray, depth: np.ndarray, px_w: int, px_h: int):
@@ -191,11 +209,8 @@ def solid_image(
     pts = f[:, None] * dirs
     # an all-zero BRDF is drawn as the guides alone; log radii lie in [0, 1]
     scale_r = 1.0 if (log or rmax <= 0) else rmax
-    # triangle normals of the deformed surface, from the values at the face corners
-    corners = corner_dirs * fv[..., None]
-    n = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    nn = np.linalg.norm(n, axis=1)
-    n = n / np.where(nn > 0, nn, 1.0)[:, None]  # a collapsed face (f = 0) keeps n = 0
+    tris = _grid_triangles(len(corner_dirs), SOLID_SUBDIV)
+    n = face_normals(corner_dirs * fv[..., None], pts, tris)
     cam = camera(azimuth_deg, elevation_deg)
     light = cam[2] + 0.5 * cam[1] - 0.5 * cam[0]
     light /= np.linalg.norm(light)
@@ -224,7 +239,6 @@ def solid_image(
     rows = snapped_floor(px_h / 2 - (xyz[:, 1] - (lo + hi) / 2) * k).astype(np.int64)
     ok = (cols >= 0) & (cols < px_w) & (rows >= 0) & (rows < px_h)
     # the small triangles over each face's samples, in pixel units (x right, y down)
-    tris = _grid_triangles(len(corner_dirs), SOLID_SUBDIV)
     sx = px_w / 2 + xyz[: len(dirs), 0] * k
     sy = px_h / 2 - (xyz[: len(dirs), 1] - (lo + hi) / 2) * k
     t_pid, t_z, t_id = rasterise(sx[tris], sy[tris], xyz[: len(dirs), 2][tris], px_w, px_h)
