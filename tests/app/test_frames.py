@@ -7,6 +7,7 @@ unhandled exception).
 
 from __future__ import annotations
 
+import ast
 import dataclasses
 import random
 import re
@@ -68,6 +69,35 @@ def test_bindings_footer_help_and_palette_come_from_one_table():
         m = re.match(r"state\('(\w+)'", k.action)
         if m:
             assert callable(getattr(ViewerState, m.group(1)))
+
+
+
+@pytest.mark.parametrize("view", ["sphere", "plane", "slice", "theta-h", "theta-d", "map"])
+def test_the_status_line_names_the_keys_of_each_view_setting(view):
+    """The status line's second line shows a view's settings (``exp 1``) and ends with the
+    keys that change them (``x/X exp``): every key named there, pressed, changes the setting
+    it names, or refuses with a reason at a limit (the key table's actions, run on the
+    state); and every setting shown is named with its keys."""
+    from tuibrdf.app.text import settings_keys, settings_text, view_settings
+
+    def shown(state):  # setting name → the text the status line shows for it
+        text = settings_text(state)
+        out = {name: value for value, name, _ in view_settings(state) if value}
+        assert all(f" · {value}" in text for value in out.values())
+        return out
+
+    by_shown = {k.shown: k for k in keys.KEYS}
+    s = ViewerState(sides=[Side.of("phong")])
+    s.view = view
+    hints = re.findall(r"((?:\S+/\S+ |h )+)(\S+)", settings_keys(s).plain)
+    assert {name for _, name in hints} == set(shown(s)), (settings_keys(s).plain, shown(s))
+    for named, name in hints:
+        for key in re.split(r"[ /]", named.strip()):
+            t = ViewerState(sides=[Side.of("phong")])
+            t.view = view
+            method, args = re.fullmatch(r"state\('(\w+)', (.*)\)", by_shown[key].action).groups()
+            refused = getattr(t, method)(*ast.literal_eval(args))
+            assert shown(t)[name] != shown(s)[name] or refused, (view, key, name)
 
 
 # ---------------------------------------------------------------- latest state always wins

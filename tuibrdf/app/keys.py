@@ -170,6 +170,13 @@ def help_text() -> Group:
                       style="dim"))
 
 
+def keys_of(method: str) -> str:
+    """The keys of the state transition ``method``, as written, in the table's order
+    (``keys_of("scale_exposure") == "x/X"``): the status line names them beside the setting
+    they change."""
+    return "/".join(k.shown for k in KEYS if k.action.startswith(f"state({method!r},"))
+
+
 def palette_keys() -> list[Key]:
     """The keys the command palette lists (Textual adds its own help and quit)."""
     return [k for k in KEYS if k.action not in ("help", "quit", "interrupt")]

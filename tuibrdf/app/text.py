@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from rich.text import Text
 
+from tuibrdf.app.keys import keys_of
 from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.views.frame import FrameResult
 from tuibrdf.core.views.negatives import negative_note
@@ -77,28 +78,50 @@ def status_text(s: ViewerState, frame: FrameResult | None, look: panes.Look,
     second = Text()
     scale = "log (3 decades)" if (s.slice_log if s.view == "slice" else s.log) else "linear"
     second.append(f"{VIEW_TITLES[s.view]} · {scale} · {s.cmap}"
-                  f"{' · f·cos θr' if s.cosine else ''}{view_settings(s)}", style="dim")
+                  f"{' · f·cos θr' if s.cosine else ''}{settings_text(s)}", style="dim")
     if s.compare:
         second.append(f" · keys → {'AB'[s.active]}", style="bold")
     if message:
         second.append(f"  {message}", style="bold yellow")
+    second.append_text(settings_keys(s))
     return Text("\n").join([line, second])
 
 
-def view_settings(s: ViewerState) -> str:
-    """The settings of the view shown (`` · exp 1 γ 2.2``), and ψ when it is not its default
-    (90°)."""
-    out = ""
+def view_settings(s: ViewerState) -> list[tuple[str, str, str]]:
+    """The settings of the view shown, as ``(shown, name, transition)``:
+    ``("exp 1", "exp", "scale_exposure")`` (shown ``""``: another transition of the setting
+    before it); ψ only when it is not its default (90°)."""
+    out = []
     if s.view in ("sphere", "plane"):
-        out += f" · exp {s.exposure:g} γ {s.gamma:g}"
+        out += [(f"exp {s.exposure:g}", "exp", "scale_exposure"),
+                (f"γ {s.gamma:g}", "γ", "step_gamma")]
     elif s.view == "slice":
-        out += f" · φd {s.phi_d:g}° · {'√θh' if s.sqrt_h else 'linear θh'}"
-    elif s.view == "theta-h":
-        out += f" · θd {s.theta_d:g}° φd {s.phi_d:g}°"
-    elif s.view == "theta-d":
-        out += f" · θh {s.theta_h:g}° φd {s.phi_d:g}°"
+        out += [(f"φd {s.phi_d:g}°", "φd", "step_fixed"), ("", "φd", "step_phi_d"),
+                ("√θh" if s.sqrt_h else "linear θh", "√θh", "toggle_sqrt_h")]
+    elif s.view in ("theta-h", "theta-d"):
+        fixed = f"θd {s.theta_d:g}°" if s.view == "theta-h" else f"θh {s.theta_h:g}°"
+        out += [(fixed, fixed[:2], "step_fixed"), (f"φd {s.phi_d:g}°", "φd", "step_phi_d")]
     if s.section_azimuth != DISPLAY.section_azimuth.default:
-        out += f" · section ψ {s.section_azimuth:g}°"
+        out.append((f"section ψ {s.section_azimuth:g}°", "ψ", "step_section"))
+    return out
+
+
+def settings_text(s: ViewerState) -> str:
+    """`` · exp 1 · γ 2.2``: the view's settings, as the status line shows them."""
+    return "".join(f" · {shown}" for shown, _, _ in view_settings(s) if shown)
+
+
+def settings_keys(s: ViewerState) -> Text:
+    """``x/X exp  g/G γ``: the keys that change the view's settings, in bold (the status
+    line ends with them: on a full line they are what is cut, after a message)."""
+    named: dict[str, list[str]] = {}  # a setting two transitions change: its keys together
+    for _, name, method in view_settings(s):
+        named.setdefault(name, []).append(keys_of(method))
+    out = Text()
+    for name, keys in named.items():
+        out.append("  ")
+        out.append(" ".join(keys), style="bold")
+        out.append(f" {name}", style="dim")
     return out
 
 
