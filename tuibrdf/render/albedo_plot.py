@@ -249,12 +249,12 @@ def nice_step(top: float) -> float:
 
 
 def finish_plot(color: str) -> str:
-    """``plt.build()`` then ``plt.clf()`` (call under :data:`PLOT_LOCK`): the figure's text
-    without plotext's final newline, without colours when ``color == "none"``."""
+    """``plt.build()`` (call under :data:`PLOT_LOCK`; the figure stays until the next plot's
+    ``plt.clf()``): its text without plotext's final newline, without colours when
+    ``color == "none"``."""
     import plotext as plt  # ≈ 20 ms: when a plot is drawn, not at the viewer's start
 
     text = plt.build()
-    plt.clf()
     if text.endswith("\n"):  # plotext ends its last line with a newline
         text = text[:-1]
     return plt.uncolorize(text) if color == "none" else text
