@@ -288,3 +288,92 @@ async def test_pictures_stop_waiting_for_a_slow_albedo(monkeypatch):
         release.set()
         assert await wait_for(pilot, lambda: app.frame.complete
                               and app.frame.request.theta_i == 31.0)
+
+
+class Paints:
+    """Every paint the viewer's screen writes: what the terminal then shows (a
+    :class:`Terminal` fed each one), how many frames the app had drawn by then, and the cells
+    a terminal fed the whole screen at that moment (Textual's full update) shows."""
+
+    def __init__(self, monkeypatch, app: BrdfApp, width: int, height: int) -> None:
+        self.shown = Terminal(width, height)
+        self.made: list[tuple[int, list, list]] = []  # (frames drawn, shown cells, whole)
+        real = ViewerCompositor.render_update
+
+        def render_update(comp, full=False, screen_stack=None, simplify=False):
+            update = real(comp, full, screen_stack, simplify)
+            if update is not None:
+                self.shown.feed(rendered(update, app.console))
+                whole = Terminal(width, height)
+                whole.feed(rendered(Compositor.render_full_update(comp), app.console))
+                self.made.append((app.frames, [list(r) for r in self.shown.cells],
+                                  whole.cells))
+            return update
+
+        monkeypatch.setattr(ViewerCompositor, "render_update", render_update)
+
+
+async def test_the_first_paint_is_the_first_frame_on_the_whole_screen(monkeypatch):
+    # Textual paints its layout as it starts (empty panes, three times at 160×48) and then
+    # the first frame twice; the viewer's screen writes nothing before its first frame, and
+    # that paint leaves the terminal showing the whole screen (what a full update shows)
+    from tuibrdf.app import app as app_module
+
+    assert textual_internals.HOLD_PAINTS  # the Textual this runs with (8.2)
+    monkeypatch.setattr(app_module, "HOLD_S", 60.0)  # released by the frame alone
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
+    paints = Paints(monkeypatch, app, 160, 48)
+    async with app.run_test(size=(160, 48)) as pilot:
+        assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        await pilot.pause(0.2)
+        frames_then, shown, whole = paints.made[0]
+        assert frames_then >= 1
+        assert shown == whole
+        assert any("sr⁻¹" in "".join(c for c, _ in row) for row in shown)
+        assert len(paints.made) <= 2  # (the albedo, if it came after the pictures)
+
+
+async def test_a_screen_whose_frame_is_slow_is_painted_after_hold_s(monkeypatch):
+    # the first frame is held (a model file's kernel that does not return): after HOLD_S the
+    # screen is painted anyway, its panels and the status line's "…", then the frame
+    from tuibrdf.app import app as app_module
+
+    core_frame.clear_caches()
+    monkeypatch.setattr(app_module, "HOLD_S", 0.05)
+    release = held_compute(monkeypatch, slow_only=False, held=lambda theta_i: True)
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
+    paints = Paints(monkeypatch, app, 120, 36)
+    try:
+        async with app.run_test(size=(120, 36)) as pilot:
+            assert await wait_for(pilot, lambda: paints.made)
+            frames_then, shown, whole = paints.made[0]
+            text = "\n".join("".join(c for c, _ in row) for row in shown)
+            assert frames_then == 0 and shown == whole
+            assert "Modified Phong" in text and "a(θi) …" in text
+            release.set()
+            assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+    finally:
+        release.set()
+
+
+async def test_the_paint_after_a_release_writes_what_the_held_ones_did_not(monkeypatch):
+    # while held, a parameter key changes the panel's row and the pictures; after the
+    # release a θi key changes the pictures only: its paint writes the panel's row too
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
+    paints = Paints(monkeypatch, app, 120, 36)
+    async with app.run_test(size=(120, 36)) as pilot:
+        done = lambda: app.frame is not None and app.frame.complete \
+            and app.frame.request == app.request  # noqa: E731
+        assert await wait_for(pilot, done)
+        screen = app.screen
+        screen.held = True
+        await pilot.press("minus")
+        assert await wait_for(pilot, done)
+        await pilot.pause(0.1)
+        held = len(paints.made)
+        screen.release()
+        await pilot.press("right")
+        assert await wait_for(pilot, lambda: done() and len(paints.made) > held)
+        await pilot.pause(0.1)
+        _, shown, whole = paints.made[-1]
+        assert shown == whole

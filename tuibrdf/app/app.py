@@ -60,6 +60,9 @@ from tuibrdf.state.viewer import ViewerState
 FREEZE_S = 1.0
 
 FILE_POLL_S = 1.0  # how often a model file's mtime is checked (an edit redraws)
+#: the screen is first painted with the first frame (paint.ViewerScreen), or after this long
+#: without one (a model file still loading, an error, a terminal too small: what it says)
+HOLD_S = 0.25
 #: colour levels of the maps: 256, as `render` (32 showed false contours on smooth diffuse
 #: lobes); a full truecolor update of a 110×46 map of Oren-Nayar at 60° is ≈ 90 KB instead of
 #: ≈ 29 KB (256 colours: ≈ 20 KB either way), measured with render_view on this tree
@@ -156,8 +159,18 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         yield QuietStatic(id="toosmall")
         yield KeyBar()
 
+    def release_screen(self, repaint: bool = False) -> None:
+        """Paint the viewer's screen from now on (the first frame is drawn, or ``repaint``:
+        :data:`HOLD_S` passed without one)."""
+        screen = self.screen_stack[0] if self.screen_stack else None
+        if isinstance(screen, ViewerScreen) and screen.held:
+            screen.release()
+            if repaint:
+                screen.refresh()
+
     @survives
     def on_mount(self) -> None:
+        self.set_timer(HOLD_S, partial(self.release_screen, True))
         self._changed(self.message, relayout=True)
         self.set_interval(FILE_POLL_S, self._check_files)
         self.app_resume_signal.subscribe(self, self._resumed)

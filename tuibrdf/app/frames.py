@@ -435,6 +435,7 @@ class FrameDelivery:
             self.message = f"cannot compute this frame: {error}"
             self._panels()
             self._status()
+            self.release_screen()
 
     @survives
     def show_frame(self, res: FrameResult, passed: bool = False) -> None:
@@ -462,6 +463,7 @@ class FrameDelivery:
             self.one("legend").update(legend_text(self.state))
         self._panels()
         self._status()
+        self.release_screen()  # the first paint: this frame's (paint.ViewerScreen)
 
     def _pane_key(self, pane: str, res: FrameResult) -> tuple[tuple, int, int] | None:
         """What ``pane`` shows of ``res``: its size and what it is drawn from (a picture is

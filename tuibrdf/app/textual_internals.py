@@ -21,6 +21,9 @@ internal (Textual 8.2.8)                         what the viewer does with it
                                                  subclassed by ``paint.SpansUpdate``, which
 ``ChopsUpdate.render_segments(console)``         overrides it (each span from its first cell)
 ``Screen._compositor``                           :func:`install_compositor`: the viewer's
+``Screen._compositor_refresh()``                 :class:`HeldPaints` overrides it (no paint
+``Screen._dirty_widgets``                        written before ``paint.ViewerScreen``'s first
+``Screen._repaint_required``                     frame), and clears these
 ``Styles._cache_key``                            :func:`styles_key`: changes when a style does
 ``App._driver``                                  :func:`writer_backlog`: the writes Textual's
 ``LinuxDriver._writer_thread``                   output thread still has queued
@@ -59,8 +62,8 @@ from textual.widget import Widget
 
 __all__ = ["ChopsUpdate", "Compositor", "PARTIAL_PAINT", "SafeCommandPalette",
            "OneLineCrash", "SafeXTermParser", "checks", "guard_input_parsing",
-           "install_compositor", "regions_to_spans", "styles_key", "take_dirty_regions",
-           "writer_backlog"]
+           "HOLD_PAINTS", "HeldPaints", "install_compositor", "regions_to_spans",
+           "styles_key", "take_dirty_regions", "writer_backlog"]
 
 
 def _params(owner, name: str) -> list[str] | None:
@@ -89,6 +92,16 @@ def _compositor_checks() -> dict[str, bool]:
     }
 
 
+def _hold_checks() -> dict[str, bool]:
+    screen = Screen()
+    return {
+        "Screen._compositor_refresh()": _params(Screen, "_compositor_refresh") == ["self"],
+        "Screen._dirty_widgets": isinstance(getattr(screen, "_dirty_widgets", None), set),
+        "Screen._repaint_required": isinstance(getattr(screen, "_repaint_required", None),
+                                               bool),
+    }
+
+
 def _other_checks() -> dict[str, bool]:
     from textual.app import App
     from textual.drivers._writer_thread import WriterThread
@@ -106,6 +119,7 @@ def _other_checks() -> dict[str, bool]:
         loop.close()
     return {
         "Screen._compositor": isinstance(getattr(Screen(), "_compositor", None), Compositor),
+        **_hold_checks(),
         "Styles._cache_key": isinstance(getattr(RenderStyles, "_cache_key", None), property),
         "App._driver": "_driver" in vars(app),
         "LinuxDriver._writer_thread": "_writer_thread" in driver,
@@ -170,6 +184,36 @@ def checks() -> dict[str, bool]:
 PARTIAL_PAINT = all(_compositor_checks().values())
 
 _STYLES_KEY = isinstance(getattr(RenderStyles, "_cache_key", None), property)
+
+#: the viewer's screen can hold its paints until its first frame (paint.ViewerScreen); else
+#: it paints as Textual does
+HOLD_PAINTS = PARTIAL_PAINT and all(_hold_checks().values())
+
+
+class HeldPaints(Screen):
+    """A screen that writes no paint while :attr:`held`; after :meth:`release`, its next paint
+    writes the whole screen (``paint.ViewerScreen``: no paint before the first frame)."""
+
+    held = False
+
+    def release(self) -> None:
+        """Paint from now on, the whole screen at the next paint."""
+        if self.held:
+            self.held, self._whole_next = False, True
+            # a repaint of the whole screen asked for and not made yet is that paint (else
+            # a layout and a repaint due together would paint it twice)
+            self._repaint_required = False
+
+    def _compositor_refresh(self) -> None:  # Textual's paint
+        if self.held:  # what the paint would have written is forgotten, as a paint takes it
+            self._compositor._dirty_regions.clear()
+            self._dirty_widgets.clear()
+            return
+        if getattr(self, "_whole_next", False):
+            self._whole_next = False
+            compositor = self._compositor
+            compositor._dirty_regions.add(Region(0, 0, *compositor.size))
+        super()._compositor_refresh()
 
 
 def take_dirty_regions(compositor: Compositor) -> set[Region]:
