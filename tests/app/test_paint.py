@@ -377,3 +377,47 @@ async def test_the_paint_after_a_release_writes_what_the_held_ones_did_not(monke
         await pilot.pause(0.1)
         _, shown, whole = paints.made[-1]
         assert shown == whole
+
+
+@pytest.mark.parametrize("case", ["too small", "loading"])
+async def test_a_screen_that_says_why_there_is_no_frame_is_painted_at_once(
+        monkeypatch, tmp_path, case):
+    # a terminal too small for the panes, or a measured file still loading: what the screen
+    # says is painted without waiting for HOLD_S (made here longer than the test)
+    from tests.merl_writer import write_merl
+    from tuibrdf.app import app as app_module
+    from tuibrdf.core.formats import merl
+
+    monkeypatch.setattr(app_module, "HOLD_S", 60.0)
+    size = (30, 8) if case == "too small" else (100, 30)
+    side = Side.of("phong")
+    if case == "loading":
+        merl.clear_cache()
+        import numpy as np
+
+        path = str(write_merl(tmp_path / "grey.binary", np.full((3, 90, 90, 180), 0.1)))
+        side = Side.of("merl", {"file": path})
+        gate = threading.Event()
+        real = merl.load_cached
+
+        def slow_load(*a, **kw):  # the file is read only once the test has looked
+            gate.wait(10.0)
+            return real(*a, **kw)
+
+        monkeypatch.setattr(merl, "load_cached", slow_load)
+    app = BrdfApp(ViewerState(sides=[side]), color="truecolor")
+    paints = Paints(monkeypatch, app, *size)
+    try:
+        async with app.run_test(size=size) as pilot:
+            assert await wait_for(pilot, lambda: paints.made, seconds=5.0)
+            frames_then, shown, whole = paints.made[0]
+            text = "\n".join("".join(c for c, _ in row) for row in shown)
+            assert frames_then == 0 and shown == whole
+            assert ("needs at least" if case == "too small" else "loading measured data") \
+                in text, text
+            if case == "loading":
+                gate.set()
+                assert await wait_for(pilot, lambda: app.frames > 0)
+    finally:
+        if case == "loading":
+            gate.set()
