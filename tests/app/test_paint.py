@@ -421,3 +421,29 @@ async def test_a_screen_that_says_why_there_is_no_frame_is_painted_at_once(
     finally:
         if case == "loading":
             gate.set()
+
+
+@pytest.mark.parametrize("key", ["v", "c", "m"])
+async def test_a_new_layout_is_painted_with_its_frame_not_empty(monkeypatch, key):
+    # another view, compare mode, another model: Textual paints a layout when it is made,
+    # the new panes empty, then filled; the viewer's screen writes nothing until the new
+    # layout's frame is drawn, and that paint leaves the whole screen right
+    from tuibrdf.app import app as app_module
+
+    monkeypatch.setattr(app_module, "HOLD_S", 60.0)  # released by the frame alone
+    app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
+    paints = Paints(monkeypatch, app, 120, 36)
+    async with app.run_test(size=(120, 36)) as pilot:
+        done = lambda: app.frame is not None and app.frame.complete \
+            and app.frame.request == app.request  # noqa: E731
+        assert await wait_for(pilot, done)
+        await pilot.pause(0.2)
+        before, made = app.frames, len(paints.made)
+        await pilot.press(key)  # (v: map → solid; c: map A, B and A − B; m: blinn-phong)
+        assert await wait_for(pilot, lambda: done() and app.frames > before
+                              and len(paints.made) > made)
+        await pilot.pause(0.2)
+        after = paints.made[made:]
+        # every paint shows the main pane drawn: its title row is not blank
+        assert all("".join(c for c, _ in shown[0][:60]).strip() for _, shown, _ in after)
+        assert after[-1][1] == after[-1][2]

@@ -26,6 +26,7 @@ from tuibrdf.app.paint import ViewerScreen
 from tuibrdf.app.screens import HelpScreen, ReportScreen, SaveScreen, ValueScreen
 from tuibrdf.app.text import PANES
 from tuibrdf.app.textual_internals import (
+    HOLD_PAINTS,
     OneLineCrash,
     SafeCommandPalette,
     coalesce_resize_signals,
@@ -159,11 +160,24 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         yield QuietStatic(id="toosmall")
         yield KeyBar()
 
-    def release_screen(self, repaint: bool = False) -> None:
-        """Paint the viewer's screen from now on (the first frame is drawn, or ``repaint``:
-        :data:`HOLD_S` passed without one)."""
+    def _viewer_screen(self) -> ViewerScreen | None:
         screen = self.screen_stack[0] if self.screen_stack else None
-        if isinstance(screen, ViewerScreen) and screen.held:
+        return screen if isinstance(screen, ViewerScreen) else None
+
+    def hold_screen(self) -> None:
+        """Paint nothing of the viewer's screen until its frame is drawn (a new layout:
+        :meth:`release_screen`), or :data:`HOLD_S` at most."""
+        screen = self._viewer_screen()
+        if screen is not None and HOLD_PAINTS and not screen.held:
+            screen.held = True
+            self.set_timer(HOLD_S, partial(self.release_screen, True))
+
+    def release_screen(self, repaint: bool = False) -> None:
+        """Paint the viewer's screen from now on: its frame is drawn (whose panes are then
+        painted with what the held paints did not write), or ``repaint`` it all (what it shows
+        instead of a frame, or :data:`HOLD_S` passed without one)."""
+        screen = self._viewer_screen()
+        if screen is not None and screen.held:
             screen.release()
             if repaint:
                 screen.refresh()
@@ -239,13 +253,22 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         try:
             if self._relayout:
                 self._relayout = False
+                self.hold_screen()  # the new panes are painted with their frame, not empty
+                shown = self._displayed()
                 arrange(self)
-                if self._panels_move():  # drawn at the panes' sizes after the layout, once
+                # other panes, or the panels moving them: drawn at their sizes after the
+                # layout, once
+                if self._panels_move() or self._displayed() != shown:
+                    self._status()  # (its height shapes the panes too)
                     self.call_after_refresh(self._update, change)
                     return
             self.refresh_frame()
         except NoMatches:  # keys still queued while the app closes: no widgets left
             pass
+
+    def _displayed(self) -> list[str]:
+        """The panes on screen."""
+        return [p for p in PANES if self.one(p).display]
 
     def _panels_move(self) -> bool:
         """Draw the panels; whether one of them takes another height (a model with another

@@ -156,11 +156,12 @@ class ViewerScreen(HeldPaints):
     """The viewer's main screen, painted by :class:`ViewerCompositor` when Textual has what it
     uses.
 
-    Nothing is written until :meth:`release` (the app calls it when it draws its first frame,
-    or after ``BrdfApp.HOLD_S`` without one): Textual paints the layout as it starts, three
-    times with empty panes, and then the first frame's screen twice (a layout and a repaint
-    due at once): 117 kB at 160×48 for a screen of 44 kB.  Held, the first paint is the first
-    frame's, the whole screen once."""
+    Held (:class:`~.textual_internals.HeldPaints`) while a new layout waits for its frame:
+    at start-up until the first frame is drawn, and after a key that shows other panes (a view,
+    a model, compare mode, a resize) until theirs is, ``BrdfApp.HOLD_S`` at most.  Textual
+    paints a layout as soon as it is made: at start-up three times with empty panes and then
+    the first frame's screen twice (117 kB at 160×48 for a screen of 44 kB), and at a view
+    change the new panes empty, then filled."""
 
     def __init__(self, *args, **kw) -> None:
         super().__init__(*args, **kw)

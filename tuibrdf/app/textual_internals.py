@@ -22,8 +22,8 @@ internal (Textual 8.2.8)                         what the viewer does with it
 ``ChopsUpdate.render_segments(console)``         overrides it (each span from its first cell)
 ``Screen._compositor``                           :func:`install_compositor`: the viewer's
 ``Screen._compositor_refresh()``                 :class:`HeldPaints` overrides it (no paint
-``Screen._dirty_widgets``                        written before ``paint.ViewerScreen``'s first
-``Screen._repaint_required``                     frame), and clears these
+``Screen._dirty_widgets``                        written before the frame of a new layout),
+``Screen._repaint_required``                     and clears these
 ``Styles._cache_key``                            :func:`styles_key`: changes when a style does
 ``App._driver``                                  :func:`writer_backlog`: the writes Textual's
 ``LinuxDriver._writer_thread``                   output thread still has queued
@@ -191,28 +191,25 @@ HOLD_PAINTS = PARTIAL_PAINT and all(_hold_checks().values())
 
 
 class HeldPaints(Screen):
-    """A screen that writes no paint while :attr:`held`; after :meth:`release`, its next paint
-    writes the whole screen (``paint.ViewerScreen``: no paint before the first frame)."""
+    """A screen that writes no paint while :attr:`held`: what those paints would have written
+    (their regions) is kept, and written by the first paint after :meth:`release`
+    (``paint.ViewerScreen``: no paint before the frame of a new layout)."""
 
     held = False
 
     def release(self) -> None:
-        """Paint from now on, the whole screen at the next paint."""
+        """Paint from now on: the next paint writes every region the held ones did not."""
         if self.held:
-            self.held, self._whole_next = False, True
-            # a repaint of the whole screen asked for and not made yet is that paint (else
-            # a layout and a repaint due together would paint it twice)
-            self._repaint_required = False
+            self.held = False
+            if self._repaint_required:  # a repaint of the whole screen asked for meanwhile:
+                self._repaint_required = False  # the next paint makes it (a layout and a
+                compositor = self._compositor  # repaint due together would paint twice)
+                compositor._dirty_regions.add(Region(0, 0, *compositor.size))
 
     def _compositor_refresh(self) -> None:  # Textual's paint
-        if self.held:  # what the paint would have written is forgotten, as a paint takes it
-            self._compositor._dirty_regions.clear()
+        if self.held:  # its regions stay marked; its widgets are marked by them
             self._dirty_widgets.clear()
             return
-        if getattr(self, "_whole_next", False):
-            self._whole_next = False
-            compositor = self._compositor
-            compositor._dirty_regions.add(Region(0, 0, *compositor.size))
         super()._compositor_refresh()
 
 
