@@ -12,6 +12,7 @@ import asyncio
 import re
 import threading
 import unicodedata
+from functools import partial
 
 import pytest
 from rich.color import ColorSystem
@@ -290,6 +291,11 @@ async def test_pictures_stop_waiting_for_a_slow_albedo(monkeypatch):
                               and app.frame.request.theta_i == 31.0)
 
 
+def frame_done(app: BrdfApp) -> bool:
+    """Whether the current request's frame is on screen, albedo included."""
+    return app.frame is not None and app.frame.complete and app.frame.request == app.request
+
+
 class Paints:
     """Every paint the viewer's screen writes: what the terminal then shows (a
     :class:`Terminal` fed each one), how many frames the app had drawn by then, and the cells
@@ -362,8 +368,7 @@ async def test_the_paint_after_a_release_writes_what_the_held_ones_did_not(monke
     app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
     paints = Paints(monkeypatch, app, 120, 36)
     async with app.run_test(size=(120, 36)) as pilot:
-        done = lambda: app.frame is not None and app.frame.complete \
-            and app.frame.request == app.request  # noqa: E731
+        done = partial(frame_done, app)
         assert await wait_for(pilot, done)
         screen = app.screen
         screen.held = True
@@ -434,8 +439,7 @@ async def test_a_new_layout_is_painted_with_its_frame_not_empty(monkeypatch, key
     app = BrdfApp(ViewerState(sides=[Side.of("phong")]), color="truecolor")
     paints = Paints(monkeypatch, app, 120, 36)
     async with app.run_test(size=(120, 36)) as pilot:
-        done = lambda: app.frame is not None and app.frame.complete \
-            and app.frame.request == app.request  # noqa: E731
+        done = partial(frame_done, app)
         assert await wait_for(pilot, done)
         await pilot.pause(0.2)
         before, made = app.frames, len(paints.made)
