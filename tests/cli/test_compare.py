@@ -46,12 +46,22 @@ def test_identical_sides_are_zero(capsys):
     assert d["rel_l2"] == 0.0 and d["max_diff"] == 0.0
 
 
+def test_without_theta_i_the_rows_are_the_albedo_commands(capsys):
+    # no --theta-i: the incidences `tuibrdf albedo` prints by default, row for row
+    rc, out, _ = run(capsys, "compare", "lambert", "lambert", "-q", "kd=0.4", "--json")
+    assert rc == 0
+    rc, alb, _ = run(capsys, "albedo", "lambert", "--json")
+    assert [d["theta_i"] for d in json.loads(out)] == \
+        [d["theta_i"] for d in json.loads(alb)["values"]]
+    assert len(json.loads(out)) > 1
+
+
 @pytest.mark.parametrize("argv, needle", [
     (["compare", "lambert", "nope", "--theta-i", "3"], "unknown model 'nope'"),
     (["compare", "lambert", "material:x:zz", "--theta-i", "3"], "unknown fit 'zz'"),
     (["compare", "lambert", "lambert", "-q", "kd=7", "--theta-i", "3"], "kd"),
     (["compare", "lambert", "x.binary", "--theta-i", "3"], "x.binary"),
-    (["compare", "lambert", "lambert"], "--theta-i"),
+    (["compare", "lambert", "lambert", "--theta-i"], "--theta-i"),
 ])
 def test_bad_input_is_one_line(capsys, argv, needle):
     rc, out, err = run(capsys, *argv)

@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 
 from tuibrdf.cli.common import (
+    DEFAULT_THETAS,
     add_model_args,
     add_phi_i,
     add_theta_i,
@@ -26,8 +27,6 @@ from tuibrdf.cli.common import (
 )
 from tuibrdf.core.conventions import fmt_number
 from tuibrdf.core.display import DISPLAY
-
-DEFAULT_THETAS = (0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0)
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:

@@ -299,6 +299,11 @@ def add_phi_i(parser: argparse.ArgumentParser) -> None:
                                             "side, as in the source document)")
 
 
+#: the incidences a command that tabulates over θi prints when none are given: every 15°, and
+#: 89° for grazing light (90° itself is a limit: no light arrives)
+DEFAULT_THETAS = (0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0)
+
+
 def add_theta_i(parser: argparse.ArgumentParser, *, many: bool = False,
                 default: Any = None) -> None:
     """``--theta-i DEG`` (or ``DEG [DEG ...]`` with ``many``), in :data:`DISPLAY`'s range of

@@ -1,8 +1,9 @@
 """``tuibrdf compare``: how far apart two BRDFs are, at each θi.
 
-``tuibrdf compare A [-p NAME=VALUE ...] B [-q NAME=VALUE ...] --theta-i DEG [DEG ...]
-[--phi-i DEG] [--json]``.  A and B are model names, files or ``material:NAME[:abc|sgd]``
-(:mod:`tuibrdf.cli.sides`); ``-p`` sets A's parameters, ``-q`` B's.  For each θi: each side's
+``tuibrdf compare A [-p NAME=VALUE ...] B [-q NAME=VALUE ...] [--theta-i DEG [DEG ...]]
+[--phi-i DEG] [--json]`` (θi by default every 15° and 89°, as ``tuibrdf albedo``).  A and B
+are model names, files or ``material:NAME[:abc|sgd]`` (:mod:`tuibrdf.cli.sides`); ``-p``
+sets A's parameters, ``-q`` B's.  For each θi: each side's
 directional albedo with its error estimate, ``rel_l2 = sqrt(∫(fA − fB)² cos θo dω /
 ∫ fref² cos θo dω)`` with its error estimate (the reference is B, or the data when A alone is
 measured), and the largest difference relative to the reference's peak, signed as fA − fB,
@@ -14,7 +15,7 @@ from __future__ import annotations
 
 import argparse
 
-from tuibrdf.cli.common import add_phi_i, add_theta_i, fmt_params, print_json
+from tuibrdf.cli.common import DEFAULT_THETAS, add_phi_i, add_theta_i, fmt_params, print_json
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -25,7 +26,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("b", metavar="B", help="the other side, as A")
     parser.add_argument("-q", "--param-b", action="append", default=[], metavar="NAME=VALUE",
                         help="set a parameter of B (repeatable)")
-    add_theta_i(parser, many=True)
+    add_theta_i(parser, many=True, default=list(DEFAULT_THETAS))
     add_phi_i(parser)
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
