@@ -138,6 +138,7 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         self._preset_names: list[str] = []  # the saved presets, for the command palette
         self._widgets: dict[str, object] = {}  # id → widget (BrdfApp.one)
         self._failed_request: FrameRequest | None = None  # the last one that could not be drawn
+        self._hold_timer = None  # the timer that ends the screen's hold (hold_screen)
 
     # -- layout ------------------------------------------------------------------------------
     def get_default_screen(self) -> ViewerScreen:
@@ -168,14 +169,20 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         """Paint nothing of the viewer's screen until its frame is drawn (a new layout:
         :meth:`release_screen`), or :data:`HOLD_S` at most."""
         screen = self._viewer_screen()
-        if screen is not None and HOLD_PAINTS and not screen.held:
-            screen.held = True
-            self.set_timer(HOLD_S, partial(self.release_screen, True))
+        if screen is None or not HOLD_PAINTS:
+            return
+        screen.held = True
+        if self._hold_timer is not None:  # (a hold's own timer: never an earlier one's)
+            self._hold_timer.stop()
+        self._hold_timer = self.set_timer(HOLD_S, partial(self.release_screen, True))
 
     def release_screen(self, repaint: bool = False) -> None:
         """Paint the viewer's screen from now on: its frame is drawn (whose panes are then
         painted with what the held paints did not write), or ``repaint`` it all (what it shows
         instead of a frame, or :data:`HOLD_S` passed without one)."""
+        if self._hold_timer is not None:
+            self._hold_timer.stop()
+            self._hold_timer = None
         screen = self._viewer_screen()
         if screen is not None and screen.held:
             screen.release()
@@ -184,7 +191,7 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
 
     @survives
     def on_mount(self) -> None:
-        self.set_timer(HOLD_S, partial(self.release_screen, True))
+        self.hold_screen()  # (held since it was made: the first paint is the first frame's)
         self._changed(self.message, relayout=True)
         self.set_interval(FILE_POLL_S, self._check_files)
         self.app_resume_signal.subscribe(self, self._resumed)
