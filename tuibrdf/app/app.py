@@ -174,20 +174,18 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         screen.held = True
         if self._hold_timer is not None:  # (a hold's own timer: never an earlier one's)
             self._hold_timer.stop()
-        self._hold_timer = self.set_timer(HOLD_S, partial(self.release_screen, True))
+        self._hold_timer = self.set_timer(HOLD_S, self.release_screen)
 
-    def release_screen(self, repaint: bool = False) -> None:
-        """Paint the viewer's screen from now on: its frame is drawn (whose panes are then
-        painted with what the held paints did not write), or ``repaint`` it all (what it shows
-        instead of a frame, or :data:`HOLD_S` passed without one)."""
+    def release_screen(self) -> None:
+        """Paint the viewer's screen from now on, what the held paints did not write with
+        it: its frame is drawn, or what it shows instead (a message, a terminal too small),
+        or :data:`HOLD_S` passed without one."""
         if self._hold_timer is not None:
             self._hold_timer.stop()
             self._hold_timer = None
         screen = self._viewer_screen()
         if screen is not None and screen.held:
             screen.release()
-            if repaint:
-                screen.refresh()
 
     @survives
     def on_mount(self) -> None:

@@ -233,7 +233,7 @@ class FrameDelivery:
             self._panels()
             self._status()
             if self.screen.has_class("small"):  # what it says is the screen
-                self.release_screen(True)
+                self.release_screen()
             return
         if not self._files_ready():  # measured data still loading: its panes say so
             for pane in visible_panes(self.state):
@@ -241,7 +241,7 @@ class FrameDelivery:
                     Text("loading measured data …", justify="center"), None)
             self._panels()
             self._status()
-            self.release_screen(True)
+            self.release_screen()
             return
         req = self.frame_request()
         if req != self.request:

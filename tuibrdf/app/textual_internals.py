@@ -198,13 +198,17 @@ class HeldPaints(Screen):
     held = False
 
     def release(self) -> None:
-        """Paint from now on: the next paint writes every region the held ones did not."""
+        """Paint from now on: the next paint, due now, writes every region the held ones did
+        not."""
         if self.held:
             self.held = False
+            compositor = self._compositor
             if self._repaint_required:  # a repaint of the whole screen asked for meanwhile:
                 self._repaint_required = False  # the next paint makes it (a layout and a
-                compositor = self._compositor  # repaint due together would paint twice)
-                compositor._dirty_regions.add(Region(0, 0, *compositor.size))
+                compositor._dirty_regions.add(Region(0, 0, *compositor.size))  # repaint
+            if compositor._dirty_regions:  # due together would paint twice); the screen
+                self._dirty_widgets.add(self)  # marked as dirty, with no region of its
+                self.check_idle()  # own: the next update paints the kept regions, once
 
     def _compositor_refresh(self) -> None:  # Textual's paint
         if self.held:  # its regions stay marked; its widgets are marked by them
