@@ -123,6 +123,22 @@ def test_the_viewer_starts_without_plotext_or_tomllib():
     assert "plotext" not in mods and "tomllib" not in mods
 
 
+def test_the_viewer_starts_without_what_its_first_frame_does_not_use():
+    # what a key, a click, a figure, another view or compare mode needs is imported when
+    # first used: each module below is 1–5 ms of every start-up otherwise (importtime)
+    code = ("import tuibrdf.cli, tuibrdf.cli.view, tuibrdf.app.app, tuibrdf.render.panes\n"
+            "import sys\nprint(' '.join(sorted(sys.modules)))")
+    mods = set(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                              check=True).stdout.split())
+    assert "tuibrdf.app.app" in mods and "tuibrdf.core.views.frame" in mods
+    later = {"tuibrdf.app.screens", "tuibrdf.app.checks", "tuibrdf.state.presets",
+             "tuibrdf.state.bparams", "tuibrdf.render.pick", "tuibrdf.render.export.figure",
+             "tuibrdf.core.sphere.compare", "tuibrdf.render.solid", "tuibrdf.render.albedo_plot",
+             "tuibrdf.render.energy_view", "tuibrdf.render.lit_view", "json",
+             "textual.drivers.web_driver", "textual.drivers.linux_inline_driver"}
+    assert not mods & later, sorted(mods & later)
+
+
 def test_the_core_is_grouped_by_trade():
     # the core's floors, bottom up: base (params, numerics, conventions, display, directions,
     # lru) ←

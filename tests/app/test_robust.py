@@ -131,13 +131,22 @@ def test_a_paste_that_never_ends_is_dropped_and_keys_are_keys_again(monkeypatch)
     assert whole[1].key == "q"
 
 
-def test_the_viewer_installs_the_guarded_parser_in_textuals_drivers():
-    from textual.drivers import linux_driver
+@pytest.mark.parametrize("driver", ["linux_driver", "web_driver"])
+def test_the_viewer_installs_the_guarded_parser_in_its_driver(driver, monkeypatch):
+    # the terminal's driver, or the web's (tuibrdf serve sets TEXTUAL_DRIVER)
+    import importlib
+
+    from textual import constants
+    from textual._xterm_parser import XTermParser
 
     from tuibrdf.app.textual_internals import SafeXTermParser
 
+    module = importlib.import_module(f"textual.drivers.{driver}")
+    cls = "WebDriver" if driver == "web_driver" else "LinuxDriver"
+    monkeypatch.setattr(constants, "DRIVER", f"textual.drivers.{driver}:{cls}")
+    monkeypatch.setattr(module, "XTermParser", XTermParser)  # Textual's own (restored after)
     BrdfApp(ViewerState())
-    assert linux_driver.XTermParser is SafeXTermParser
+    assert module.XTermParser is SafeXTermParser
 
 
 @pytest.mark.parametrize("keys", [("ctrl+p", "enter", "enter"),

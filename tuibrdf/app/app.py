@@ -23,7 +23,6 @@ from tuibrdf.app.guard import error_text, survives
 from tuibrdf.app.layout import CSS, arrange
 from tuibrdf.app.loading import MeasuredData
 from tuibrdf.app.paint import ViewerScreen
-from tuibrdf.app.screens import HelpScreen, ReportScreen, SaveScreen, ValueScreen
 from tuibrdf.app.text import PANES
 from tuibrdf.app.textual_internals import (
     HOLD_PAINTS,
@@ -38,21 +37,9 @@ from tuibrdf.core.directions import from_degrees
 from tuibrdf.core.views.frame import FrameRequest, FrameResult, section_directions
 from tuibrdf.core.views.hemimap import dir_to_uv, geometry
 from tuibrdf.core.views.sections import great_circle
-from tuibrdf.render import panes, pick
+from tuibrdf.render import panes
 from tuibrdf.render.colormap import DEFAULT_LEVELS
 from tuibrdf.render.sections import angle_at
-from tuibrdf.state.bparams import save_bparams
-from tuibrdf.state.presets import (
-    PresetError,
-    PresetRunsCode,
-    apply_loaded,
-    list_presets,
-    load_preset,
-    preset_dir,
-    preset_path,
-    runs_code,
-    save_preset,
-)
 from tuibrdf.state.viewer import ViewerState
 
 #: after start-up (Textual, numpy, the models: ≈ 10⁵ objects kept for the whole session) the
@@ -80,7 +67,13 @@ def freeze_start_up() -> None:
     gc.enable()
 
 
+# (the modal screens, the presets, the pointer's readouts and the figures are imported
+# when first used: not for the first frame, docs/benchmarks.md "start-up")
+
+
 def _list_presets() -> list[str]:
+    from tuibrdf.state.presets import PresetError, list_presets
+
     try:
         return list_presets()
     except (PresetError, OSError):
@@ -90,6 +83,8 @@ def _list_presets() -> list[str]:
 def _read_preset(name: str, allow_code=()):
     """``(θi, sides)`` of a saved preset, or the message saying why it cannot be read (a
     :class:`PresetRunsCode` for one naming a Python file not in ``allow_code``)."""
+    from tuibrdf.state.presets import PresetError, PresetRunsCode, load_preset
+
     try:
         return load_preset(name, allow_code)
     except PresetRunsCode as e:
@@ -100,6 +95,8 @@ def _read_preset(name: str, allow_code=()):
 
 def _name_refused(name: str) -> str | None:
     """Why ``name`` cannot be a preset's name (the save dialog then stays open), or None."""
+    from tuibrdf.state.presets import PresetError, preset_path
+
     try:
         preset_path(name)
     except PresetError as e:
@@ -118,7 +115,7 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
     def __init__(self, state: ViewerState | None = None, *, color: str | None = None,
                  message: str = "", sync: bool = False) -> None:
         super().__init__()
-        guard_input_parsing()  # a malformed escape sequence is dropped, not fatal
+        guard_input_parsing(self.driver_class)  # a bad escape sequence is dropped, not fatal
         self.sync = sync
         self.state = state or ViewerState()
         self._color = color
@@ -336,6 +333,8 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
 
     def _read(self, pane: str, view: str, x: int, y: int) -> None:
         """A click on any other picture: its readout in the status line."""
+        from tuibrdf.render import pick
+
         res = self.frame
         if view == "extra":
             view = res.request.extra or ""
@@ -355,6 +354,8 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         """A drag: on the lit sphere the light goes where the sphere's normal under the
         pointer points; on the lit plane right/left turns φi and up/down θi; on the 3D
         solid the camera orbits (azimuth, elevation), 3° a cell."""
+        from tuibrdf.render import pick
+
         res, s = self.frame, self.state
         if res is None or pane not in PANES:
             return
@@ -393,6 +394,8 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
 
     @survives
     def action_help(self) -> None:
+        from tuibrdf.app.screens import HelpScreen
+
         self.push_screen(HelpScreen())
 
     @survives
@@ -410,12 +413,16 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         if isinstance(result, str):  # why the checks could not run
             self._changed(result)
             return
+        from tuibrdf.app.screens import ReportScreen
+
         self._changed("checks done (F or Esc closes the report)")
         self.push_screen(ReportScreen(result))
 
     @survives
     def action_type_value(self) -> None:
         """Enter or =: type the selected parameter's value (a filtered list for choices)."""
+        from tuibrdf.app.screens import ValueScreen
+
         s = self.state
         if (why := s.no_params()) is not None:
             self._changed(why)
@@ -434,6 +441,8 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
 
     @survives
     def action_type_theta(self) -> None:
+        from tuibrdf.app.screens import ValueScreen
+
         s = self.state
         prompt = f"θi (angle of incidence, degrees)\nnow {s.theta_i:g}°; in [0, 90]°" \
                  "\nEnter applies, Esc cancels"
@@ -470,6 +479,10 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
 
     @survives
     def action_save(self) -> None:
+        from tuibrdf.app.screens import SaveScreen
+        from tuibrdf.state.bparams import save_bparams
+        from tuibrdf.state.presets import PresetError, save_preset
+
         state = self.state
 
         def write(name: str) -> str:
@@ -500,6 +513,8 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
     def _named_code(self) -> list[str]:
         """The Python model files the user named this session (on the command line, or shown
         since): a preset may load those; any other would run code nobody named."""
+        from tuibrdf.state.presets import runs_code
+
         s = self.state
         return [m for m in [*s.files, *(x.model for x in s.sides)] if runs_code(m)]
 
@@ -507,6 +522,8 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
     def action_load_next(self) -> None:
         """P: the next saved preset, skipping those that would run a Python file the user
         did not name (with a message saying so)."""
+        from tuibrdf.state.presets import PresetRunsCode, preset_dir
+
         loaded, allowed = self._loaded, self._named_code()
 
         def work() -> tuple[str, object, str]:
@@ -541,12 +558,16 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         if not isinstance(got, tuple):  # why it cannot be loaded
             self._changed(str(got) + note)
             return
+        from tuibrdf.state.presets import apply_loaded
+
         apply_loaded(self.state, *got)
         self._loaded = name
         self._changed(f"loaded preset {name}{note}", relayout=True)
 
     def load(self, name: str) -> str | None:
         """Load a saved preset into the viewer now; a message if it cannot be."""
+        from tuibrdf.state.presets import apply_loaded
+
         got = _read_preset(name, self._named_code())
         if not isinstance(got, tuple):
             return str(got)
@@ -559,6 +580,8 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
             self.push_screen(SafeCommandPalette(id="--command-palette"))
 
     def get_system_commands(self, screen):
+        from tuibrdf.state.presets import preset_dir
+
         yield from super().get_system_commands(screen)
         for name in self._preset_names:  # listed off the event loop (on mount, on save)
             yield SystemCommand(f"Load preset {name}", f"{preset_dir() / name}.toml",

@@ -25,22 +25,22 @@ from pathlib import Path
 from types import SimpleNamespace
 
 from tuibrdf.app.guard import survives
-from tuibrdf.render.export.figure import DEFAULT_SIZE, IMAGE_VIEWS
 
 #: the numbers written with each main view: (table view, suffix)
 NUMBERS = {"map": ("map", "npz"), "solid": ("map", "npz"), "sphere": ("map", "npz"),
            "plane": ("map", "npz"), "slice": ("slice", "npz"), "albedo": ("albedo", "csv"),
            "theta-h": ("theta-h", "csv"), "theta-d": ("theta-d", "csv")}
-#: pixels across of the PNG and of the map's numbers
-SIZE = DEFAULT_SIZE
 
 
-def _files(state, size: int = SIZE) -> list[tuple[str, bytes | str]]:
-    """``(name suffix, contents)`` of the main view of every side (numpy and zlib: runs in a
-    thread)."""
+def _files(state) -> list[tuple[str, bytes | str]]:
+    """``(name suffix, contents)`` of the main view of every side, the PNG and the map's
+    numbers ``DEFAULT_SIZE`` pixels across (numpy and zlib: runs in a thread; the figure's
+    modules are imported at the first figure, not at start-up)."""
     from tuibrdf.core.views.tables import for_view
     from tuibrdf.render.export import numbers
-    from tuibrdf.render.export.figure import figure
+    from tuibrdf.render.export.figure import DEFAULT_SIZE, IMAGE_VIEWS, figure
+
+    size = DEFAULT_SIZE
 
     s, out = state, []
     for k, material in enumerate(s.materials):

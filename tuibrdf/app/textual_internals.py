@@ -335,15 +335,18 @@ class SafeXTermParser(XTermParser):
             Parser.__init__(self)
 
 
-def guard_input_parsing() -> bool:
-    """Every Textual driver here parses terminal input with :class:`SafeXTermParser`;
-    whether it could be installed (Textual's drivers name ``XTermParser`` in their module)."""
-    done = False
-    for module in _driver_modules():
-        if getattr(module, "XTermParser", None) in (XTermParser, SafeXTermParser):
-            module.XTermParser = SafeXTermParser
-            done = True
-    return done
+def guard_input_parsing(driver_class: type) -> bool:
+    """The Textual driver ``driver_class`` (the app's: a terminal's, or the web's under
+    ``tuibrdf serve``) parses terminal input with :class:`SafeXTermParser`; whether it could
+    be installed (Textual's drivers name ``XTermParser`` in their module).  Only that
+    driver's module is touched: the others are not imported at every start-up."""
+    import sys
+
+    module = sys.modules.get(driver_class.__module__)
+    if getattr(module, "XTermParser", None) not in (XTermParser, SafeXTermParser):
+        return False
+    module.XTermParser = SafeXTermParser
+    return True
 
 
 def _one_line(renderable, limit: int = 300) -> str:

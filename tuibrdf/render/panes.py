@@ -35,7 +35,6 @@ from tuibrdf.core.sphere.horizon import HORIZON_DEG, Horizon, PeakScale
 from tuibrdf.core.sphere.peak import Peak
 from tuibrdf.core.views.frame import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
 from tuibrdf.core.views.hemimap import geometry
-from tuibrdf.render.albedo_plot import albedo_plot
 from tuibrdf.render.colormap import (
     DEFAULT_LEVELS,
     LOG_DECADES,
@@ -47,7 +46,6 @@ from tuibrdf.render.colormap import (
 from tuibrdf.render.curves import CHANNEL_WORDS, side_curves
 from tuibrdf.render.halfblock import HalfBlockImage, Mark
 from tuibrdf.render.sections import caption_parts, fwhm_text, polar_canvas
-from tuibrdf.render.solid import solid_image
 from tuibrdf.render.text import (
     INCIDENT_MARK,
     MIRROR_MARK,
@@ -478,6 +476,8 @@ def extra_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Renderab
 # --------------------------------------------------------------------------------- solid
 def solid_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Group:
     """Title and the photometric solid as half blocks, its radius scale the frame's peak."""
+    from tuibrdf.render.solid import solid_image  # (as every view but the map's: when shown)
+
     side = res.sides[k]
     peak, sc = shown_peak(side, "solid", look), shown_scale(side, "solid", look)
     # compare mode: both solids on one radius scale, the larger of the two (as the maps share
@@ -520,6 +520,8 @@ def albedo_pane(res: FrameResult, w: int, h: int, look: Look) -> RenderableType:
     top = max(float(np.max(s.curve)) for s in res.sides)
     over = any(s.curve_exceeds_one() for s in res.sides)
     flag = f"a>1 (max {fmt_value(top)}): not energy-conserving" if over else ""
+    from tuibrdf.render.albedo_plot import albedo_plot
+
     plot = albedo_plot(CURVE_THETAS, curves, w, h - 1, theta_i_deg=t, color=look.color)
     if len(res.sides) == 1:
         s0 = res.sides[0]

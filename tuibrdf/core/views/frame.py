@@ -47,6 +47,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import lru_cache
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -62,7 +63,6 @@ from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.evaluate import f_cos
 from tuibrdf.core.lru import LRU
 from tuibrdf.core.material import Material
-from tuibrdf.core.sphere import compare as sphere_compare
 from tuibrdf.core.sphere.albedo import (
     AlbedoEstimate,
     albedo_curve_estimate_resolved,
@@ -72,6 +72,9 @@ from tuibrdf.core.sphere.albedo import (
 from tuibrdf.core.sphere.horizon import HORIZON_DEG, Horizon, PeakScale, assess, drawn_scale
 from tuibrdf.core.sphere.peak import Peak, f_or_f_cos, find_peaks
 from tuibrdf.core.views.hemimap import MapInfo, map_values
+
+if TYPE_CHECKING:
+    from tuibrdf.core.sphere.compare import Numbers
 
 PLANES = ("incidence", "perpendicular")
 #: the main views drawn from :func:`extra_values` (beside the map, the solid and the albedo)
@@ -301,7 +304,7 @@ class FrameResult:
     diff_max: tuple[float, float, float] | None = None
     #: compare mode: the numbers of :func:`tuibrdf.core.sphere.compare.compare` at θi (a slow
     #: part, with the albedo)
-    numbers: sphere_compare.Numbers | None = None
+    numbers: Numbers | None = None
 
     @property
     def complete(self) -> bool:
@@ -585,6 +588,8 @@ def compute_frame(req: FrameRequest, *, slow: bool = True,
         sides.append(side)
     diff, numbers = None, None
     if len(sides) == 2:  # compare mode: the numbers that say how far apart the sides are
+        from tuibrdf.core.sphere import compare as sphere_compare  # (compare mode only)
+
         (a, b), t, pi = req.materials, req.theta_i, req.phi_i
         if req.map_px is not None:
             diff = _DIFFS.get((a, b, t, pi, req.cosine), lambda: sphere_compare.largest_difference(
