@@ -40,6 +40,18 @@ from tuibrdf.core.views.sections import great_circle
 from tuibrdf.render import panes
 from tuibrdf.render.colormap import DEFAULT_LEVELS
 from tuibrdf.render.sections import angle_at
+from tuibrdf.state.bparams import save_bparams
+from tuibrdf.state.presets import (
+    PresetError,
+    PresetRunsCode,
+    apply_loaded,
+    list_presets,
+    load_preset,
+    preset_dir,
+    preset_path,
+    runs_code,
+    save_preset,
+)
 from tuibrdf.state.viewer import ViewerState
 
 #: after start-up (Textual, numpy, the models: ≈ 10⁵ objects kept for the whole session) the
@@ -67,13 +79,11 @@ def freeze_start_up() -> None:
     gc.enable()
 
 
-# (the modal screens, the presets, the pointer's readouts and the figures are imported
-# when first used: not for the first frame, docs/benchmarks.md "start-up")
+# (the modal screens, the pointer's readouts and the figures are imported when first used:
+# not for the first frame, docs/benchmarks.md "start-up"; the presets are listed at mount)
 
 
 def _list_presets() -> list[str]:
-    from tuibrdf.state.presets import PresetError, list_presets
-
     try:
         return list_presets()
     except (PresetError, OSError):
@@ -83,8 +93,6 @@ def _list_presets() -> list[str]:
 def _read_preset(name: str, allow_code=()):
     """``(θi, sides)`` of a saved preset, or the message saying why it cannot be read (a
     :class:`PresetRunsCode` for one naming a Python file not in ``allow_code``)."""
-    from tuibrdf.state.presets import PresetError, PresetRunsCode, load_preset
-
     try:
         return load_preset(name, allow_code)
     except PresetRunsCode as e:
@@ -95,8 +103,6 @@ def _read_preset(name: str, allow_code=()):
 
 def _name_refused(name: str) -> str | None:
     """Why ``name`` cannot be a preset's name (the save dialog then stays open), or None."""
-    from tuibrdf.state.presets import PresetError, preset_path
-
     try:
         preset_path(name)
     except PresetError as e:
@@ -480,8 +486,6 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
     @survives
     def action_save(self) -> None:
         from tuibrdf.app.screens import SaveScreen
-        from tuibrdf.state.bparams import save_bparams
-        from tuibrdf.state.presets import PresetError, save_preset
 
         state = self.state
 
@@ -513,8 +517,6 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
     def _named_code(self) -> list[str]:
         """The Python model files the user named this session (on the command line, or shown
         since): a preset may load those; any other would run code nobody named."""
-        from tuibrdf.state.presets import runs_code
-
         s = self.state
         return [m for m in [*s.files, *(x.model for x in s.sides)] if runs_code(m)]
 
@@ -522,8 +524,6 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
     def action_load_next(self) -> None:
         """P: the next saved preset, skipping those that would run a Python file the user
         did not name (with a message saying so)."""
-        from tuibrdf.state.presets import PresetRunsCode, preset_dir
-
         loaded, allowed = self._loaded, self._named_code()
 
         def work() -> tuple[str, object, str]:
@@ -558,16 +558,12 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         if not isinstance(got, tuple):  # why it cannot be loaded
             self._changed(str(got) + note)
             return
-        from tuibrdf.state.presets import apply_loaded
-
         apply_loaded(self.state, *got)
         self._loaded = name
         self._changed(f"loaded preset {name}{note}", relayout=True)
 
     def load(self, name: str) -> str | None:
         """Load a saved preset into the viewer now; a message if it cannot be."""
-        from tuibrdf.state.presets import apply_loaded
-
         got = _read_preset(name, self._named_code())
         if not isinstance(got, tuple):
             return str(got)
@@ -580,8 +576,6 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
             self.push_screen(SafeCommandPalette(id="--command-palette"))
 
     def get_system_commands(self, screen):
-        from tuibrdf.state.presets import preset_dir
-
         yield from super().get_system_commands(screen)
         for name in self._preset_names:  # listed off the event loop (on mount, on save)
             yield SystemCommand(f"Load preset {name}", f"{preset_dir() / name}.toml",

@@ -40,8 +40,6 @@ def _files(state) -> list[tuple[str, bytes | str]]:
     from tuibrdf.render.export import numbers
     from tuibrdf.render.export.figure import DEFAULT_SIZE, IMAGE_VIEWS, figure
 
-    size = DEFAULT_SIZE
-
     s, out = state, []
     for k, material in enumerate(s.materials):
         tag = "-b" if k else ""
@@ -53,9 +51,9 @@ def _files(state) -> list[tuple[str, bytes | str]]:
                     sqrt_h=s.sqrt_h, phi_i_deg=s.phi_i)
         if s.view in IMAGE_VIEWS:
             out.append((f"{s.view}{tag}.png",
-                        figure(s.view, m, values, s.theta_i, size, **look).png()))
+                        figure(s.view, m, values, s.theta_i, DEFAULT_SIZE, **look).png()))
         tview, suffix = NUMBERS.get(s.view, ("map", "npz"))
-        tab = for_view(tview, m, values, s.theta_i, s.phi_i, size=size,
+        tab = for_view(tview, m, values, s.theta_i, s.phi_i, size=DEFAULT_SIZE,
                        section_azimuth=s.section_azimuth, theta_d=s.theta_d,
                        theta_h=s.theta_h, phi_d=s.phi_d, sqrt_h=s.sqrt_h, cosine=s.cosine)
         data = numbers.to_npz(tab) if suffix == "npz" else numbers.to_csv(tab)

@@ -147,6 +147,14 @@ def build_state(args: argparse.Namespace):
 def _build_state(args: argparse.Namespace):
     from tuibrdf.core.formats.merl import check_file, load_cached
     from tuibrdf.core.registry import MODELS
+    from tuibrdf.state.presets import (
+        PresetError,
+        apply_loaded,
+        find_preset,
+        list_presets,
+        load_preset,
+        where_presets_are,
+    )
     from tuibrdf.state.viewer import COMPARE_PRESETS, Side, ViewerState
 
     sides = material_sides(args)
@@ -179,15 +187,6 @@ def _build_state(args: argparse.Namespace):
     state = ViewerState(sides=[Side(model.name, values)], theta_i=float(args.theta_i),
                         phi_i=float(args.phi_i) % 360.0)
     if args.preset:
-        from tuibrdf.state.presets import (
-            PresetError,
-            apply_loaded,
-            find_preset,
-            list_presets,
-            load_preset,
-            where_presets_are,
-        )
-
         seed = {p.name for p in COMPARE_PRESETS}
         try:
             path = find_preset(args.preset)  # the new directory first, then the old one

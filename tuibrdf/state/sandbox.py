@@ -18,6 +18,7 @@ the model file is read, so a refused ``.py`` never runs).  Paths are compared af
 
 from __future__ import annotations
 
+import json
 import os
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -37,16 +38,12 @@ class Policy:
     models: tuple[str, ...] = ()
 
     def to_json(self) -> str:
-        import json  # (only where a viewer is served: not at every start-up)
-
         return json.dumps({"data_dir": self.data_dir, "files": sorted(self.files),
                            "allow_python": self.allow_python, "models": list(self.models)})
 
     @classmethod
     def from_json(cls, text: str) -> Policy:
         """Raises ValueError for anything but what :meth:`to_json` writes."""
-        import json
-
         try:
             d = json.loads(text)
             data_dir, files = d["data_dir"], d["files"]
