@@ -407,7 +407,7 @@ async def test_preset_io_runs_off_the_event_loop_in_a_daemon_thread(config_home,
     # doing it must be a daemon (a pool thread is joined at exit: q would hang)
     import threading
 
-    from tuibrdf.state import presets
+    from tuibrdf.app import app as app_module
 
     release, seen = threading.Event(), {}
 
@@ -416,8 +416,8 @@ async def test_preset_io_runs_off_the_event_loop_in_a_daemon_thread(config_home,
         release.wait(10)
         return 10.0, [Side.of("lambert")]
 
-    monkeypatch.setattr(presets, "list_presets", lambda: ["slow"])
-    monkeypatch.setattr(presets, "load_preset", slow_load)
+    monkeypatch.setattr(app_module, "list_presets", lambda: ["slow"])
+    monkeypatch.setattr(app_module, "load_preset", slow_load)
     app = BrdfApp(ViewerState(sides=[Side.of("phong")], theta_i=30.0))  # not sync
     async with app.run_test(size=(100, 30)) as pilot:
         await pilot.press("P")
