@@ -94,3 +94,10 @@ def test_the_views_looser_table_stays_honest():
         avg, avg_err = e_avg_resolved(m, vals)
         assert abs(t.E_avg[i] - avg) <= t.E_avg_error[i] + avg_err
         assert t.E_avg_error[i] <= VIEW_RTOL * abs(t.E_avg[i])
+    # the E_avg the view prints for the current value: the same looser rule, as honest
+    for alpha in (0.05, 0.5):
+        vals = m.resolve({"kd": 0.0, "alpha": alpha})
+        view = energy_view(m, vals, 30.0, "kd")
+        avg, avg_err = e_avg_resolved(m, vals)
+        assert abs(view.E_avg - avg) <= view.E_avg_error + avg_err
+        assert view.E_avg_error <= VIEW_RTOL * view.E_avg
