@@ -90,6 +90,14 @@ def process_cpu(pid: int) -> float:
         return 0.0
 
 
+def seen_in(marker: bytes, tail: bytes, data: bytes) -> tuple[bool, bytes]:
+    """Whether ``marker`` is in ``tail + data`` (the bytes read before and now), and the new
+    tail: the last ``len(marker) - 1`` bytes, a marker split across two reads.  (Searching a
+    tail cut to a fixed size lost a marker at the start of a read larger than the cut.)"""
+    buf = tail + data
+    return marker in buf, buf[len(buf) - len(marker) + 1:] if len(buf) >= len(marker) else buf
+
+
 class Term:
     """The app in a pty; ``rate`` limits reading (bytes/s, None = as fast as possible)."""
 
@@ -162,8 +170,8 @@ class Term:
         while time.perf_counter() < end:
             got = self.read(0.05)
             if got:
-                tail = (tail + got[1])[-4096:]
-                if marker in tail:
+                seen, tail = seen_in(marker, tail, got[1])
+                if seen:
                     return got[0]
         raise TimeoutError(f"no {marker!r} within {timeout} s")
 

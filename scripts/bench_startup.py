@@ -27,7 +27,7 @@ import sys
 import tempfile
 import time
 
-from bench_app import IDLE_S, ROOT, Term
+from bench_app import IDLE_S, ROOT, Term, seen_in
 from bench_help import fresh_bytecode
 from benchdoc import command_line, machine, write_section
 from revtree import extract
@@ -62,9 +62,10 @@ def timed(term: Term, marker: bytes, rate: float | None = None
         while (got := term.read(IDLE_S if seen else 20.0, 4096)) is not None:
             time.sleep(len(got[1]) / rate)  # the bytes passing the link
             last = time.perf_counter()
-            tail = (tail + got[1])[-4096:]
-            if seen is None and marker in tail:
-                seen = last
+            if seen is None:
+                found, tail = seen_in(marker, tail, got[1])
+                if found:
+                    seen = last
         if seen is None:
             raise TimeoutError(f"no {marker!r}")
         return seen - term.t0, last - term.t0, term.sent_since_key

@@ -1,5 +1,6 @@
 """scripts/bench_app.py's CPU time of the viewer counts the threads that have ended too (each
-frame job's thread ends with its frame): a sum over the live threads' counters misses them."""
+frame job's thread ends with its frame): a sum over the live threads' counters misses them.
+And its pseudo-terminal finds a marker wherever the reads cut the output."""
 
 from __future__ import annotations
 
@@ -42,3 +43,16 @@ def test_an_ended_threads_cpu_time_is_counted():
         child.stdout.close()
         child.wait()
     assert process_cpu(child.pid) == 0.0  # ended and reaped: no clock, no error
+
+
+def test_a_marker_is_found_in_a_large_read_and_across_two():
+    # the start-up benchmark waits for a marker in what the app writes: found at the start of
+    # a read larger than any fixed tail, and split across two reads
+    from bench_app import seen_in
+
+    marker = b"minimal app ready"
+    assert seen_in(marker, b"", marker + b"x" * 20_000)[0]
+    found, tail = seen_in(marker, b"", b"y" * 9_000 + marker[:5])
+    assert not found and len(tail) == len(marker) - 1
+    assert seen_in(marker, tail, marker[5:])[0]
+    assert not seen_in(marker, tail, b"other bytes")[0]
