@@ -101,3 +101,30 @@ def test_the_views_looser_table_stays_honest():
         avg, avg_err = e_avg_resolved(m, vals)
         assert abs(view.E_avg - avg) <= view.E_avg_error + avg_err
         assert view.E_avg_error <= VIEW_RTOL * view.E_avg
+
+
+def test_the_energy_views_albedo_is_the_frames_computed_once(monkeypatch):
+    # the view's E at θi and the status line's a(θi) are one number: the frame integrates it
+    # once (for a user's kernel, each albedo is a whole adaptive integration)
+    from tuibrdf.core.material import Material
+    from tuibrdf.core.sphere import albedo as sphere_albedo
+    from tuibrdf.core.sphere import energy as sphere_energy
+    from tuibrdf.core.views import frame as core_frame
+
+    at_41 = []
+    real = sphere_albedo.albedo_rule
+
+    def counted(model, values, thetas, *a, **kw):
+        if list(np.atleast_1d(thetas)) == [41.0]:
+            at_41.append(1)
+        return real(model, values, thetas, *a, **kw)
+
+    for module in (sphere_albedo, sphere_energy):  # (energy.py imports it by name)
+        monkeypatch.setattr(module, "albedo_rule", counted)
+    m = Material("gltf", {"roughness": 0.37})  # a value no other test's frame has cached
+    req = core_frame.FrameRequest((m,), 41.0, extra="energy", energy_param="metallic")
+    res = core_frame.compute_frame(req)
+    side = res.sides[0]
+    view = side.extra[0]
+    assert len(at_41) == 1
+    assert view.E == max(side.albedo) and view.error == max(side.albedo_error)

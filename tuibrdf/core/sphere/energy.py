@@ -307,18 +307,23 @@ def view_table(model: Model, values: Mapping[str, Any], p: Param) -> EnergyTable
 
 
 def energy_view(model: Model, values: Mapping[str, Any], theta_i: float,
-                name: str | None = None, phi_i: float = 180.0) -> EnergyView | None:
+                name: str | None = None, phi_i: float = 180.0, *,
+                albedo: tuple | None = None) -> EnergyView | None:
     """The energy view of ``model`` at resolved ``values`` and incidence ``θi`` over
-    parameter ``name`` (:func:`view_param`); None for a model without a real parameter."""
+    parameter ``name`` (:func:`view_param`); None for a model without a real parameter.
+    ``albedo``: the albedo at (θi, φi) and its error, when the caller has it (the viewer's
+    frame: the same number as its status line's, computed once)."""
     from tuibrdf.core.conventions import fmt_number
 
     p = view_param(model, name)
     if p is None:
         return None
     table = view_table(model, values, p)
-    r = albedo_rule(model, values, [theta_i], phi_i)
-    e = np.max(np.asarray(r.value, dtype=float).reshape(-1))  # the largest channel
-    de = float(np.max(np.asarray(r.error, dtype=float)))
+    if albedo is None:
+        r = albedo_rule(model, values, [theta_i], phi_i)
+        albedo = (r.value, r.error)
+    e = np.max(np.asarray(albedo[0], dtype=float).reshape(-1))  # the largest channel
+    de = float(np.max(np.asarray(albedo[1], dtype=float)))
     key = (id(model), phi_i, tuple((k, _freeze(v)) for k, v in values.items()))
     hit = _AVG_CACHE.get(key)
     if hit is None or hit[0] is not model:

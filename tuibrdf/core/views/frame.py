@@ -424,7 +424,10 @@ def extra_values(m: Material, req: FrameRequest) -> tuple:
     if e == "energy":
         from tuibrdf.core.sphere.energy import energy_view
 
-        return (energy_view(model, values, req.theta_i, req.energy_param, req.phi_i),)
+        # its E is the frame's albedo at (θi, φi): computed here once, for the status line too
+        t, pi = req.theta_i, req.phi_i
+        a = _ALBEDO.get((m, t, pi), lambda: _albedo_estimate(m, t, pi))
+        return (energy_view(model, values, t, req.energy_param, pi, albedo=a),)
     raise ValueError(f"unknown view {e!r}")
 
 
