@@ -10,7 +10,9 @@ timestamps the bytes the app writes back:
   asks for an albedo never computed before), model change (``m``), and → and ``+`` in turn
   (each key another than the one before it).  p50 / p95 over ``--reps`` keys each.
 * **all panes**: key → the last byte before the output stays idle for ``SETTLE_S`` (map, the
-  two sections, the status line's albedo and peak from a worker thread), for every key kind.
+  two sections, the status line's albedo and peak from a worker thread), for every key kind;
+  with ``pyte``, not before the status line stops saying the frame's numbers are coming
+  (``a(θi) …``: a frame slower than the quiet, whose status line went ahead of it).
 * **bytes per update**: all bytes written for one 1° θi key, against the minimum for the cells
   that change: the app's own screen before and after the key is replayed through ``pyte`` (a
   terminal emulator) when installed, each changed cell costing its character plus the shortest
@@ -50,6 +52,7 @@ import fcntl
 import math
 import os
 import pty
+import re
 import select
 import signal
 import statistics
@@ -66,6 +69,9 @@ GAP_S = 0.004
 FRAME_MIN = 3000
 IDLE_S = 0.25
 SETTLE_S = 0.15
+#: the viewer's status line while a frame's numbers are coming (app/text.py's status_text:
+#: ``a(θi) …``, ``A: a=…``; panes.albedo_text's ``…``; compare mode's ``rel_l2 …``)
+PENDING = re.compile(r"a\(θi\)[ =]…|\ba=…|rel_l2 …")
 #: Textual asks whether the terminal has synchronized output (DECRQM mode 2026) at start-up;
 #: the reply "mode 2026 is set-able, currently reset" is what terminals that have it answer
 SYNC_QUERY, SYNC_REPLY = b"\x1b[?2026$p", b"\x1b[?2026;2$y"
@@ -151,11 +157,23 @@ class Term:
         loaded machine inflates far less than latency (:func:`process_cpu`)."""
         return process_cpu(self.pid)
 
-    def cells(self) -> dict:
-        """The emulated screen: (row, col) → (char, fg, bg, bold, reverse)."""
+    def _feed(self) -> None:
         for data in self.unfed:
             self.stream.feed(data)
         self.unfed.clear()
+
+    def waiting(self) -> bool:
+        """Whether the viewer's status line says the frame's numbers are still coming
+        (:data:`PENDING`): the pictures and numbers of that frame are not on screen yet,
+        however long the screen has been quiet (False without pyte: not known)."""
+        if self.screen is None:
+            return False
+        self._feed()
+        return any(PENDING.search(line) for line in self.screen.display)
+
+    def cells(self) -> dict:
+        """The emulated screen: (row, col) → (char, fg, bg, bold, reverse)."""
+        self._feed()
         out = {}
         for y in range(self.screen.lines):
             row = self.screen.buffer[y]
@@ -187,7 +205,10 @@ class Term:
     def key_to_frame(self, key: bytes, timeout: float = 10.0) -> tuple[float, int, float]:
         """(seconds from the key to the end of the first burst over ``FRAME_MIN`` bytes — or
         of the largest burst when none is that big: a small update —, the bytes of that
-        burst, seconds to the last byte before ``SETTLE_S`` of quiet)."""
+        burst, seconds to the last byte before ``SETTLE_S`` of quiet with the status line no
+        longer waiting for the frame: :meth:`waiting`)."""
+        if self.screen is not None:
+            self._feed()  # what came before the key: not while its frame is timed
         t_key = time.perf_counter()
         self.sent_since_key = 0
         os.write(self.fd, key)
@@ -201,7 +222,9 @@ class Term:
                     bursts.append((last, size))
                     size = 0
                     continue
-                if bursts:
+                # quiet, but the status line may say the frame is still coming (it goes
+                # ahead of a slow frame): complete only once its numbers are on screen
+                if bursts and not self.waiting():
                     break
                 continue
             t, data = got

@@ -7,6 +7,8 @@ from __future__ import annotations
 import subprocess
 import sys
 
+import pytest
+
 from tests import ROOT
 
 sys.path.insert(0, str(ROOT / "scripts"))
@@ -56,3 +58,26 @@ def test_a_marker_is_found_in_a_large_read_and_across_two():
     assert not found and len(tail) == len(marker) - 1
     assert seen_in(marker, tail, marker[5:])[0]
     assert not seen_in(marker, tail, b"other bytes")[0]
+
+
+@pytest.mark.parametrize("compare", [False, True])
+def test_the_benchmark_tells_a_pending_status_line_from_a_complete_one(compare):
+    # the benchmark's frame is complete once the status line no longer says its numbers are
+    # coming: its pattern must match what the viewer writes meanwhile, at every terse form,
+    # and nothing the complete frame's status line says
+    from bench_app import PENDING
+
+    from tuibrdf.app.text import TERSE_FORMS, status_text
+    from tuibrdf.core.material import Material
+    from tuibrdf.core.views import frame as core_frame
+    from tuibrdf.render import panes
+    from tuibrdf.state.viewer import Side, ViewerState
+
+    sides = [Side.of("ggx"), Side.of("phong")][: 1 + compare]
+    state = ViewerState(sides=sides, theta_i=30.0)
+    req = core_frame.FrameRequest(tuple(Material(s.model, dict(s.values)) for s in sides), 30.0)
+    done = core_frame.compute_frame(req)
+    look = panes.Look(color="none")
+    for k in range(TERSE_FORMS):
+        assert PENDING.search(status_text(state, None, look, {}, "", k).plain)
+        assert not PENDING.search(status_text(state, done, look, {}, "", k).plain)
