@@ -128,3 +128,50 @@ def test_the_energy_views_albedo_is_the_frames_computed_once(monkeypatch):
     view = side.extra[0]
     assert len(at_41) == 1
     assert view.E == max(side.albedo) and view.error == max(side.albedo_error)
+
+
+#: a model file whose albedo depends on the light's azimuth, in closed form:
+#: f = kd/π · (1 + a·wi_x²), so a(θi, φi) = kd · (1 + a·sin²θi·cos²φi)
+AZIMUTHAL = '''
+import numpy as np
+from tuibrdf.core.params import Model, Param
+
+KD = Param("kd", "kd", 0.5, 0.0, 1.0, 0.01)
+A = Param("a", "a", 0.5, 0.0, 1.0, 0.01)
+
+
+def f(wi, wo, kd, a):
+    return np.broadcast_to(kd / np.pi * (1.0 + a * wi[..., 0] ** 2), np.broadcast_shapes(
+        wi.shape, wo.shape)[:-1])
+
+
+MODEL = Model("azimuthal", "Azimuthal", (KD, A), f, summary="albedo kd(1 + a sin²θi cos²φi)")
+'''
+
+
+def test_the_energy_table_is_at_the_lights_azimuth(tmp_path):
+    # the table, its E_avg strip and the numbers printed beside them are all at the light's
+    # φi: at φi = 90° this model's albedo is kd at every θi (at 180°, kd·(1 + a·sin²θi)),
+    # so each row of the table holds its kd, and its E_avg = 2∫ kd μ dμ = kd
+    from tuibrdf.core.formats.userfiles import load_model_file
+    from tuibrdf.core.sphere.energy import mu_grid
+
+    path = tmp_path / "azimuthal.py"
+    path.write_text(AZIMUTHAL)
+    m = load_model_file(path)
+    kd, a = 0.5, 0.5
+    vals = m.resolve({"kd": kd, "a": a})
+    mu = mu_grid(16)
+    theta = float(np.degrees(np.arccos(mu[9])))  # the current θi on the table's μ grid
+    for phi, expect in ((90.0, lambda k, u: k + 0 * u),
+                        (180.0, lambda k, u: k * (1.0 + a * (1.0 - u * u)))):
+        view = energy_view(m, vals, theta, "kd", phi)
+        t = view.table
+        want = expect(t.values[:, None], t.mu[None, :])
+        assert np.all(np.abs(t.E - want) <= t.error + 1e-12)
+        assert abs(view.E - expect(kd, mu[9])) <= view.error + 1e-12
+        # E_avg = 2∫ a(μ) μ dμ: kd at 90°, kd·(1 + a/2) at 180°
+        avg = kd if phi == 90.0 else kd * (1.0 + a / 2)
+        assert abs(view.E_avg - avg) <= view.E_avg_error + 1e-12
+        assert np.all(np.abs(t.E_avg - (t.values if phi == 90.0 else t.values * (1 + a / 2)))
+                      <= t.E_avg_error + 1e-12)

@@ -24,6 +24,7 @@ import numpy as np
 from tuibrdf.core.params import Model, Param
 from tuibrdf.core.sphere.albedo import DEFAULT_RTOL, albedo_rule
 from tuibrdf.core.sphere.integrator.rules import WG15, WK15, X15
+from tuibrdf.core.sphere.lobes import lobe
 
 #: Largest grid the table accepts per axis (validated before anything is allocated).
 MAX_N = 4096
@@ -278,12 +279,17 @@ def _freeze(v: Any) -> Any:
     return tuple(v) if isinstance(v, list | tuple) else v
 
 
-def view_table(model: Model, values: Mapping[str, Any], p: Param) -> EnergyTable:
+def view_table(model: Model, values: Mapping[str, Any], p: Param,
+               phi_i: float = 180.0) -> EnergyTable:
     """The view's table of ``p`` over its whole range (geometric for a parameter that steps
-    by a factor and starts above 0), the other parameters at ``values``; the last few are kept
-    (stepping ``p`` itself reuses its table)."""
+    by a factor and starts above 0), the other parameters at ``values``, at the light's
+    azimuth ``φi``; the last few are kept (stepping ``p`` itself reuses its table, and so does
+    a φi step for a model whose albedo does not depend on it: an isotropic one)."""
     others = tuple((k, _freeze(v)) for k, v in values.items() if k != p.name)
-    key = (id(model), p.name, others)
+    # an isotropic model's integrand is even in ψ and integrated at φi = 0 whatever φi is
+    # (integrator.integrate, symmetric): the same table at every φi
+    azimuth = None if lobe(model, values, VIEW_RTOL).symmetric else phi_i
+    key = (id(model), p.name, others, azimuth)
     hit = _VIEW_CACHE.get(key)
     if hit is not None and hit[0] is model:
         return hit[1]
@@ -299,7 +305,8 @@ def view_table(model: Model, values: Mapping[str, Any], p: Param) -> EnergyTable
                              for n in c.names if n != p.name)
             hi = min(hi, max(lo, 1.0 - others_sum))
     n = VIEW_N if hi > lo else 1
-    table = energy_table(model, base, p.name, lo, hi, n, VIEW_MU_N, log=log, rtol=VIEW_RTOL)
+    table = energy_table(model, base, p.name, lo, hi, n, VIEW_MU_N, log=log, phi_i=phi_i,
+                         rtol=VIEW_RTOL)
     if len(_VIEW_CACHE) >= _VIEW_CACHE_SIZE:
         _VIEW_CACHE.pop(next(iter(_VIEW_CACHE)))
     _VIEW_CACHE[key] = (model, table)
@@ -318,7 +325,7 @@ def energy_view(model: Model, values: Mapping[str, Any], theta_i: float,
     p = view_param(model, name)
     if p is None:
         return None
-    table = view_table(model, values, p)
+    table = view_table(model, values, p, phi_i)
     if albedo is None:
         r = albedo_rule(model, values, [theta_i], phi_i)
         albedo = (r.value, r.error)
