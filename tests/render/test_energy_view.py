@@ -175,3 +175,43 @@ def test_the_energy_table_is_at_the_lights_azimuth(tmp_path):
         assert abs(view.E_avg - avg) <= view.E_avg_error + 1e-12
         assert np.all(np.abs(t.E_avg - (t.values if phi == 90.0 else t.values * (1 + a / 2)))
                       <= t.E_avg_error + 1e-12)
+
+
+#: a model file that is fine at its default but returns NaN above kd = 0.9
+NAN_ABOVE = '''
+import numpy as np
+from tuibrdf.core.params import Model, Param
+
+KD = Param("kd", "kd", 0.5, 0.0, 1.0, 0.01)
+
+
+def f(wi, wo, kd):
+    v = np.full(np.broadcast_shapes(wi.shape, wo.shape)[:-1], kd / np.pi)
+    return v * np.nan if kd > 0.9 else v
+
+
+MODEL = Model("nan_above", "NaN above 0.9", (KD,), f, summary="NaN for kd > 0.9")
+'''
+
+
+def test_a_kernel_failing_in_the_tables_range_leaves_the_other_panes(tmp_path):
+    # the energy table sweeps kd over 0–1, where this kernel returns NaN above 0.9; at the
+    # current kd = 0.5 it is fine: the energy pane says why it has no table, and the sections
+    # and the status line's albedo (kd = 0.5: a = 0.5 at every θi) still come
+    from tuibrdf.core.formats.userfiles import load_model_file
+    from tuibrdf.core.material import Material
+    from tuibrdf.core.views import frame as core_frame
+    from tuibrdf.render import panes
+
+    path = tmp_path / "nan_above.py"
+    path.write_text(NAN_ABOVE)
+    m = Material(load_model_file(path), {"kd": 0.5})
+    res = core_frame.compute_frame(core_frame.FrameRequest((m,), 30.0, extra="energy"))
+    side = res.sides[0]
+    assert abs(side.albedo - 0.5) <= side.albedo_error + 1e-12
+    assert abs(side.section_max - 0.5 / np.pi) <= 1e-15  # the sections: f = kd/π
+    view, problem = side.extra
+    assert view is None and "NaN" in problem
+    text = " ".join(to_text(panes.pane("extra", res, 0, 60, 20, panes.Look(color="none")),
+                            width=60).split())
+    assert "no energy table" in text and "returned NaN" in text

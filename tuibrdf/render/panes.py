@@ -456,8 +456,9 @@ def extra_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Renderab
     if req.extra == "energy":
         from tuibrdf.render.energy_view import energy_picture
 
-        return energy_picture(name, side.extra[0], w, h, cmap=look.cmap, levels=look.levels,
-                              color=look.color)
+        view, problem = side.extra
+        return energy_picture(name, view, w, h, cmap=look.cmap, levels=look.levels,
+                              color=look.color, problem=problem)
     if req.extra == "slice":
         f, valid, th, td = side.extra
         vmax = max(halfdiff_view.slice_scale(s.extra, req.phi_d) for s in res.sides)

@@ -23,7 +23,8 @@ RGB),
                 or None when no probe is shown
 ``extra``       the arrays of the request's ``extra`` view, or None (:func:`extra_values`):
                 ``sphere``/``plane`` → ``(radiance, mask)``, ``slice`` → ``(f, valid, θh, θd)``,
-                ``theta-h``/``theta-d`` → ``(x, f, valid)``
+                ``theta-h``/``theta-d`` → ``(x, f, valid)``, ``energy`` → ``(EnergyView or None,
+                why its table cannot be made or None)``
 ``map``         the Lambert map's pixels and :class:`~tuibrdf.core.views.hemimap.MapInfo` (or None)
 ``solid``       ``f`` at the solid's sample directions (:func:`solid_samples`; or None)
 ``albedo``      ``a(θi) = ∫ f cos θr dω`` (float, or 3 floats for RGB), None until computed
@@ -427,7 +428,13 @@ def extra_values(m: Material, req: FrameRequest) -> tuple:
         # its E is the frame's albedo at (θi, φi): computed here once, for the status line too
         t, pi = req.theta_i, req.phi_i
         a = _ALBEDO.get((m, t, pi), lambda: _albedo_estimate(m, t, pi))
-        return (energy_view(model, values, t, req.energy_param, pi, albedo=a),)
+        try:
+            return (energy_view(model, values, t, req.energy_param, pi, albedo=a), None)
+        except (ValueError, ArithmeticError) as err:
+            # the table sweeps the parameter's whole range: a value there that the kernel
+            # fails at (a NaN, a floating-point error) is this pane's message, while every
+            # other pane, at the current values, still draws
+            return (None, str(err))
     raise ValueError(f"unknown view {e!r}")
 
 
