@@ -141,3 +141,42 @@ def test_theta_key_builds_no_plot(monkeypatch):
     for theta in (10.0, 11.0, 12.5):
         ap.albedo_plot(_T, curves, 66, 18, theta_i_deg=theta)
     assert built == [None]  # the plot without its marker, once
+
+
+#: a model file fine up to θi = 84°, NaN beyond (cos θi < 0.1)
+NAN_AT_GRAZING = '''
+import numpy as np
+from tuibrdf.core.params import Model, Param
+
+KD = Param("kd", "kd", 0.5, 0.0, 1.0, 0.01)
+
+
+def f(wi, wo, kd):
+    shape = np.broadcast_shapes(wi.shape, wo.shape)[:-1]
+    return np.where(np.broadcast_to(wi[..., 2], shape) < 0.1, np.nan, np.full(shape, kd / np.pi))
+
+
+MODEL = Model("nan_grazing", "NaN at grazing light", (KD,), f, summary="NaN for θi > 84°")
+'''
+
+
+def test_a_kernel_failing_at_another_incidence_leaves_this_one(tmp_path):
+    # the albedo curve runs over θi = 0–90°, where this kernel returns NaN beyond 84°; at
+    # θi = 30° it is f = kd/π: the albedo pane says why it has no curve, the frame is
+    # complete with the albedo at 30° (kd = 0.5: a = 0.5) and the sections
+    from tests.render.test_views import to_text
+    from tuibrdf.core.formats.userfiles import load_model_file
+
+    path = tmp_path / "nan_grazing.py"
+    path.write_text(NAN_AT_GRAZING)
+    m = Material(load_model_file(path), {"kd": 0.5})
+    req = core_frame.FrameRequest((m,), 30.0, curve=True)
+    res = core_frame.compute_frame(req)
+    side = res.sides[0]
+    assert res.complete and not core_frame.needs_curve(req)
+    assert abs(side.albedo - 0.5) <= side.albedo_error + 1e-12
+    assert abs(side.section_max - 0.5 / np.pi) <= 1e-15
+    assert side.curve is None and "NaN" in side.curve_problem
+    text = " ".join(to_text(panes.pane("albedo", res, 0, 60, 20, panes.Look(color="none")),
+                            width=60).split())
+    assert "no albedo curve" in text and "returned NaN" in text

@@ -514,6 +514,10 @@ def albedo_pane(res: FrameResult, w: int, h: int, look: Look) -> RenderableType:
     """a(θi) over 0–90° per side (channels for one RGB model, luminance in compare mode), θi
     marked, the line a = 1 drawn; flagged when a curve exceeds 1 by more than its error estimate
     (:func:`tuibrdf.core.sphere.albedo.exceeds_one`)."""
+    failed = [f"{s.material.label}: no albedo curve a(θi) over 0–90°: {s.curve_problem}"
+              for s in res.sides if s.curve_problem is not None]
+    if failed:  # (the albedo at the current θi is on the status line)
+        return Text("\n".join(failed))
     if any(s.curve is None for s in res.sides):
         return Text("computing a(θi) over 0–90° …", justify="center")
     t = res.request.theta_i

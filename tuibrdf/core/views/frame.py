@@ -196,6 +196,9 @@ class SideFrame:
     #: the share of directions where a user model's unclamped value is negative
     #: (:mod:`tuibrdf.core.views.negatives`); 0 for the built-in models
     negative: float = 0.0
+    #: why the albedo curve could not be integrated (a kernel failing at another θi than the
+    #: current one); None when it is there or not asked for
+    curve_problem: str | None = None
     #: :meth:`scale_for`'s answers: the map, the sections and the status line each ask
     _scales: dict[tuple[str, str], PeakScale | None] = field(
         default_factory=dict, init=False, compare=False, repr=False)
@@ -310,7 +313,8 @@ class FrameResult:
     @property
     def complete(self) -> bool:
         """Whether the slow parts the request asks for are there."""
-        return all(s.albedo is not None and (s.curve is not None or not self.request.curve)
+        return all(s.albedo is not None and (s.curve is not None or s.curve_problem is not None
+                                             or not self.request.curve)
                    for s in self.sides) and (len(self.sides) < 2 or self.numbers is not None)
 
 
@@ -565,7 +569,12 @@ def _side(req: FrameRequest, m: Material, slow: bool,
         if req.curve:
             curve = _CURVES.peek((m, pi))
             if curve is None:
-                curve = _curve(m, check, pi)
+                try:
+                    curve = _curve(m, check, pi)
+                except (ValueError, ArithmeticError) as err:
+                    # the curve runs over every θi: a kernel failing at another one (a NaN at
+                    # grazing light) is the albedo pane's message; the panes at this θi draw
+                    curve = str(err)
                 if curve is None:
                     return None  # abandoned
                 _CURVES.put((m, pi), curve)
@@ -573,11 +582,12 @@ def _side(req: FrameRequest, m: Material, slow: bool,
         albedo = _ALBEDO.peek((m, t, pi))
         curve = _CURVES.peek((m, pi)) if req.curve else None
     a, a_err = albedo if albedo is not None else (None, None)
-    c, c_err = curve if curve is not None else (None, None)
+    problem = curve if isinstance(curve, str) else None
+    c, c_err = curve if curve is not None and problem is None else (None, None)
     from tuibrdf.core.views.negatives import negative_share
 
     return SideFrame(m, peaks, sections, mp, solid, a, c, a_err, c_err, extra, probe, horizons,
-                     negative_share(m.model, m.values, req.wi))
+                     negative_share(m.model, m.values, req.wi), problem)
 
 
 def compute_frame(req: FrameRequest, *, slow: bool = True,
