@@ -180,3 +180,30 @@ def test_a_kernel_failing_at_another_incidence_leaves_this_one(tmp_path):
     text = " ".join(to_text(panes.pane("albedo", res, 0, 60, 20, panes.Look(color="none")),
                             width=60).split())
     assert "no albedo curve" in text and "returned NaN" in text
+
+
+@pytest.mark.parametrize("view", ["sphere", "slice", "theta-h", "theta-d"])
+def test_an_extra_view_failing_elsewhere_leaves_the_panes_at_this_incidence(tmp_path, view):
+    # each of these views runs over other incidences than the current one (the lit sphere's
+    # local frames, the θh × θd plane): this kernel's NaN beyond θi = 84° is the pane's
+    # message, and the frame at θi = 30° (a = kd = 0.5) still comes
+    from tests.render.test_views import to_text
+    from tuibrdf.core.formats.userfiles import load_model_file
+    from tuibrdf.render import VIEW_TITLES
+    from tuibrdf.render.views import extra_pixels
+
+    path = tmp_path / "nan_grazing.py"
+    path.write_text(NAN_AT_GRAZING)
+    m = Material(load_model_file(path), {"kd": 0.5})
+    res = core_frame.compute_frame(core_frame.FrameRequest(
+        (m,), 30.0, extra=view, extra_px=extra_pixels(view, 60, 20)))
+    side = res.sides[0]
+    assert res.complete and abs(side.albedo - 0.5) <= side.albedo_error + 1e-12
+    assert side.extra is None and "NaN" in side.extra_problem
+    text = " ".join(to_text(panes.pane("extra", res, 0, 60, 20, panes.Look(color="none")),
+                            width=60).split())
+    assert f"no {VIEW_TITLES[view]}" in text and "returned NaN" in text
+    if view == "slice":  # and a click on its pane reads nothing (there is no slice to read)
+        from tuibrdf.render.pick import pick
+
+        assert pick(res, "slice", 0, 20, 5, 60, 20) is None

@@ -210,8 +210,7 @@ def test_a_kernel_failing_in_the_tables_range_leaves_the_other_panes(tmp_path):
     side = res.sides[0]
     assert abs(side.albedo - 0.5) <= side.albedo_error + 1e-12
     assert abs(side.section_max - 0.5 / np.pi) <= 1e-15  # the sections: f = kd/π
-    view, problem = side.extra
-    assert view is None and "NaN" in problem
+    assert side.extra is None and "NaN" in side.extra_problem
     text = " ".join(to_text(panes.pane("extra", res, 0, 60, 20, panes.Look(color="none")),
                             width=60).split())
-    assert "no energy table" in text and "returned NaN" in text
+    assert "no energy E(μ, p)" in text and "returned NaN" in text

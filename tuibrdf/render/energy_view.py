@@ -30,15 +30,11 @@ def _largest(a: np.ndarray) -> np.ndarray:
 
 
 def energy_picture(name: str, view, width: int, height: int, *, cmap: str = "viridis",
-                   levels: int = DEFAULT_LEVELS, color: str = "truecolor",
-                   problem: str | None = None) -> Group:
+                   levels: int = DEFAULT_LEVELS, color: str = "truecolor") -> Group:
     """The view of :class:`~tuibrdf.core.sphere.energy.EnergyView` ``view`` (None: the model
-    has no real parameter, or ``problem`` says why its table cannot be made) in ``width ×
-    height`` cells."""
+    has no real parameter) in ``width × height`` cells."""
     if view is None:  # said whole, wrapped to the pane (a compare pane is narrow)
-        note = (f"{name}: no energy table E(μ, p): {problem}; the albedo at the current "
-                "values is on the status line" if problem else
-                f"{name}: no real parameter for an energy table E(μ, p); its albedo at θi "
+        note = (f"{name}: no real parameter for an energy table E(μ, p); its albedo at θi "
                 "is on the status line")
         lines = textwrap.wrap(note, max(int(width), 1), break_long_words=True)
         return Group(*(Text(line) for line in lines[:max(int(height), 1)]))

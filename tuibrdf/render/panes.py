@@ -35,6 +35,7 @@ from tuibrdf.core.sphere.horizon import HORIZON_DEG, Horizon, PeakScale
 from tuibrdf.core.sphere.peak import Peak
 from tuibrdf.core.views.frame import CURVE_THETAS, SECTION_THETAS, FrameResult, SideFrame
 from tuibrdf.core.views.hemimap import geometry
+from tuibrdf.render import VIEW_TITLES
 from tuibrdf.render.colormap import (
     DEFAULT_LEVELS,
     LOG_DECADES,
@@ -449,6 +450,10 @@ def extra_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Renderab
 
     req, side = res.request, res.sides[k]
     name = _label(res, k)
+    if side.extra_problem is not None:  # (the current values' numbers are on the status line)
+        return Text(f"{name}: no {VIEW_TITLES[req.extra]}: "
+                    f"{side.extra_problem}")
+    drawn = [s for s in res.sides if s.extra is not None]  # the shared scale: sides drawn
     if req.extra in ("sphere", "plane"):
         rad, mask = side.extra
         return lit_view.lit_picture(req.extra, name, req.theta_i, rad, mask, w,
@@ -456,19 +461,18 @@ def extra_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Renderab
     if req.extra == "energy":
         from tuibrdf.render.energy_view import energy_picture
 
-        view, problem = side.extra
-        return energy_picture(name, view, w, h, cmap=look.cmap, levels=look.levels,
-                              color=look.color, problem=problem)
+        return energy_picture(name, side.extra[0], w, h, cmap=look.cmap, levels=look.levels,
+                              color=look.color)
     if req.extra == "slice":
         f, valid, th, td = side.extra
-        vmax = max(halfdiff_view.slice_scale(s.extra, req.phi_d) for s in res.sides)
+        vmax = max(halfdiff_view.slice_scale(s.extra, req.phi_d) for s in drawn)
         return halfdiff_view.slice_picture(name, f, valid, th, td, w, h, phi_d_deg=req.phi_d,
                                            sqrt_h=req.sqrt_h, vmax=vmax,
                                            log=look.log if look.slice_log is None
                                            else look.slice_log,
                                            cmap=look.cmap, levels=look.levels,
                                            rgb_mode=look.rgb_mode, color=look.color)
-    vmax = max(halfdiff_view.line_scale(req.extra, s.extra, req) for s in res.sides)
+    vmax = max(halfdiff_view.line_scale(req.extra, s.extra, req) for s in drawn)
     return halfdiff_view.line_picture(req.extra, name, side.extra, req.theta_d, req.theta_h,
                                       req.phi_d, vmax, w, h, log=look.log, color=look.color,
                                       charset=look.charset)

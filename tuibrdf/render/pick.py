@@ -117,6 +117,8 @@ def pick(res: FrameResult, view: str, k: int, x: int, y: int, w: int, h: int) ->
         wo = wo / np.linalg.norm(wo)  # the mean of two unit rays: |·| > 0
         return Pick(dir_text("wo", wo), req.wi.copy(), wo, "θi")
     if view == "slice":
+        if res.sides[k].extra is None:  # the slice could not be computed: its pane says why
+            return None
         _, _, th, td = res.sides[k].extra
         col, r = x - MARGIN, y - 1
         n_d = len(td)

@@ -23,8 +23,9 @@ RGB),
                 or None when no probe is shown
 ``extra``       the arrays of the request's ``extra`` view, or None (:func:`extra_values`):
                 ``sphere``/``plane`` → ``(radiance, mask)``, ``slice`` → ``(f, valid, θh, θd)``,
-                ``theta-h``/``theta-d`` → ``(x, f, valid)``, ``energy`` → ``(EnergyView or None,
-                why its table cannot be made or None)``
+                ``theta-h``/``theta-d`` → ``(x, f, valid)``, ``energy`` → ``(EnergyView,)``
+``extra_problem`` why the extra view could not be computed (a kernel failing at another
+                incidence or parameter value than the current ones), else None
 ``map``         the Lambert map's pixels and :class:`~tuibrdf.core.views.hemimap.MapInfo` (or None)
 ``solid``       ``f`` at the solid's sample directions (:func:`solid_samples`; or None)
 ``albedo``      ``a(θi) = ∫ f cos θr dω`` (float, or 3 floats for RGB), None until computed
@@ -199,6 +200,8 @@ class SideFrame:
     #: why the albedo curve could not be integrated (a kernel failing at another θi than the
     #: current one); None when it is there or not asked for
     curve_problem: str | None = None
+    #: why the extra view could not be computed (:func:`extra_or_problem`)
+    extra_problem: str | None = None
     #: :meth:`scale_for`'s answers: the map, the sections and the status line each ask
     _scales: dict[tuple[str, str], PeakScale | None] = field(
         default_factory=dict, init=False, compare=False, repr=False)
@@ -432,14 +435,19 @@ def extra_values(m: Material, req: FrameRequest) -> tuple:
         # its E is the frame's albedo at (θi, φi): computed here once, for the status line too
         t, pi = req.theta_i, req.phi_i
         a = _ALBEDO.get((m, t, pi), lambda: _albedo_estimate(m, t, pi))
-        try:
-            return (energy_view(model, values, t, req.energy_param, pi, albedo=a), None)
-        except (ValueError, ArithmeticError) as err:
-            # the table sweeps the parameter's whole range: a value there that the kernel
-            # fails at (a NaN, a floating-point error) is this pane's message, while every
-            # other pane, at the current values, still draws
-            return (None, str(err))
+        return (energy_view(model, values, t, req.energy_param, pi, albedo=a),)
     raise ValueError(f"unknown view {e!r}")
+
+
+def extra_or_problem(m: Material, req: FrameRequest) -> tuple | str:
+    """:func:`extra_values`, or why they cannot be computed: every extra view runs over other
+    incidences (the lit views' local frames, the θh/θd views) or parameter values (the energy
+    table) than the current ones, and a kernel failing there (a NaN at grazing light, a
+    floating-point error) is that pane's message while the panes at the current values draw."""
+    try:
+        return extra_values(m, req)
+    except (ValueError, ArithmeticError) as err:
+        return str(err)
 
 
 def _barycentric(subdiv: int) -> np.ndarray:
@@ -558,7 +566,7 @@ def _side(req: FrameRequest, m: Material, slow: bool,
              if req.solid else None)
     extra = None
     if req.extra is not None:
-        extra = _EXTRA.get((m, req.extra_key), lambda: extra_values(m, req))
+        extra = _EXTRA.get((m, req.extra_key), lambda: extra_or_problem(m, req))
     probe = None
     if req.probe is not None:
         probe = _PROBES.get((m, t, pi, req.probe),
@@ -584,10 +592,12 @@ def _side(req: FrameRequest, m: Material, slow: bool,
     a, a_err = albedo if albedo is not None else (None, None)
     problem = curve if isinstance(curve, str) else None
     c, c_err = curve if curve is not None and problem is None else (None, None)
+    extra_problem = extra if isinstance(extra, str) else None
     from tuibrdf.core.views.negatives import negative_share
 
-    return SideFrame(m, peaks, sections, mp, solid, a, c, a_err, c_err, extra, probe, horizons,
-                     negative_share(m.model, m.values, req.wi), problem)
+    return SideFrame(m, peaks, sections, mp, solid, a, c, a_err, c_err,
+                     None if extra_problem else extra, probe, horizons,
+                     negative_share(m.model, m.values, req.wi), problem, extra_problem)
 
 
 def compute_frame(req: FrameRequest, *, slow: bool = True,
