@@ -249,6 +249,52 @@ async def test_a_python_kernel_never_runs_on_the_event_loop(tmp_path, monkeypatc
     assert seen and seen[0].SEEN and not any(seen[0].SEEN)
 
 
+async def test_a_click_on_a_python_models_picture_reads_it_off_the_event_loop(tmp_path):
+    # a click's readout (f at the directions under the pointer) evaluates the kernel, which
+    # may never return: in a thread too, then shown (f = kd/π everywhere)
+    import math
+    import sys
+
+    from tests.app.test_probe import numbers_after, status
+
+    path = tmp_path / "probe.py"
+    path.write_text(THREAD_PROBE)
+    app = BrdfApp(ViewerState(sides=[Side.of(str(path))], theta_i=40.0, view="sphere"))
+    async with app.run_test(size=(120, 40)) as pilot:
+        assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        seen = [m for m in sys.modules.values() if getattr(m, "SEEN", None) is not None
+                and getattr(m, "__file__", "") == str(path)][0].SEEN
+        seen.clear()
+        await pilot.click("#extra-a", offset=(40, 12))
+        assert await wait_for(pilot, lambda: " f=" in status(app))
+        assert seen and not any(seen)
+        # (printed to 3 digits: 0.127, within half a unit of its last digit)
+        assert numbers_after(status(app), " f")[0] == pytest.approx(0.4 / math.pi, abs=5e-4)
+
+
+
+async def test_an_edited_python_model_file_is_read_again_off_the_event_loop(tmp_path):
+    # re-reading a .py model file runs its module again (a slow import, a loop at its top
+    # level): in a thread, and the viewer then draws the new model
+    import os
+    import sys
+
+    path = tmp_path / "probe.py"
+    path.write_text(THREAD_PROBE)
+    app = BrdfApp(ViewerState(sides=[Side.of(str(path))]))
+    async with app.run_test(size=(100, 30)) as pilot:
+        assert await wait_for(pilot, lambda: app.frame is not None and app.frame.complete)
+        path.write_text("import threading\nREAD_ON_MAIN = threading.current_thread() is "
+                        "threading.main_thread()\n" + THREAD_PROBE.replace("0.4, 0.0", "0.3, 0.0"))
+        st = os.stat(path)
+        os.utime(path, ns=(st.st_atime_ns, st.st_mtime_ns + 10**9))
+        app._check_files()
+        assert await wait_for(pilot, lambda: "redrawn" in app.message)
+        assert app.state.side.material.model.params[0].default == 0.3  # the new file's
+    read = [m.READ_ON_MAIN for m in sys.modules.values()
+            if getattr(m, "__file__", "") == str(path) and hasattr(m, "READ_ON_MAIN")]
+    assert read and not any(read)
+
 # -- presets -----------------------------------------------------------------------------------
 async def test_a_refused_preset_name_keeps_the_dialog_open(config_home):
     app = make(Side.of("phong"))

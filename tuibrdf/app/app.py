@@ -18,7 +18,7 @@ from textual.widgets import Static
 
 from tuibrdf.app import keys
 from tuibrdf.app.figures import FigureWriter
-from tuibrdf.app.frames import FrameDelivery
+from tuibrdf.app.frames import FrameDelivery, built_in
 from tuibrdf.app.guard import error_text, survives
 from tuibrdf.app.layout import CSS, arrange
 from tuibrdf.app.loading import MeasuredData
@@ -110,6 +110,31 @@ def _name_refused(name: str) -> str | None:
     return None
 
 
+
+
+def _reread(materials: list) -> list:
+    """``(material, the material again or re-read, or why it cannot be read)`` for each
+    (:meth:`~tuibrdf.core.material.Material.refreshed`; in a thread)."""
+    out = []
+    for m in materials:
+        try:
+            out.append((m, m.refreshed()))
+        except ValueError as e:
+            out.append((m, str(e)))
+    return out
+
+
+def _reading(res: FrameResult, got) -> str:
+    """The status line's readout of a click (:func:`tuibrdf.render.pick.reading`), or why
+    there is none: a user's kernel failing at the directions clicked."""
+    from tuibrdf.render import pick
+
+    try:
+        return pick.reading(res, got)
+    except (ValueError, ArithmeticError) as e:
+        return "cannot read there: " + " ".join(str(e).split())
+
+
 class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
     """``BrdfApp(state, color=None)``; ``color`` ∈ truecolor/256/none overrides detection.
     ``sync=True`` (tests) computes every frame on the event loop, deterministically."""
@@ -142,6 +167,7 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
         self._widgets: dict[str, object] = {}  # id → widget (BrdfApp.one)
         self._failed_request: FrameRequest | None = None  # the last one that could not be drawn
         self._hold_timer = None  # the timer that ends the screen's hold (hold_screen)
+        self._rereading = False  # model files are being checked for edits (_check_files)
 
     # -- layout ------------------------------------------------------------------------------
     def get_default_screen(self) -> ViewerScreen:
@@ -207,16 +233,27 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
 
     @survives
     def _check_files(self) -> None:
-        """A model file edited on disk (mtime or size changed): re-read, redraw."""
-        for side in self.state.sides:
-            try:
-                new = side.material.refreshed()
-            except ValueError as e:
-                self._changed(f"{side.material.label} changed on disk and cannot be read: {e}")
-                continue
-            if new is not side.material:
-                side.material = new
-                self._changed(f"{new.label} changed on disk: redrawn")
+        """A model file edited on disk (mtime or size changed): re-read, redraw.  Off the
+        event loop: re-reading a Python model file runs its module again (which may take as
+        long as it likes), and a stat on a stalled network disk waits."""
+        materials = [side.material for side in self.state.sides if side.material.stamp]
+        if materials and not self._rereading:
+            self._rereading = True
+            self.background(partial(_reread, materials), self._reread_done)
+
+    @survives
+    def _reread_done(self, results: list) -> None:
+        """:func:`_reread`'s answers, for the sides still showing the material checked."""
+        self._rereading = False
+        for old, new in results:
+            for side in self.state.sides:
+                if side.material is not old:
+                    continue
+                if isinstance(new, str):
+                    self._changed(f"{old.label} changed on disk and cannot be read: {new}")
+                elif new is not old:
+                    side.material = new
+                    self._changed(f"{new.label} changed on disk: redrawn")
 
     @property
     def look(self) -> panes.Look:
@@ -352,8 +389,18 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
                 self._changed(text)
             return
         got = pick.pick(res, view, PANES[pane][1], x, y, pic.size.width, pic.size.height)
-        if got is not None:
-            self._changed(pick.reading(res, got))
+        if got is None:
+            return
+        if all(built_in(s.material) for s in res.sides):
+            self._changed(_reading(res, got))
+        else:  # a user's kernel (it may never return) or measured data: off the event loop
+            self.background(partial(_reading, res, got), partial(self._read_done, res))
+
+    @survives
+    def _read_done(self, res: FrameResult, text: str) -> None:
+        """A readout computed off the event loop: shown while its frame still is."""
+        if self.frame is res:
+            self._changed(text)
 
     @survives
     def picture_dragged(self, pane: str, x: int, y: int, dx: int, dy: int) -> None:
