@@ -299,3 +299,48 @@ def test_albedo_printed_interval_holds_the_reference(capsys, model, params):
             decimals = len(t.split(".")[1])
             assert err >= 0.5 * 10.0 ** -decimals
             assert abs(float(t) - ref_c) <= err, (model, theta, t, ref_c, err)
+
+
+@pytest.mark.parametrize("view", ["slice", "sphere"])
+def test_a_png_of_a_view_the_kernel_fails_in_is_one_line(tmp_path, capsys, view):
+    # the kernel returns NaN at grazing light, which the slice and the lit sphere reach at
+    # θi = 30°: no picture to write, so one line saying why and exit status 2 (it was an
+    # internal error once such views drew their message instead of failing)
+    from tests.render.test_albedo_plot import NAN_AT_GRAZING
+
+    path = tmp_path / "nan_grazing.py"
+    path.write_text(NAN_AT_GRAZING)
+    out = tmp_path / "x.png"
+    assert main(["render", str(path), "--view", view, "--format", "png", "--output",
+                 str(out)]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "returned NaN" in err and not out.exists()
+
+
+def test_every_format_a_refusal_offers_is_one_the_view_takes():
+    # `--format X` refused for a view names what that view can be written as instead: each
+    # such format must then be accepted (the energy view's refusals once sent png to csv and
+    # csv back to png)
+    import argparse
+
+    from tuibrdf.cli.common import UsageError
+    from tuibrdf.cli.export import _check, offered
+    from tuibrdf.render import VIEWS
+
+    def takes(view, fmt):
+        try:
+            _check(argparse.Namespace(format=fmt, view=view, output="x", inline="off"))
+        except UsageError:
+            return False
+        return True
+
+    for view in VIEWS:
+        offer = offered(view)
+        named = [f for f in ("png", "npz", "csv", "json") if re.search(rf"\b{f}\b", offer)]
+        if "tuibrdf energy" in offer:
+            named = [f for f in named if f not in ("csv", "json")]  # (that command's formats)
+        assert all(takes(view, f) for f in named), (view, offer)
+        for fmt in ("png", "npz", "csv", "json"):
+            if not takes(view, fmt):
+                with pytest.raises(UsageError, match=re.escape(f"the {view} view: {offer}")):
+                    _check(argparse.Namespace(format=fmt, view=view, output="x", inline="off"))

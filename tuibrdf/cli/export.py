@@ -63,17 +63,26 @@ def wanted(args: argparse.Namespace) -> bool:
     return args.format != "text" or args.output != "-" or args.inline != "off"
 
 
+def offered(view: str) -> str:
+    """What ``view`` can be written as besides text, ansi, svg and html (every view's)."""
+    kinds = [f for f, views in (("png", IMAGE_VIEWS), ("npz", NPZ_VIEWS),
+                                ("csv or json", TABLE_VIEWS)) if view in views]
+    if view == "energy":  # its numbers are the table `tuibrdf energy` writes
+        kinds.append("its table from tuibrdf energy (csv, json or h)")
+    return " or ".join(kinds) if kinds else "svg or html"
+
+
 def _check(args: argparse.Namespace) -> None:
     fmt, view = args.format, args.view
     if fmt == "png" and view not in IMAGE_VIEWS:
         raise UsageError(f"--format png: the {view} view has no pixel picture; image views: "
-                         f"{', '.join(IMAGE_VIEWS)} (csv or json give its numbers)")
+                         f"{', '.join(IMAGE_VIEWS)}; the {view} view: {offered(view)}")
     if fmt == "npz" and view not in NPZ_VIEWS:
         raise UsageError(f"--format npz: for the views {', '.join(NPZ_VIEWS)}; the "
-                         f"{view} view: " + ("csv or json" if view in TABLE_VIEWS else "png"))
+                         f"{view} view: {offered(view)}")
     if fmt in ("csv", "json") and view not in TABLE_VIEWS:
         raise UsageError(f"--format {fmt}: for the views {', '.join(TABLE_VIEWS)}; the {view} "
-                         "view: " + ("npz" if view in NPZ_VIEWS else "png"))
+                         f"view: {offered(view)}")
     if fmt == "pdf":
         if view not in PDF_VIEWS:
             raise UsageError(f"--format pdf: for the views {', '.join(PDF_VIEWS)}")

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from rich.text import Text
 
 from tuibrdf.render.halfblock import TRANSPARENT, HalfBlockImage
 from tuibrdf.render.text import INCIDENT_MARK, MIRROR_MARK
@@ -72,6 +73,16 @@ def _images(r: Any) -> list[HalfBlockImage]:
     return out
 
 
+def _texts(r: Any) -> list[str]:
+    """The plain text of the ``Text`` parts of a renderable tree, in drawing order."""
+    if isinstance(r, Text):
+        return [r.plain]
+    out: list[str] = []
+    for child in getattr(r, "renderables", None) or ():
+        out += _texts(child)
+    return out
+
+
 def cells_for(view: str, size: int) -> tuple[int, int]:
     """The pane size in cells whose picture is ``size`` pixels across (and as tall)."""
     if view == "map":
@@ -110,6 +121,9 @@ def figure(view: str, model: Any, values: dict[str, Any], theta_i: float, size: 
     look.setdefault("levels", LEVELS)
     r = render_view(view, model, values, theta_i, w, h, color="truecolor", **look)
     images = _images(r)
+    if not images:  # the view could not be computed: its pane's text says why
+        texts = _texts(r)
+        raise ValueError(" ".join(texts[-1].split()) if texts else f"no {view} picture")
     main = images[0]
     index, pal = main.index.copy(), np.asarray(main.palette, dtype=np.uint8)
     extra = [BACKGROUND]
