@@ -101,7 +101,7 @@ def seen_in(marker: bytes, tail: bytes, data: bytes) -> tuple[bool, bytes]:
     tail: the last ``len(marker) - 1`` bytes, a marker split across two reads.  (Searching a
     tail cut to a fixed size lost a marker at the start of a read larger than the cut.)"""
     buf = tail + data
-    return marker in buf, buf[len(buf) - len(marker) + 1:] if len(buf) >= len(marker) else buf
+    return marker in buf, buf[max(0, len(buf) - len(marker) + 1):]
 
 
 class Term:
@@ -207,8 +207,7 @@ class Term:
         of the largest burst when none is that big: a small update —, the bytes of that
         burst, seconds to the last byte before ``SETTLE_S`` of quiet with the status line no
         longer waiting for the frame: :meth:`waiting`)."""
-        if self.screen is not None:
-            self._feed()  # what came before the key: not while its frame is timed
+        self._feed()  # what came before the key: not while its frame is timed (no pyte: none)
         t_key = time.perf_counter()
         self.sent_since_key = 0
         os.write(self.fd, key)

@@ -34,6 +34,7 @@ from tuibrdf.app.textual_internals import (
 from tuibrdf.app.widgets import KeyBar, ParamPanel, Picture, QuietStatic, StatusLine
 from tuibrdf.core.conventions import fmt_number
 from tuibrdf.core.directions import from_degrees
+from tuibrdf.core.numerics import KERNEL_ERRORS
 from tuibrdf.core.views.frame import FrameRequest, FrameResult, section_directions
 from tuibrdf.core.views.hemimap import dir_to_uv, geometry
 from tuibrdf.core.views.sections import great_circle
@@ -110,8 +111,6 @@ def _name_refused(name: str) -> str | None:
     return None
 
 
-
-
 def _reread(materials: list) -> list:
     """``(material, the material again or re-read, or why it cannot be read)`` for each
     (:meth:`~tuibrdf.core.material.Material.refreshed`; in a thread)."""
@@ -131,7 +130,7 @@ def _reading(res: FrameResult, got) -> str:
 
     try:
         return pick.reading(res, got)
-    except (ValueError, ArithmeticError) as e:
+    except KERNEL_ERRORS as e:
         return "cannot read there: " + " ".join(str(e).split())
 
 

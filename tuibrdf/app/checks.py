@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 from tuibrdf.core.directions import incident
+from tuibrdf.core.numerics import KERNEL_ERRORS
 
 
 def check_work(material, theta_i: float, phi_i: float, cmap: str, color: str):
@@ -21,7 +22,7 @@ def check_work(material, theta_i: float, phi_i: float, cmap: str, color: str):
         chi2 = None
         if model.sampler is not None and theta_i < 89.0:
             chi2 = chi2_at(model, values, theta_i)
-    except (ValueError, ArithmeticError) as e:
+    except KERNEL_ERRORS as e:
         return f"checks of {material.label} failed: {e}"
     failed = [r.name for r in results if not r.ok]
     verdict = "every check holds" if not failed else "FAILS " + ", ".join(failed)

@@ -19,6 +19,12 @@ import numpy as np
 ERRSTATE = {"divide": "raise", "over": "raise", "invalid": "raise", "under": "ignore"}
 
 
+#: What a model's failure arrives as: ``ValueError`` (a user kernel's NaN, inf or exception,
+#: named with its file; a value out of range) and ``ArithmeticError`` (the raising policy's
+#: ``FloatingPointError``, a ``ZeroDivisionError``).
+KERNEL_ERRORS = (ValueError, ArithmeticError)
+
+
 def kernel_errstate() -> np.errstate:
     """Context manager applying :data:`ERRSTATE`."""
     return np.errstate(**ERRSTATE)

@@ -451,8 +451,7 @@ def extra_pane(res: FrameResult, k: int, w: int, h: int, look: Look) -> Renderab
     req, side = res.request, res.sides[k]
     name = _label(res, k)
     if side.extra_problem is not None:  # (the current values' numbers are on the status line)
-        return Text(f"{name}: no {VIEW_TITLES[req.extra]}: "
-                    f"{side.extra_problem}")
+        return Text(f"{name}: no {VIEW_TITLES[req.extra]}: {side.extra_problem}")
     drawn = [s for s in res.sides if s.extra is not None]  # the shared scale: sides drawn
     if req.extra in ("sphere", "plane"):
         rad, mask = side.extra

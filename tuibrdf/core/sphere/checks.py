@@ -29,7 +29,7 @@ import numpy as np
 
 from tuibrdf.core.conventions import fmt_number
 from tuibrdf.core.directions import from_degrees
-from tuibrdf.core.numerics import kernel_errstate
+from tuibrdf.core.numerics import KERNEL_ERRORS, kernel_errstate
 from tuibrdf.core.params import Model
 from tuibrdf.core.sphere.albedo import albedo_rule
 
@@ -250,7 +250,7 @@ def _energy(model: Model, configs) -> CheckResult:
     for label, vals in configs:
         try:
             r = albedo_rule(model, vals, ENERGY_THETAS)
-        except (ValueError, ArithmeticError) as e:  # a user kernel's NaN or exception
+        except KERNEL_ERRORS as e:  # a user kernel's NaN or exception
             return CheckResult("energy", False, None, f"at {label}",
                                f"not evaluated: {type(e).__name__}: {e}")
         e = np.asarray(r.value, dtype=float)
@@ -271,7 +271,7 @@ def _chi2(model: Model, values) -> CheckResult:
 
     try:
         v = chi2_test(model, values)
-    except (ValueError, ArithmeticError) as e:  # a user sampler's exception
+    except KERNEL_ERRORS as e:  # a user sampler's exception
         return CheckResult("chi2", False, None, "at the given parameters",
                            f"not evaluated: {type(e).__name__}: {e}")
     worst_r = min(v.results, key=lambda r: r.p_value)

@@ -49,7 +49,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -65,6 +65,7 @@ from tuibrdf.core.display import DISPLAY
 from tuibrdf.core.evaluate import f_cos
 from tuibrdf.core.lru import LRU
 from tuibrdf.core.material import Material
+from tuibrdf.core.numerics import KERNEL_ERRORS
 from tuibrdf.core.sphere.albedo import (
     AlbedoEstimate,
     albedo_curve_estimate_resolved,
@@ -200,7 +201,7 @@ class SideFrame:
     #: why the albedo curve could not be integrated (a kernel failing at another θi than the
     #: current one); None when it is there or not asked for
     curve_problem: str | None = None
-    #: why the extra view could not be computed (:func:`extra_or_problem`)
+    #: why the extra view could not be computed (:func:`or_problem`)
     extra_problem: str | None = None
     #: :meth:`scale_for`'s answers: the map, the sections and the status line each ask
     _scales: dict[tuple[str, str], PeakScale | None] = field(
@@ -439,14 +440,15 @@ def extra_values(m: Material, req: FrameRequest) -> tuple:
     raise ValueError(f"unknown view {e!r}")
 
 
-def extra_or_problem(m: Material, req: FrameRequest) -> tuple | str:
-    """:func:`extra_values`, or why they cannot be computed: every extra view runs over other
-    incidences (the lit views' local frames, the θh/θd views) or parameter values (the energy
-    table) than the current ones, and a kernel failing there (a NaN at grazing light, a
-    floating-point error) is that pane's message while the panes at the current values draw."""
+def or_problem(work: Callable[[], Any]) -> Any:
+    """``work()``, or why it failed (:data:`~tuibrdf.core.numerics.KERNEL_ERRORS`, as text):
+    for the parts that run over other incidences (the albedo curve, the lit views' local
+    frames, the θh/θd views) or parameter values (the energy table) than the current ones.  A
+    kernel failing there (a NaN at grazing light, a floating-point error) is that pane's
+    message, kept with the part, while the panes at the current values draw."""
     try:
-        return extra_values(m, req)
-    except (ValueError, ArithmeticError) as err:
+        return work()
+    except KERNEL_ERRORS as err:
         return str(err)
 
 
@@ -566,7 +568,7 @@ def _side(req: FrameRequest, m: Material, slow: bool,
              if req.solid else None)
     extra = None
     if req.extra is not None:
-        extra = _EXTRA.get((m, req.extra_key), lambda: extra_or_problem(m, req))
+        extra = _EXTRA.get((m, req.extra_key), lambda: or_problem(lambda: extra_values(m, req)))
     probe = None
     if req.probe is not None:
         probe = _PROBES.get((m, t, pi, req.probe),
@@ -577,12 +579,7 @@ def _side(req: FrameRequest, m: Material, slow: bool,
         if req.curve:
             curve = _CURVES.peek((m, pi))
             if curve is None:
-                try:
-                    curve = _curve(m, check, pi)
-                except (ValueError, ArithmeticError) as err:
-                    # the curve runs over every θi: a kernel failing at another one (a NaN at
-                    # grazing light) is the albedo pane's message; the panes at this θi draw
-                    curve = str(err)
+                curve = or_problem(lambda: _curve(m, check, pi))  # (over every θi)
                 if curve is None:
                     return None  # abandoned
                 _CURVES.put((m, pi), curve)

@@ -60,26 +60,17 @@ class Figure:
         return encode(self.index, self.palette, self.text)
 
 
-def _images(r: Any) -> list[HalfBlockImage]:
-    """The half-block images in a renderable tree, in drawing order."""
-    if isinstance(r, HalfBlockImage):
+def _parts(r: Any, kind: type) -> list:
+    """The parts of a renderable tree that are ``kind`` (half-block images, texts), in
+    drawing order."""
+    if isinstance(r, kind):
         return [r]
-    out: list[HalfBlockImage] = []
+    out: list = []
     for child in getattr(r, "renderables", None) or ():
-        out += _images(child)
+        out += _parts(child, kind)
     body = getattr(r, "body", None)
     if body is not None:
-        out += _images(body)
-    return out
-
-
-def _texts(r: Any) -> list[str]:
-    """The plain text of the ``Text`` parts of a renderable tree, in drawing order."""
-    if isinstance(r, Text):
-        return [r.plain]
-    out: list[str] = []
-    for child in getattr(r, "renderables", None) or ():
-        out += _texts(child)
+        out += _parts(body, kind)
     return out
 
 
@@ -120,10 +111,10 @@ def figure(view: str, model: Any, values: dict[str, Any], theta_i: float, size: 
     look = {k: v for k, v in look.items() if k != "color"}
     look.setdefault("levels", LEVELS)
     r = render_view(view, model, values, theta_i, w, h, color="truecolor", **look)
-    images = _images(r)
+    images = _parts(r, HalfBlockImage)
     if not images:  # the view could not be computed: its pane's text says why
-        texts = _texts(r)
-        raise ValueError(" ".join(texts[-1].split()) if texts else f"no {view} picture")
+        texts = _parts(r, Text)
+        raise ValueError(" ".join(texts[-1].plain.split()) if texts else f"no {view} picture")
     main = images[0]
     index, pal = main.index.copy(), np.asarray(main.palette, dtype=np.uint8)
     extra = [BACKGROUND]
