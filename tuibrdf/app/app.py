@@ -34,6 +34,7 @@ from tuibrdf.app.textual_internals import (
 from tuibrdf.app.widgets import KeyBar, ParamPanel, Picture, QuietStatic, StatusLine
 from tuibrdf.core.conventions import fmt_number
 from tuibrdf.core.directions import from_degrees
+from tuibrdf.core.material import file_stamp
 from tuibrdf.core.numerics import KERNEL_ERRORS
 from tuibrdf.core.views.frame import FrameRequest, FrameResult, section_directions
 from tuibrdf.core.views.hemimap import dir_to_uv, geometry
@@ -232,10 +233,12 @@ class BrdfApp(OneLineCrash, FigureWriter, FrameDelivery, MeasuredData, App):
 
     @survives
     def _check_files(self) -> None:
-        """A model file edited on disk (mtime or size changed): re-read, redraw.  Off the
-        event loop: re-reading a Python model file runs its module again (which may take as
-        long as it likes), and a stat on a stalled network disk waits."""
-        materials = [side.material for side in self.state.sides if side.material.stamp]
+        """A model file edited on disk (mtime or size changed): re-read, redraw.  The stat
+        here, the re-read off the event loop (a Python model file's module runs again, and may
+        take as long as it likes), and only for a file whose stamp changed: no thread a second
+        for files that do not change."""
+        materials = [m for m in (side.material for side in self.state.sides)
+                     if m.stamp and file_stamp(m.name) != m.stamp]
         if materials and not self._rereading:
             self._rereading = True
             self.background(partial(_reread, materials), self._reread_done)
